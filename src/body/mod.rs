@@ -1,0 +1,203 @@
+//! The body: mesh loading and validation, landmarks, section rings, partitions A-G.
+
+pub mod landmarks;
+pub mod partition;
+pub mod profile;
+pub mod rings;
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+pub use landmarks::{
+    Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side,
+};
+pub use partition::{DetectionMethod, Partition, PartitionId, PartitionOptions, ResponseRule};
+pub use rings::{BodyRing, RingError};
+
+use crate::mesh::{Adjacency, MeshError, MeshReport, ObjError, TriMesh, obj, validate_and_repair};
+
+/// The body shipped with drape (MakeHuman, CC0), used by `body builtin`.
+pub const BUILTIN_BODY_OBJ: &str = include_str!("../../assets/bodies/female-young-average.obj");
+
+/// Name of the built-in body.
+pub const BUILTIN_BODY_NAME: &str = "builtin:female-young-average";
+
+/// Where a body comes from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum BodySource {
+    /// The shipped body.
+    Builtin,
+    /// An OBJ file.
+    File(PathBuf),
+}
+
+impl BodySource {
+    /// A name for messages.
+    pub fn name(&self) -> String {
+        match self {
+            Self::Builtin => BUILTIN_BODY_NAME.to_string(),
+            Self::File(p) => p.display().to_string(),
+        }
+    }
+}
+
+/// Why a body could not be used.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum BodyError {
+    /// The OBJ is unreadable or malformed.
+    #[error(transparent)]
+    Obj(#[from] ObjError),
+    /// The mesh is broken beyond repair.
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+    /// Landmarks could not be found.
+    #[error("{body}: {source}")]
+    Landmarks {
+        /// Body name.
+        body: String,
+        /// Cause.
+        source: LandmarkError,
+    },
+    /// A ring could not be cut.
+    #[error("{body}: {source}")]
+    Ring {
+        /// Body name.
+        body: String,
+        /// Cause.
+        source: RingError,
+    },
+}
+
+/// A loaded, validated body mesh with its adjacency.
+#[derive(Clone, Debug)]
+pub struct BodyMesh {
+    /// Name for messages.
+    pub name: String,
+    /// The repaired mesh, outward-facing.
+    pub mesh: TriMesh,
+    /// Triangle adjacency.
+    pub adjacency: Adjacency,
+    /// What validation found.
+    pub report: MeshReport,
+    /// Polygons with more than 3 corners triangulated on load.
+    pub polygons_triangulated: usize,
+}
+
+impl BodyMesh {
+    /// Loads and validates a body; `scale` converts file units to metres.
+    pub fn load(source: &BodySource, scale: f64) -> Result<Self, BodyError> {
+        let name = source.name();
+        let parsed = match source {
+            BodySource::Builtin => obj::parse_obj(BUILTIN_BODY_OBJ, &name, scale)?,
+            BodySource::File(path) => obj::read_obj(path, scale)?,
+        };
+        Self::from_obj(name, parsed)
+    }
+
+    /// Validates OBJ text (for tests and tools).
+    pub fn from_obj_text(text: &str, name: &str, scale: f64) -> Result<Self, BodyError> {
+        Self::from_obj(name.to_string(), obj::parse_obj(text, name, scale)?)
+    }
+
+    fn from_obj(name: String, parsed: obj::ObjMesh) -> Result<Self, BodyError> {
+        let mut mesh = parsed.mesh;
+        let report = validate_and_repair(&mut mesh, &name, &parsed.triangle_lines)?;
+        // Validation succeeded, so every edge has at most two triangles.
+        let adjacency = Adjacency::try_new(&mesh).map_err(|e| MeshError::NonManifold {
+            place: format!("{name}: "),
+            a: e.vertices[0] + 1,
+            b: e.vertices[1] + 1,
+            count: e.triangles.len(),
+            lines: String::new(),
+        })?;
+        Ok(Self {
+            name,
+            mesh,
+            adjacency,
+            report,
+            polygons_triangulated: parsed.polygons_triangulated,
+        })
+    }
+
+    /// Height (top minus floor), m.
+    pub fn height(&self) -> f64 {
+        self.mesh.bounds().map_or(0.0, |(lo, hi)| hi.y - lo.y)
+    }
+}
+
+/// A body ready for garments: mesh, landmarks, rings and partitions.
+#[derive(Clone, Debug)]
+pub struct Body {
+    /// The mesh.
+    pub mesh: BodyMesh,
+    /// Landmarks.
+    pub landmarks: Landmarks,
+    /// Rings at the landmarks.
+    pub rings: Vec<BodyRing>,
+    /// Partitions A-G.
+    pub partitions: Vec<Partition>,
+}
+
+impl Body {
+    /// Analyses a loaded mesh: landmarks, rings, partitions.
+    pub fn analyse(
+        mesh: BodyMesh,
+        landmark_options: &LandmarkOptions,
+        partition_options: &PartitionOptions,
+    ) -> Result<Self, BodyError> {
+        let landmarks = find_landmarks(&mesh, landmark_options)?;
+        let rings = cut_rings(&mesh, &landmarks)?;
+        let partitions = build_partitions(&mesh, &landmarks, partition_options)?;
+        Ok(Self {
+            mesh,
+            landmarks,
+            rings,
+            partitions,
+        })
+    }
+
+    /// Loads and analyses with default options.
+    pub fn load_default(path: Option<&Path>) -> Result<Self, BodyError> {
+        let source = path.map_or(BodySource::Builtin, |p| BodySource::File(p.to_path_buf()));
+        Self::analyse(
+            BodyMesh::load(&source, 1.0)?,
+            &LandmarkOptions::default(),
+            &PartitionOptions::default(),
+        )
+    }
+}
+
+/// Landmark detection on a body mesh (errors carry the body name).
+pub fn find_landmarks(mesh: &BodyMesh, options: &LandmarkOptions) -> Result<Landmarks, BodyError> {
+    landmarks::detect_landmarks(&mesh.mesh, &mesh.adjacency, options).map_err(|source| {
+        BodyError::Landmarks {
+            body: mesh.name.clone(),
+            source,
+        }
+    })
+}
+
+/// The landmark rings of a body.
+pub fn cut_rings(mesh: &BodyMesh, landmarks: &Landmarks) -> Result<Vec<BodyRing>, BodyError> {
+    rings::landmark_rings(&mesh.mesh, &mesh.adjacency, landmarks).map_err(|source| {
+        BodyError::Ring {
+            body: mesh.name.clone(),
+            source,
+        }
+    })
+}
+
+/// The partitions of a body.
+pub fn build_partitions(
+    mesh: &BodyMesh,
+    landmarks: &Landmarks,
+    options: &PartitionOptions,
+) -> Result<Vec<Partition>, BodyError> {
+    partition::partitions(&mesh.mesh, &mesh.adjacency, landmarks, options).map_err(|source| {
+        BodyError::Ring {
+            body: mesh.name.clone(),
+            source,
+        }
+    })
+}

@@ -1,0 +1,12 @@
+//! Curves, planes and sections: the geometry every stage builds on.
+
+pub mod chord_spline;
+pub mod plane;
+pub mod polygon;
+pub mod section;
+pub mod spline;
+
+pub use chord_spline::{ChordSpline3, CurveEnds};
+pub use plane::Plane;
+pub use section::{SectionLoop, section_mesh};
+pub use spline::{CubicSpline, EndCondition, SplineError};

@@ -1,0 +1,27 @@
+//! # drape
+//!
+//! Garment edit sessions against a body, every stage logged to Rerun.
+//!
+//! ## The pipeline
+//!
+//! A **session** ([`session`]) names a body and an ordered list of steps. The runner loads
+//! the **body** ([`body`]): an OBJ mesh ([`mesh`]) validated and repaired, its landmarks
+//! found from the section profile, rings cut at the landmark heights, and partitions A-G
+//! with their collision method and response rule. Each step then computes plain data
+//! (for example the [`mannequin`] refinement compared with its true surface) and hands it
+//! to a [`session::StageSink`]. The only sink that knows Rerun is in [`viz`]; the metrics
+//! file and the mesh export are others. Geometry never depends on logging, so every
+//! stage can be tested and benchmarked alone.
+//!
+//! ## Units and frames
+//!
+//! Metres, `y` up, the body faces `+z`, its left is `+x`. Angles in radians.
+
+#![warn(missing_docs)]
+
+pub mod body;
+pub mod geom;
+pub mod mannequin;
+pub mod mesh;
+pub mod session;
+pub mod viz;

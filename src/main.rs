@@ -1,0 +1,379 @@
+//! The `drape` command line: run a session (the demo by default), check one, or measure
+//! the mannequin refinements.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use anyhow::{Context as _, Result};
+use clap::{Args, Parser, Subcommand};
+
+use drape::mannequin::{DressForm, MannequinOptions, Region, run_mannequin};
+use drape::session::export::ObjExporter;
+use drape::session::metrics::metrics_json;
+use drape::session::runner::{SinkError, Stage, StageInfo, StageSink};
+use drape::session::{
+    DEMO_SESSION, DEMO_SESSION_NAME, RunOptions, Session, parse_session, run_session,
+};
+use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+
+/// Garment edit sessions against a body, every stage logged to Rerun.
+///
+/// With no command, runs the built-in demo session and writes recordings/demo.rrd
+/// (view it with `rerun recordings/demo.rrd`).
+#[derive(Parser, Debug)]
+#[command(name = "drape", version, about, long_about)]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Run a session (default: the built-in demo) and log every stage to Rerun.
+    Run(RunArgs),
+    /// Parse and validate a session without running it.
+    Check {
+        /// The session file.
+        session: PathBuf,
+    },
+    /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
+    /// and print each method's deviation from the true surface per region.
+    Mannequin(MannequinArgs),
+}
+
+#[derive(Args, Debug, Default)]
+struct RunArgs {
+    /// Session file; without it, the built-in demo (assets/sessions/demo.drape).
+    session: Option<PathBuf>,
+    /// Use this body OBJ (metres, y up, facing +z) instead of the session's.
+    #[arg(long, value_name = "OBJ")]
+    body: Option<PathBuf>,
+    /// Write the recording here [default: recordings/<session name>.rrd].
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["connect", "serve"])]
+    save: Option<PathBuf>,
+    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy.
+    #[arg(long, value_name = "URL", conflicts_with = "serve")]
+    connect: Option<String>,
+    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C.
+    #[arg(long)]
+    serve: bool,
+    /// Port for --serve.
+    #[arg(long, default_value_t = 9876, requires = "serve")]
+    port: u16,
+    /// Write per-step metrics (timings, counts, figures) as a JSON array.
+    #[arg(long, value_name = "PATH")]
+    metrics: Option<PathBuf>,
+    /// Write the body and every mesh a step produces as OBJ files into this folder.
+    #[arg(long, value_name = "DIR")]
+    export: Option<PathBuf>,
+    /// Also log compute timings to the recording (makes recordings differ run to run).
+    #[arg(long)]
+    log_timings: bool,
+}
+
+#[derive(Args, Debug)]
+struct MannequinArgs {
+    /// Measured layers (rings) of the dress form.
+    #[arg(long, default_value_t = 18, value_parser = clap::value_parser!(u16).range(4..=200))]
+    layers: u16,
+    /// Measured points per layer.
+    #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u16).range(6..=360))]
+    points: u16,
+    /// Split every grid interval this many ways (the paper: 6).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u16).range(1..=20))]
+    subdivisions: u16,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Also log both surfaces, coloured by error, to this recording.
+    #[arg(long, value_name = "PATH")]
+    save: Option<PathBuf>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => run(RunArgs::default()),
+        Some(Command::Run(args)) => run(args),
+        Some(Command::Check { session }) => check(&session),
+        Some(Command::Mannequin(args)) => mannequin(&args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// Reads and parses a session file, or the demo.
+fn load_session(
+    path: Option<&Path>,
+) -> Result<std::result::Result<Session, drape::session::ParseError>> {
+    Ok(match path {
+        Some(p) => {
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read session {}", p.display()))?;
+            let base = p.parent().unwrap_or(Path::new("."));
+            parse_session(&text, &p.display().to_string(), base)
+        }
+        None => parse_session(DEMO_SESSION, DEMO_SESSION_NAME, Path::new(".")),
+    })
+}
+
+fn check(path: &Path) -> Result<ExitCode> {
+    match load_session(Some(path))? {
+        Ok(s) => {
+            println!(
+                "{}: ok, body {} ({}), {} landmark override(s), {} step(s): {}",
+                s.name,
+                s.scene.body.name(),
+                s.scene.units.name(),
+                s.scene.landmarks.len(),
+                s.steps.len(),
+                s.steps
+                    .iter()
+                    .map(|st| st.op.keyword())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            );
+            Ok(ExitCode::SUCCESS)
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            Ok(ExitCode::from(2))
+        }
+    }
+}
+
+/// Prints each stage as it completes, so long runs show progress.
+struct Progress;
+
+impl StageSink for Progress {
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> std::result::Result<(), SinkError> {
+        match stage {
+            Stage::StepDone(m) => {
+                let compute: f64 = m
+                    .timings_ms
+                    .iter()
+                    .filter(|(k, _)| !k.starts_with("log."))
+                    .map(|(_, v)| v)
+                    .sum();
+                let log: f64 = m
+                    .timings_ms
+                    .iter()
+                    .filter(|(k, _)| k.starts_with("log."))
+                    .map(|(_, v)| v)
+                    .sum();
+                eprintln!(
+                    "  step {} {:<10} done: compute {compute:8.1} ms, logging {log:6.1} ms",
+                    info.step, info.op
+                );
+            }
+            Stage::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message),
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+/// Writes `bytes` to `path` through a temporary file and a rename.
+fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    let tmp = partial_path(path);
+    std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
+    std::fs::rename(&tmp, path)
+        .with_context(|| format!("cannot rename {} to {}", tmp.display(), path.display()))
+}
+
+fn partial_path(path: &Path) -> PathBuf {
+    let mut name = path
+        .file_name()
+        .map(|n| n.to_os_string())
+        .unwrap_or_default();
+    name.push(".partial");
+    path.with_file_name(name)
+}
+
+fn session_stem(session: &Session) -> String {
+    Path::new(&session.name)
+        .file_stem()
+        .map_or_else(|| "session".into(), |s| s.to_string_lossy().into_owned())
+}
+
+fn host_name() -> String {
+    std::env::var("HOSTNAME")
+        .ok()
+        .or_else(|| std::fs::read_to_string("/etc/hostname").ok())
+        .map(|h| h.trim().to_string())
+        .filter(|h| !h.is_empty())
+        .unwrap_or_else(|| "localhost".into())
+}
+
+fn run(args: RunArgs) -> Result<ExitCode> {
+    let session = match load_session(args.session.as_deref())? {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    if let Some(body) = &args.body {
+        anyhow::ensure!(body.is_file(), "--body {}: no such file", body.display());
+    }
+    let stem = session_stem(&session);
+    // A file recording is written beside its final name and renamed at the end, so a run
+    // that dies midway never leaves a broken file where a good one was.
+    let final_path = args
+        .save
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("recordings").join(format!("{stem}.rrd")));
+    let target = if let Some(url) = &args.connect {
+        RecordingTarget::Connect(url.clone())
+    } else if args.serve {
+        RecordingTarget::Serve(args.port)
+    } else {
+        if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)
+                .with_context(|| format!("cannot create {}", dir.display()))?;
+        }
+        RecordingTarget::File(partial_path(&final_path))
+    };
+    let rec = open_recording(&target, &stem).context("cannot open the recording")?;
+    if args.serve {
+        println!(
+            "serving on port {}; open it from any machine with:",
+            args.port
+        );
+        println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.port);
+    }
+    eprintln!("running {} ({} step(s))", session.name, session.steps.len());
+    let mut logger = RerunLogger::new(rec, LogOptions::default().with_timings(args.log_timings))?;
+    let mut exporter = args.export.clone().map(ObjExporter::new).transpose()?;
+    let mut progress = Progress;
+    let options = RunOptions {
+        body_override: args.body.clone(),
+        ..RunOptions::default()
+    };
+    let report = {
+        let mut sinks: Vec<&mut dyn StageSink> = vec![&mut progress, &mut logger];
+        if let Some(e) = exporter.as_mut() {
+            sinks.push(e);
+        }
+        run_session(&session, &options, &mut sinks)
+    };
+    if let Some(path) = &args.metrics {
+        let text = serde_json::to_string_pretty(&metrics_json(&report.steps))?;
+        write_atomic(path, text.as_bytes())?;
+        eprintln!("metrics: {}", path.display());
+    }
+    if let Some(e) = &exporter {
+        eprintln!(
+            "exported {} OBJ file(s) to {}",
+            e.written.len(),
+            args.export.as_deref().unwrap_or(Path::new(".")).display()
+        );
+    }
+    if args.serve {
+        logger.recording().flush_blocking().ok();
+        println!("all data sent; still serving for late viewers. Press Ctrl-C to stop.");
+        std::io::stdout().flush().ok();
+        loop {
+            std::thread::sleep(std::time::Duration::from_secs(3600));
+        }
+    }
+    drop(logger); // closes the file sink (writes its footer)
+    if let RecordingTarget::File(partial) = &target {
+        std::fs::rename(partial, &final_path).with_context(|| {
+            format!(
+                "cannot rename {} to {}",
+                partial.display(),
+                final_path.display()
+            )
+        })?;
+        eprintln!(
+            "recording: {} (view: rerun {})",
+            final_path.display(),
+            final_path.display()
+        );
+    }
+    match report.error {
+        Some(e) => {
+            eprintln!("error: {e}");
+            Ok(ExitCode::from(1))
+        }
+        None => Ok(ExitCode::SUCCESS),
+    }
+}
+
+fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
+    let options = MannequinOptions::grid(usize::from(args.layers), usize::from(args.points))
+        .with_subdivisions(usize::from(args.subdivisions));
+    let result = run_mannequin(&DressForm::default(), &options)?;
+    let ordered: Vec<_> = Region::REPORT_ORDER
+        .iter()
+        .filter_map(|r| result.regions.iter().find(|e| e.region == r.name()))
+        .collect();
+    if args.json {
+        let regions: Vec<_> = ordered
+            .iter()
+            .map(|e| serde_json::json!({"region": e.region, "polar": {"max_m": e.polar.max_m, "rms_m": e.polar.rms_m},
+                                        "chord": {"max_m": e.chord.max_m, "rms_m": e.chord.rms_m}}))
+            .collect();
+        let out = serde_json::json!({"layers": options.layers, "points": options.points, "regions": regions});
+        println!("{}", serde_json::to_string_pretty(&out)?);
+    } else {
+        println!(
+            "dress form {} layers x {} points, refined to {} x {} (k = {}); deviation from the true surface, mm",
+            options.layers,
+            options.points,
+            result.polar.points,
+            result.polar.layers,
+            options.subdivisions
+        );
+        println!(
+            "{:<9} {:>10} {:>10} {:>10} {:>10}   {}",
+            "region", "polar max", "polar rms", "chord max", "chord rms", "better"
+        );
+        for e in &ordered {
+            let better = if e.chord.max_m < e.polar.max_m {
+                "chord"
+            } else {
+                "polar"
+            };
+            println!(
+                "{:<9} {:>10.3} {:>10.3} {:>10.3} {:>10.3}   {better}",
+                e.region,
+                e.polar.max_m * 1e3,
+                e.polar.rms_m * 1e3,
+                e.chord.max_m * 1e3,
+                e.chord.rms_m * 1e3
+            );
+        }
+    }
+    if let Some(path) = &args.save {
+        let partial = partial_path(path);
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)?;
+        }
+        {
+            let rec = open_recording(&RecordingTarget::File(partial.clone()), "mannequin")?;
+            let mut logger =
+                RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3))?;
+            let info = StageInfo {
+                step: 1,
+                op: "mannequin",
+                stage: 0,
+                name: "mannequin.refine",
+            };
+            logger.stage(&info, Stage::Mannequin(&result))?;
+        }
+        std::fs::rename(&partial, path)?;
+        eprintln!("recording: {}", path.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,220 @@
+//! The [spline] mannequin: a dress form measured as a coarse ring grid (L layers x P
+//! points, the paper's 18 x 12) refined to a dense surface two ways, polar and
+//! chord-length cubic splines, and both measured against the form's true surface.
+//!
+//! The paper only shows pictures (polar distorts neck and shoulder); here an analytic
+//! dress form ([`DressForm`]) is the known truth, so the deviation of each method is a
+//! number per region.
+
+pub mod deviation;
+pub mod dress_form;
+pub mod refine_chord;
+pub mod refine_polar;
+
+use thiserror::Error;
+
+pub use deviation::{ErrorStats, TrueSurface};
+pub use dress_form::{DressForm, Region};
+
+use crate::geom::SplineError;
+use glam::DVec3;
+
+/// A refined surface: `layers` rings of `points` points each, row-major (ring by ring).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RingGrid {
+    /// Rings.
+    pub layers: usize,
+    /// Points per ring.
+    pub points: usize,
+    /// `layers * points` positions.
+    pub positions: Vec<DVec3>,
+}
+
+impl RingGrid {
+    /// Point `j` of ring `i`.
+    pub fn at(&self, i: usize, j: usize) -> DVec3 {
+        self.positions[i * self.points + j]
+    }
+
+    /// Triangles of the closed-around, open-ended tube (two per quad).
+    pub fn triangles(&self) -> Vec<[u32; 3]> {
+        let mut tris = Vec::with_capacity(2 * (self.layers.saturating_sub(1)) * self.points);
+        let id = |i: usize, j: usize| (i * self.points + j % self.points) as u32;
+        for i in 0..self.layers.saturating_sub(1) {
+            for j in 0..self.points {
+                // Rings run counter-clockwise seen from above, so this faces outward.
+                tris.push([id(i, j), id(i, j + 1), id(i + 1, j + 1)]);
+                tris.push([id(i, j), id(i + 1, j + 1), id(i + 1, j)]);
+            }
+        }
+        tris
+    }
+}
+
+/// Mannequin refinement settings.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct MannequinOptions {
+    /// Measured layers (rings). Default value: 18 (the paper's).
+    pub layers: usize,
+    /// Measured points per layer. Default value: 12 (the paper's).
+    pub points: usize,
+    /// Each grid interval is split into this many (the paper: 6, so 12 points become 72
+    /// and 18 layers 103 rings, 102 intervals). Default value: 6.
+    pub subdivisions: usize,
+}
+
+impl Default for MannequinOptions {
+    fn default() -> Self {
+        Self {
+            layers: 18,
+            points: 12,
+            subdivisions: 6,
+        }
+    }
+}
+
+impl MannequinOptions {
+    /// A grid of `layers` x `points` with the default subdivision.
+    pub fn grid(layers: usize, points: usize) -> Self {
+        Self {
+            layers,
+            points,
+            ..Self::default()
+        }
+    }
+
+    /// Sets [`Self::subdivisions`].
+    #[must_use]
+    pub fn with_subdivisions(mut self, k: usize) -> Self {
+        self.subdivisions = k;
+        self
+    }
+}
+
+/// Why a refinement failed.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MannequinError {
+    /// Too coarse a grid.
+    #[error(
+        "a mannequin grid needs at least 4 layers and 6 points per layer (got {layers} x {points})"
+    )]
+    TooCoarse {
+        /// Layers.
+        layers: usize,
+        /// Points.
+        points: usize,
+    },
+    /// A spline could not be built.
+    #[error("{method} refinement, {curve}: {source}")]
+    Spline {
+        /// Which method.
+        method: &'static str,
+        /// Which curve.
+        curve: String,
+        /// Cause.
+        source: SplineError,
+    },
+    /// The polar method needs rings that are star-shaped about the axis.
+    #[error(
+        "polar refinement, layer {layer}: the ring is not star-shaped about the axis (polar angle does not increase at point {point})"
+    )]
+    NotStarShaped {
+        /// Layer.
+        layer: usize,
+        /// Point.
+        point: usize,
+    },
+    /// The polar method needs heights increasing along each meridian.
+    #[error(
+        "polar refinement, meridian {meridian}: heights do not increase at layer {layer}, rho(y) is not a function"
+    )]
+    NotMonotone {
+        /// Meridian.
+        meridian: usize,
+        /// Layer.
+        layer: usize,
+    },
+}
+
+/// Deviation of both methods in one region.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RegionErrors {
+    /// Region name.
+    pub region: &'static str,
+    /// Polar method.
+    pub polar: ErrorStats,
+    /// Chord-length method.
+    pub chord: ErrorStats,
+}
+
+/// Everything the mannequin step produces.
+#[derive(Clone, Debug)]
+pub struct MannequinResult {
+    /// Settings used.
+    pub options: MannequinOptions,
+    /// The measured grid.
+    pub measured: RingGrid,
+    /// Polar refinement.
+    pub polar: RingGrid,
+    /// Chord-length refinement.
+    pub chord: RingGrid,
+    /// Distance of each polar point to the true surface, m.
+    pub polar_error: Vec<f64>,
+    /// Distance of each chord point to the true surface, m.
+    pub chord_error: Vec<f64>,
+    /// The true surface, finely tessellated (for display).
+    pub truth: RingGrid,
+    /// Per-region statistics, bottom (hip) to top (neck).
+    pub regions: Vec<RegionErrors>,
+}
+
+/// Samples the dress form, refines it both ways and measures both against the truth.
+pub fn run_mannequin(
+    form: &DressForm,
+    options: &MannequinOptions,
+) -> Result<MannequinResult, MannequinError> {
+    if options.layers < 4 || options.points < 6 {
+        return Err(MannequinError::TooCoarse {
+            layers: options.layers,
+            points: options.points,
+        });
+    }
+    let measured = form.measure(options.layers, options.points);
+    let k = options.subdivisions.max(1);
+    let polar = refine_polar::refine(&measured, k)?;
+    let chord = refine_chord::refine(&measured, k)?;
+    let truth = TrueSurface::new(form);
+    let (polar_error, polar_region) = truth.deviations(&polar.positions);
+    let (chord_error, chord_region) = truth.deviations(&chord.positions);
+    let regions = Region::ALL
+        .iter()
+        .map(|&r| RegionErrors {
+            region: r.name(),
+            polar: ErrorStats::of(
+                polar_error
+                    .iter()
+                    .zip(&polar_region)
+                    .filter(|(_, g)| **g == r)
+                    .map(|(e, _)| *e),
+            ),
+            chord: ErrorStats::of(
+                chord_error
+                    .iter()
+                    .zip(&chord_region)
+                    .filter(|(_, g)| **g == r)
+                    .map(|(e, _)| *e),
+            ),
+        })
+        .collect();
+    Ok(MannequinResult {
+        options: options.clone(),
+        measured,
+        polar,
+        chord,
+        polar_error,
+        chord_error,
+        truth: form.measure(120, 96),
+        regions,
+    })
+}

@@ -1,0 +1,247 @@
+//! Wavefront OBJ input and output.
+//!
+//! Reads `v` and `f` statements (faces of any size are fan-triangulated; `i`, `i/t`,
+//! `i//n`, `i/t/n` and negative relative indices are accepted) and ignores the rest
+//! (normals, texture coordinates, groups, materials). Every error names the file, line
+//! and column, which a general OBJ crate does not, and that is why this reader exists.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::TriMesh;
+
+/// Why an OBJ file could not be read.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum ObjError {
+    /// The file could not be opened or read.
+    #[error("{path}: cannot read: {message}")]
+    Io {
+        /// File name.
+        path: String,
+        /// The system's message.
+        message: String,
+    },
+    /// A statement is malformed.
+    #[error("{path}:{line}:{column}: {message}")]
+    Syntax {
+        /// File name.
+        path: String,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// What was expected.
+        message: String,
+    },
+    /// The file has no vertices or no faces.
+    #[error("{path}: {message}")]
+    Empty {
+        /// File name.
+        path: String,
+        /// What is missing.
+        message: String,
+    },
+}
+
+/// A mesh read from OBJ, with the line each triangle came from (for later error messages).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ObjMesh {
+    /// The triangles and vertices, coordinates multiplied by the unit scale.
+    pub mesh: TriMesh,
+    /// 1-based source line of each triangle.
+    pub triangle_lines: Vec<usize>,
+    /// Number of polygons with more than 3 corners that were fan-triangulated.
+    pub polygons_triangulated: usize,
+}
+
+/// Reads an OBJ file; coordinates are multiplied by `scale` (e.g. 0.01 for centimetres).
+///
+/// # Failures
+/// [`ObjError`]: unreadable file, malformed numbers, non-finite coordinates, invalid or
+/// out-of-range indices, faces with fewer than 3 corners, no vertices or no faces.
+pub fn read_obj(path: &Path, scale: f64) -> Result<ObjMesh, ObjError> {
+    let text = std::fs::read_to_string(path).map_err(|e| ObjError::Io {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    })?;
+    parse_obj(&text, &path.display().to_string(), scale)
+}
+
+/// Parses OBJ text; `name` is used in error messages.
+pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError> {
+    let syntax = |line: usize, column: usize, message: String| ObjError::Syntax {
+        path: name.to_string(),
+        line,
+        column,
+        message,
+    };
+    let mut positions = Vec::new();
+    // (line, column, raw index) per corner, resolved once all vertices are known.
+    let mut faces: Vec<(usize, Vec<(usize, i64)>)> = Vec::new();
+    for (line_index, raw_line) in text.lines().enumerate() {
+        let line = line_index + 1;
+        let content = raw_line.split('#').next().unwrap_or("");
+        let mut tokens = tokens_with_columns(content);
+        let Some((_, keyword)) = tokens.next() else {
+            continue;
+        };
+        match keyword {
+            "v" => {
+                let mut xyz = [0.0; 3];
+                let mut last_column = keyword.len() + 1;
+                for (k, slot) in xyz.iter_mut().enumerate() {
+                    let Some((column, token)) = tokens.next() else {
+                        return Err(syntax(
+                            line,
+                            last_column + 1,
+                            format!("expected 3 coordinates after 'v', found {k}"),
+                        ));
+                    };
+                    last_column = column + token.len();
+                    let value: f64 = token
+                        .parse()
+                        .map_err(|_| syntax(line, column, format!("'{token}' is not a number")))?;
+                    if !value.is_finite() {
+                        return Err(syntax(
+                            line,
+                            column,
+                            format!("coordinate '{token}' is not finite"),
+                        ));
+                    }
+                    *slot = value * scale;
+                }
+                positions.push(DVec3::from_array(xyz));
+            }
+            "f" => {
+                let mut corners = Vec::new();
+                for (column, token) in tokens {
+                    let index_text = token.split('/').next().unwrap_or("");
+                    let index: i64 = index_text.parse().map_err(|_| {
+                        syntax(line, column, format!("'{token}' is not a vertex index"))
+                    })?;
+                    if index == 0 {
+                        return Err(syntax(
+                            line,
+                            column,
+                            "vertex index 0 is invalid (OBJ indices start at 1)".into(),
+                        ));
+                    }
+                    // Negative indices count back from the vertices read so far.
+                    let resolved = if index < 0 {
+                        positions.len() as i64 + index + 1
+                    } else {
+                        index
+                    };
+                    if resolved < 1 {
+                        return Err(syntax(
+                            line,
+                            column,
+                            format!("relative index {index} reaches before the first vertex"),
+                        ));
+                    }
+                    corners.push((column, resolved));
+                }
+                if corners.len() < 3 {
+                    return Err(syntax(
+                        line,
+                        2,
+                        format!("a face needs at least 3 vertices, found {}", corners.len()),
+                    ));
+                }
+                faces.push((line, corners));
+            }
+            _ => {}
+        }
+    }
+    if positions.is_empty() {
+        return Err(ObjError::Empty {
+            path: name.into(),
+            message: "no vertices ('v' lines)".into(),
+        });
+    }
+    if faces.is_empty() {
+        return Err(ObjError::Empty {
+            path: name.into(),
+            message: "no faces ('f' lines)".into(),
+        });
+    }
+    let mut triangles = Vec::new();
+    let mut triangle_lines = Vec::new();
+    let mut polygons_triangulated = 0;
+    for (line, corners) in &faces {
+        let mut ids = Vec::with_capacity(corners.len());
+        for &(column, index) in corners {
+            if index as usize > positions.len() {
+                return Err(syntax(
+                    *line,
+                    column,
+                    format!(
+                        "vertex index {index} is out of range: the file has {} vertices",
+                        positions.len()
+                    ),
+                ));
+            }
+            ids.push((index - 1) as u32);
+        }
+        if ids.len() > 3 {
+            polygons_triangulated += 1;
+        }
+        for k in 1..ids.len() - 1 {
+            triangles.push([ids[0], ids[k], ids[k + 1]]);
+            triangle_lines.push(*line);
+        }
+    }
+    Ok(ObjMesh {
+        mesh: TriMesh {
+            positions,
+            triangles,
+        },
+        triangle_lines,
+        polygons_triangulated,
+    })
+}
+
+/// Whitespace-separated tokens with their 1-based byte columns.
+fn tokens_with_columns(line: &str) -> impl Iterator<Item = (usize, &str)> {
+    line.split_ascii_whitespace()
+        .map(move |token| (token.as_ptr() as usize - line.as_ptr() as usize + 1, token))
+}
+
+/// Writes a mesh as OBJ text (`v` and `f` lines, 1-based), with a comment header.
+pub fn write_obj(mesh: &TriMesh, header: &str) -> String {
+    let mut out = String::with_capacity(mesh.positions.len() * 40 + mesh.triangles.len() * 24);
+    for line in header.lines() {
+        writeln!(out, "# {line}").ok();
+    }
+    for p in &mesh.positions {
+        writeln!(out, "v {:.6} {:.6} {:.6}", p.x, p.y, p.z).ok();
+    }
+    for [a, b, c] in &mesh.triangles {
+        writeln!(out, "f {} {} {}", a + 1, b + 1, c + 1).ok();
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn quads_and_negative_indices_are_triangulated() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf -4 -3/1 -2//3 -1/2/3\n";
+        let obj = parse_obj(text, "q.obj", 1.0).unwrap();
+        assert_eq!(obj.mesh.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+        assert_eq!(obj.polygons_triangulated, 1);
+    }
+
+    #[test]
+    fn round_trip_keeps_the_mesh() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let obj = parse_obj(text, "t.obj", 1.0).unwrap();
+        let again = parse_obj(&write_obj(&obj.mesh, "x"), "t2.obj", 1.0).unwrap();
+        assert_eq!(obj.mesh, again.mesh);
+    }
+}

@@ -1,0 +1,77 @@
+//! The indexed triangle mesh every stage shares.
+
+use glam::DVec3;
+
+/// An indexed triangle mesh in metres (`y` up). Triangles index into `positions`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles as vertex indices, counter-clockwise seen from outside once validated.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// The three corners of triangle `t`.
+    pub fn corners(&self, t: usize) -> [DVec3; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.positions[a as usize],
+            self.positions[b as usize],
+            self.positions[c as usize],
+        ]
+    }
+
+    /// Area-weighted normal (twice the area in length) of triangle `t`.
+    pub fn scaled_normal(&self, t: usize) -> DVec3 {
+        let [a, b, c] = self.corners(t);
+        (b - a).cross(c - a)
+    }
+
+    /// Axis-aligned bounds `(min, max)`; `None` for an empty mesh.
+    pub fn bounds(&self) -> Option<(DVec3, DVec3)> {
+        let first = *self.positions.first()?;
+        Some(
+            self.positions
+                .iter()
+                .fold((first, first), |(lo, hi), p| (lo.min(*p), hi.max(*p))),
+        )
+    }
+
+    /// Enclosed volume by the divergence theorem (positive for outward-facing triangles).
+    pub fn signed_volume(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.corners(t);
+                a.dot(b.cross(c)) / 6.0
+            })
+            .sum()
+    }
+
+    /// Total surface area.
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| 0.5 * self.scaled_normal(t).length())
+            .sum()
+    }
+
+    /// Per-vertex normals: the normalized sum of incident area-weighted face normals.
+    pub fn vertex_normals(&self) -> Vec<DVec3> {
+        let mut normals = vec![DVec3::ZERO; self.positions.len()];
+        for (t, tri) in self.triangles.iter().enumerate() {
+            let n = self.scaled_normal(t);
+            for &v in tri {
+                normals[v as usize] += n;
+            }
+        }
+        normals.iter().map(|n| n.normalize_or_zero()).collect()
+    }
+
+    /// Positions as `f32` triples (for display and export).
+    pub fn positions_f32(&self) -> Vec<[f32; 3]> {
+        self.positions
+            .iter()
+            .map(|p| p.as_vec3().to_array())
+            .collect()
+    }
+}

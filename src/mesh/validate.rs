@@ -1,0 +1,276 @@
+//! Mesh validation with reported repairs: what a body mesh must satisfy before use.
+//!
+//! Repairs (each counted in [`MeshReport`]): triangles that repeat a vertex and exact
+//! duplicate triangles are dropped; triangles are flipped so that neighbours agree and
+//! each closed part faces outward. Errors: an edge shared by three or more triangles, a
+//! part that cannot be oriented, or nothing left. Open boundaries and zero-area triangles
+//! are reported and kept.
+
+use std::collections::VecDeque;
+
+use thiserror::Error;
+
+use super::TriMesh;
+use super::topology::{Adjacency, NO_NEIGHBOUR};
+
+/// What validation found and repaired.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct MeshReport {
+    /// Vertices.
+    pub vertices: usize,
+    /// Triangles kept.
+    pub triangles: usize,
+    /// Triangles dropped because they repeat a vertex.
+    pub dropped_repeated_vertex: usize,
+    /// Exact duplicate triangles dropped.
+    pub dropped_duplicates: usize,
+    /// Triangles whose area is below `1e-12` of the bounding box diagonal squared (kept).
+    pub zero_area_triangles: usize,
+    /// Triangles flipped to agree with their neighbours or to face outward.
+    pub flipped: usize,
+    /// Edges with a single triangle (0 for a closed mesh).
+    pub boundary_edges: usize,
+    /// Edge-connected parts.
+    pub components: usize,
+    /// Vertices no triangle uses.
+    pub unused_vertices: usize,
+}
+
+impl MeshReport {
+    /// Human-readable warnings and repairs, one line each (empty for a clean closed mesh).
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        let mut note = |n: usize, text: &str| {
+            if n > 0 {
+                notes.push(format!("{n} {text}"));
+            }
+        };
+        note(
+            self.dropped_repeated_vertex,
+            "triangle(s) repeating a vertex dropped",
+        );
+        note(self.dropped_duplicates, "duplicate triangle(s) dropped");
+        note(self.zero_area_triangles, "zero-area triangle(s) kept");
+        note(
+            self.flipped,
+            "triangle(s) flipped to a consistent outward orientation",
+        );
+        note(
+            self.boundary_edges,
+            "boundary edge(s): the mesh is open, inside/outside is approximate",
+        );
+        note(self.unused_vertices, "unused vertex(es)");
+        if self.components > 1 {
+            notes.push(format!("{} separate parts", self.components));
+        }
+        notes
+    }
+}
+
+/// Why a mesh is unusable.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum MeshError {
+    /// An edge with three or more triangles.
+    #[error(
+        "{place}edge between vertices {a} and {b} is shared by {count} faces{lines}: the mesh is not manifold"
+    )]
+    NonManifold {
+        /// `file:` prefix or empty.
+        place: String,
+        /// 1-based vertex.
+        a: u32,
+        /// 1-based vertex.
+        b: u32,
+        /// How many faces share it.
+        count: usize,
+        /// " (lines ...)" or empty.
+        lines: String,
+    },
+    /// A part is a Moebius-like surface.
+    #[error(
+        "{place}the surface around face{line} cannot be oriented consistently (non-orientable part)"
+    )]
+    NonOrientable {
+        /// `file:` prefix or empty.
+        place: String,
+        /// " at line N" or empty.
+        line: String,
+    },
+    /// Nothing usable is left.
+    #[error("{place}no usable triangles: all {count} repeat a vertex")]
+    NoTriangles {
+        /// `file:` prefix or empty.
+        place: String,
+        /// How many there were.
+        count: usize,
+    },
+}
+
+/// Validates and repairs `mesh` in place. `name` and `triangle_lines` (source line of
+/// each triangle, may be empty) make error messages point into the file.
+pub fn validate_and_repair(
+    mesh: &mut TriMesh,
+    name: &str,
+    triangle_lines: &[usize],
+) -> Result<MeshReport, MeshError> {
+    let place = if name.is_empty() {
+        String::new()
+    } else {
+        format!("{name}: ")
+    };
+    let mut report = MeshReport {
+        vertices: mesh.positions.len(),
+        ..MeshReport::default()
+    };
+    let total = mesh.triangles.len();
+    let mut lines: Vec<usize> = Vec::with_capacity(total);
+    let mut kept = Vec::with_capacity(total);
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+            report.dropped_repeated_vertex += 1;
+            continue;
+        }
+        kept.push(*tri);
+        lines.push(triangle_lines.get(t).copied().unwrap_or(0));
+    }
+    if kept.is_empty() {
+        return Err(MeshError::NoTriangles {
+            place,
+            count: total,
+        });
+    }
+    // Exact duplicates (same vertex set): keep the first in file order.
+    let mut keys: Vec<([u32; 3], usize)> = kept
+        .iter()
+        .enumerate()
+        .map(|(i, t)| {
+            let mut k = *t;
+            k.sort_unstable();
+            (k, i)
+        })
+        .collect();
+    keys.sort_unstable();
+    let mut duplicate = vec![false; kept.len()];
+    for w in keys.windows(2) {
+        if w[0].0 == w[1].0 {
+            duplicate[w[1].1] = true;
+        }
+    }
+    report.dropped_duplicates = duplicate.iter().filter(|d| **d).count();
+    let (triangles, lines): (Vec<_>, Vec<_>) = kept
+        .into_iter()
+        .zip(lines)
+        .zip(&duplicate)
+        .filter(|(_, d)| !**d)
+        .map(|(pair, _)| pair)
+        .unzip();
+    mesh.triangles = triangles;
+
+    let adjacency = Adjacency::try_new(mesh).map_err(|e| {
+        let shown: Vec<String> = e
+            .triangles
+            .iter()
+            .filter_map(|&t| lines.get(t as usize).copied().filter(|&l| l > 0))
+            .map(|l| l.to_string())
+            .collect();
+        MeshError::NonManifold {
+            place: place.clone(),
+            a: e.vertices[0] + 1,
+            b: e.vertices[1] + 1,
+            count: e.triangles.len(),
+            lines: if shown.is_empty() {
+                String::new()
+            } else {
+                format!(" (lines {})", shown.join(", "))
+            },
+        }
+    })?;
+    report.boundary_edges = adjacency.boundary_edges;
+
+    // Orientation: breadth-first over each edge-connected part, on the original winding
+    // with a flip flag per triangle; a neighbour must run the shared edge the other way.
+    let n = mesh.triangles.len();
+    let mut component = vec![u32::MAX; n];
+    let mut flipped = vec![false; n];
+    let mut parts: Vec<Vec<usize>> = Vec::new();
+    for seed in 0..n {
+        if component[seed] != u32::MAX {
+            continue;
+        }
+        let id = parts.len() as u32;
+        let mut members = vec![seed];
+        component[seed] = id;
+        let mut queue = VecDeque::from([seed]);
+        while let Some(t) = queue.pop_front() {
+            for k in 0..3 {
+                let other = adjacency.neighbours[t][k];
+                if other == NO_NEIGHBOUR {
+                    continue;
+                }
+                let o = other as usize;
+                let tri = mesh.triangles[t];
+                // t runs a -> b in its original winding, b -> a once flipped.
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let o_runs_a_b = directed_edge_position(mesh.triangles[o], a, b).is_some();
+                // Consistent when o's actual direction is the reverse of t's.
+                let o_flip_needed = o_runs_a_b != flipped[t];
+                if component[o] == u32::MAX {
+                    component[o] = id;
+                    flipped[o] = o_flip_needed;
+                    members.push(o);
+                    queue.push_back(o);
+                } else if flipped[o] != o_flip_needed {
+                    let line = lines.get(o).copied().filter(|&l| l > 0);
+                    return Err(MeshError::NonOrientable {
+                        place,
+                        line: line.map(|l| format!(" at line {l}")).unwrap_or_default(),
+                    });
+                }
+            }
+        }
+        parts.push(members);
+    }
+    for (tri, &flip) in mesh.triangles.iter_mut().zip(&flipped) {
+        if flip {
+            tri.swap(1, 2);
+        }
+    }
+    // Each part faces outward when its enclosed volume is positive.
+    for members in &parts {
+        let volume: f64 = members
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = mesh.corners(t);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        if volume < 0.0 {
+            for &t in members {
+                mesh.triangles[t].swap(1, 2);
+                flipped[t] = !flipped[t];
+            }
+        }
+    }
+    report.flipped = flipped.iter().filter(|f| **f).count();
+    report.components = parts.len();
+    report.triangles = n;
+    let diagonal_sq = mesh
+        .bounds()
+        .map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
+    report.zero_area_triangles = (0..n)
+        .filter(|&t| mesh.scaled_normal(t).length() * 0.5 <= 1e-12 * diagonal_sq)
+        .count();
+    let mut used = vec![false; mesh.positions.len()];
+    for tri in &mesh.triangles {
+        for &v in tri {
+            used[v as usize] = true;
+        }
+    }
+    report.unused_vertices = used.iter().filter(|u| !**u).count();
+    Ok(report)
+}
+
+/// Where the directed edge `a -> b` runs in `tri`, if it does.
+fn directed_edge_position(tri: [u32; 3], a: u32, b: u32) -> Option<usize> {
+    (0..3).find(|&k| tri[k] == a && tri[(k + 1) % 3] == b)
+}

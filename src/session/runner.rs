@@ -1,0 +1,348 @@
+//! The session runner: scene set-up, then each step, each producing stages that go to a
+//! [`StageSink`] (the Rerun logger, the mesh exporter, tests). Timings measure compute
+//! only; the sinks' time is kept apart under `log.*` keys.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use serde_json::json;
+use thiserror::Error;
+
+use super::format::{Op, Session};
+use super::metrics::StepMetrics;
+use crate::body::{
+    self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition,
+    PartitionOptions,
+};
+use crate::geom::{Plane, SectionLoop, section_mesh};
+use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
+
+/// Where a stage sits: its step and its global stage number.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StageInfo {
+    /// Step index (0 is the scene).
+    pub step: usize,
+    /// The step's operation keyword.
+    pub op: &'static str,
+    /// Global stage counter, one per stage over the whole session.
+    pub stage: u64,
+    /// Stage name (`body.load`, `mannequin.refine`, ...).
+    pub name: &'static str,
+}
+
+/// The data of one stage.
+#[derive(Clone, Copy, Debug)]
+pub enum Stage<'a> {
+    /// The body mesh was loaded and validated.
+    BodyMesh(&'a BodyMesh),
+    /// Landmarks were found.
+    Landmarks(&'a BodyMesh, &'a Landmarks),
+    /// Rings were cut at the landmarks.
+    Rings(&'a [BodyRing]),
+    /// Partitions were built.
+    Partitions(&'a BodyMesh, &'a [Partition]),
+    /// The mannequin was refined and measured.
+    Mannequin(&'a MannequinResult),
+    /// A body section.
+    Section {
+        /// Name.
+        name: &'a str,
+        /// Height.
+        y: f64,
+        /// The loops.
+        loops: &'a [SectionLoop],
+    },
+    /// A step failed; everything before it stands.
+    Failed(&'a RunError),
+    /// A step finished with these metrics.
+    StepDone(&'a StepMetrics),
+}
+
+/// Error from a sink (logging or export).
+#[derive(Debug, Error)]
+#[error("{0}")]
+pub struct SinkError(pub String);
+
+/// Receives every stage as it is produced.
+pub trait StageSink {
+    /// Takes one stage.
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError>;
+}
+
+/// A step that failed at run time.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{session}:{line}: step {step} ({op}) failed: {message}")]
+pub struct RunError {
+    /// Session name.
+    pub session: String,
+    /// Line of the step (1 for the scene).
+    pub line: usize,
+    /// Step index.
+    pub step: usize,
+    /// Operation.
+    pub op: &'static str,
+    /// What went wrong.
+    pub message: String,
+}
+
+/// Run settings from the command line.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Replaces the session's body (`--body`).
+    pub body_override: Option<PathBuf>,
+    /// Landmark detection settings (overrides come from the session).
+    pub landmarks: LandmarkOptions,
+    /// Partition settings.
+    pub partitions: PartitionOptions,
+}
+
+/// What a run produced.
+#[derive(Debug, Default)]
+pub struct RunReport {
+    /// Metrics of every step that ran (the failed one included, with its error).
+    pub steps: Vec<StepMetrics>,
+    /// The error that stopped the run.
+    pub error: Option<RunError>,
+    /// The body, once set up.
+    pub body: Option<Body>,
+}
+
+struct Driver<'s, 'k> {
+    sinks: &'k mut [&'s mut dyn StageSink],
+    stage: u64,
+    sink_errors: Vec<String>,
+}
+
+impl Driver<'_, '_> {
+    fn emit(
+        &mut self,
+        step: usize,
+        op: &'static str,
+        name: &'static str,
+        stage: Stage<'_>,
+        metrics: &mut StepMetrics,
+    ) {
+        let info = StageInfo {
+            step,
+            op,
+            stage: self.stage,
+            name,
+        };
+        self.stage += 1;
+        let start = Instant::now();
+        for sink in self.sinks.iter_mut() {
+            if let Err(e) = sink.stage(&info, stage) {
+                self.sink_errors.push(format!("{name}: {e}"));
+            }
+        }
+        *metrics
+            .timings_ms
+            .entry(format!("log.{name}"))
+            .or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
+    }
+}
+
+fn timed<T>(metrics: &mut StepMetrics, name: &str, f: impl FnOnce() -> T) -> T {
+    let start = Instant::now();
+    let out = f();
+    metrics
+        .timings_ms
+        .insert(name.to_string(), start.elapsed().as_secs_f64() * 1e3);
+    out
+}
+
+/// Runs a session: the scene (step 0), then each step. Stops at the first failure,
+/// which is reported to the sinks as a [`Stage::Failed`] and returned in the report.
+pub fn run_session(
+    session: &Session,
+    options: &RunOptions,
+    sinks: &mut [&mut dyn StageSink],
+) -> RunReport {
+    let mut driver = Driver {
+        sinks,
+        stage: 0,
+        sink_errors: Vec::new(),
+    };
+    let mut report = RunReport::default();
+    let fail = |step: usize, line: usize, op: &'static str, message: String| RunError {
+        session: session.name.clone(),
+        line,
+        step,
+        op,
+        message,
+    };
+
+    // --- Step 0: the scene.
+    let mut m = StepMetrics {
+        step: 0,
+        op: "scene".into(),
+        ..StepMetrics::default()
+    };
+    let source = options
+        .body_override
+        .clone()
+        .map_or_else(|| session.scene.body.clone(), BodySource::File);
+    let mut landmark_options = options.landmarks.clone();
+    landmark_options.overrides = session.scene.landmarks.clone();
+    let scene = (|| -> Result<Body, body::BodyError> {
+        let mesh = timed(&mut m, "body.load", || {
+            BodyMesh::load(&source, session.scene.units.scale())
+        })?;
+        m.set("body", mesh.name.clone());
+        m.set("vertices", mesh.mesh.positions.len());
+        m.set("triangles", mesh.mesh.triangles.len());
+        m.set("height_m", mesh.height());
+        m.set("repairs", mesh.report.notes());
+        m.set(
+            "mesh_report",
+            serde_json::to_value(&mesh.report).unwrap_or_default(),
+        );
+        driver.emit(0, "scene", "body.load", Stage::BodyMesh(&mesh), &mut m);
+        let landmarks = timed(&mut m, "body.landmarks", || {
+            body::find_landmarks(&mesh, &landmark_options)
+        })?;
+        m.set(
+            "landmarks",
+            serde_json::to_value(&landmarks.items).unwrap_or_default(),
+        );
+        driver.emit(
+            0,
+            "scene",
+            "body.landmarks",
+            Stage::Landmarks(&mesh, &landmarks),
+            &mut m,
+        );
+        let rings = timed(&mut m, "body.rings", || body::cut_rings(&mesh, &landmarks))?;
+        m.set("rings", serde_json::to_value(&rings).unwrap_or_default());
+        driver.emit(0, "scene", "body.rings", Stage::Rings(&rings), &mut m);
+        let partitions = timed(&mut m, "body.partitions", || {
+            body::build_partitions(&mesh, &landmarks, &options.partitions)
+        })?;
+        m.set(
+            "partitions",
+            serde_json::to_value(&partitions).unwrap_or_default(),
+        );
+        driver.emit(
+            0,
+            "scene",
+            "body.partitions",
+            Stage::Partitions(&mesh, &partitions),
+            &mut m,
+        );
+        Ok(Body {
+            mesh,
+            landmarks,
+            rings,
+            partitions,
+        })
+    })();
+    let body = match scene {
+        Ok(b) => b,
+        Err(e) => {
+            let error = fail(0, 1, "scene", e.to_string());
+            m.error = Some(error.message.clone());
+            driver.emit(0, "scene", "failed", Stage::Failed(&error), &mut m);
+            report.steps.push(m);
+            report.error = Some(error);
+            return report;
+        }
+    };
+    let done = m.clone();
+    driver.emit(0, "scene", "done", Stage::StepDone(&done), &mut m);
+    report.steps.push(m);
+
+    // --- The steps.
+    for (i, step) in session.steps.iter().enumerate() {
+        let index = i + 1;
+        let op = step.op.keyword();
+        let mut m = StepMetrics {
+            step: index,
+            op: op.into(),
+            ..StepMetrics::default()
+        };
+        let outcome: Result<(), String> = match &step.op {
+            Op::Mannequin(options) => {
+                let form = DressForm::default();
+                match timed(&mut m, "mannequin.refine", || run_mannequin(&form, options)) {
+                    Ok(result) => {
+                        m.set("layers", options.layers);
+                        m.set("points", options.points);
+                        m.set("dense_layers", result.polar.layers);
+                        m.set("dense_points", result.polar.points);
+                        let regions: Vec<_> = Region::REPORT_ORDER
+                            .iter()
+                            .filter_map(|r| result.regions.iter().find(|e| e.region == r.name()))
+                            .map(
+                                |e| json!({"region": e.region, "polar": e.polar, "chord": e.chord}),
+                            )
+                            .collect();
+                        m.set("regions", regions);
+                        driver.emit(
+                            index,
+                            op,
+                            "mannequin.refine",
+                            Stage::Mannequin(&result),
+                            &mut m,
+                        );
+                        Ok(())
+                    }
+                    Err(e) => Err(e.to_string()),
+                }
+            }
+            Op::Section { name, y } => {
+                let loops = timed(&mut m, "section.cut", || {
+                    section_mesh(
+                        &body.mesh.mesh,
+                        &body.mesh.adjacency,
+                        &Plane::horizontal(*y),
+                    )
+                });
+                if loops.is_empty() {
+                    let (lo, hi) = body
+                        .mesh
+                        .mesh
+                        .bounds()
+                        .map_or((0.0, 0.0), |(l, h)| (l.y, h.y));
+                    Err(format!(
+                        "section '{name}' at y = {y:.4} m cuts nothing: the body spans {lo:.4}..{hi:.4} m"
+                    ))
+                } else {
+                    m.set("loops", loops.len());
+                    m.set(
+                        "lengths_m",
+                        loops.iter().map(SectionLoop::length).collect::<Vec<_>>(),
+                    );
+                    driver.emit(
+                        index,
+                        op,
+                        "section.cut",
+                        Stage::Section {
+                            name,
+                            y: *y,
+                            loops: &loops,
+                        },
+                        &mut m,
+                    );
+                    Ok(())
+                }
+            }
+        };
+        if let Err(message) = outcome {
+            let error = fail(index, step.line, op, message);
+            m.error = Some(error.message.clone());
+            driver.emit(index, op, "failed", Stage::Failed(&error), &mut m);
+            report.steps.push(m);
+            report.error = Some(error);
+            report.body = Some(body);
+            return report;
+        }
+        let done = m.clone();
+        driver.emit(index, op, "done", Stage::StepDone(&done), &mut m);
+        report.steps.push(m);
+    }
+    if !driver.sink_errors.is_empty() {
+        report.error = Some(fail(0, 1, "log", driver.sink_errors.join("; ")));
+    }
+    report.body = Some(body);
+    report
+}

@@ -1,0 +1,34 @@
+//! The default layout sent with every recording: the 3D scene, metrics plots and the log.
+
+use rerun::blueprint::{
+    Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical,
+};
+
+/// 3D view of everything spatial on the left; metrics and the per-stage log on the right;
+/// the time panel on the `stage` timeline.
+pub fn default_blueprint() -> Blueprint {
+    Blueprint::new(
+        Horizontal::new([
+            Spatial3DView::new("Scene")
+                .with_origin("/")
+                .with_contents([
+                    "+ /body/**",
+                    "+ /mannequin/**",
+                    "+ /section/**",
+                    "+ /garment/**",
+                    "+ /collision/**",
+                ])
+                .into(),
+            Vertical::new([
+                TimeSeriesView::new("Metrics")
+                    .with_origin("/metrics")
+                    .into(),
+                TextLogView::new("Log").with_origin("/log").into(),
+            ])
+            .with_row_shares([1.0, 1.0])
+            .into(),
+        ])
+        .with_column_shares([3.0, 1.0]),
+    )
+    .with_time_panel(TimePanel::new().with_timeline("stage"))
+}

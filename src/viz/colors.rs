@@ -1,0 +1,42 @@
+//! Colours: one per partition, one per landmark kind, and an error colour map.
+
+use crate::body::PartitionId;
+
+/// Display colour of a partition (RGB).
+pub fn partition_color(id: PartitionId) -> [u8; 3] {
+    match id {
+        PartitionId::A => [66, 133, 244],
+        PartitionId::B => [0, 172, 193],
+        PartitionId::C => [52, 168, 83],
+        PartitionId::D => [251, 188, 5],
+        PartitionId::E => [255, 112, 67],
+        PartitionId::F => [234, 67, 53],
+        PartitionId::G => [171, 71, 188],
+    }
+}
+
+/// A pale tint of a partition colour for the body surface.
+pub fn partition_tint(id: PartitionId) -> [u8; 3] {
+    let c = partition_color(id);
+    c.map(|v| ((u16::from(v) + 3 * 225) / 4) as u8)
+}
+
+/// Error colour map (blue, cyan, green, yellow, red) for `value / max` clamped to `[0, 1]`.
+pub fn error_color(value: f64, max: f64) -> [u8; 3] {
+    const STOPS: [[f64; 3]; 5] = [
+        [48.0, 18.0, 160.0],
+        [30.0, 150.0, 230.0],
+        [60.0, 200.0, 90.0],
+        [250.0, 210.0, 40.0],
+        [220.0, 30.0, 30.0],
+    ];
+    let x = if max > 0.0 {
+        (value / max).clamp(0.0, 1.0)
+    } else {
+        0.0
+    } * (STOPS.len() - 1) as f64;
+    let i = (x.floor() as usize).min(STOPS.len() - 2);
+    let f = x - i as f64;
+    let (a, b) = (STOPS[i], STOPS[i + 1]);
+    [0, 1, 2].map(|k| (a[k] + (b[k] - a[k]) * f).round() as u8)
+}
