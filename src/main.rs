@@ -12,9 +12,7 @@ use drape::mannequin::{DressForm, MannequinOptions, Region, run_mannequin};
 use drape::session::export::ObjExporter;
 use drape::session::metrics::metrics_json;
 use drape::session::runner::{SinkError, Stage, StageInfo, StageSink};
-use drape::session::{
-    DEMO_SESSION, DEMO_SESSION_NAME, RunOptions, Session, parse_session, run_session,
-};
+use drape::session::{DEMO_SESSION, DEMO_SESSION_NAME, RunOptions, Session, parse_session, run_session};
 use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
 
 /// Garment edit sessions against a body, every stage logged to Rerun.
@@ -109,13 +107,10 @@ fn main() -> ExitCode {
 }
 
 /// Reads and parses a session file, or the demo.
-fn load_session(
-    path: Option<&Path>,
-) -> Result<std::result::Result<Session, drape::session::ParseError>> {
+fn load_session(path: Option<&Path>) -> Result<std::result::Result<Session, drape::session::ParseError>> {
     Ok(match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("cannot read session {}", p.display()))?;
+            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read session {}", p.display()))?;
             let base = p.parent().unwrap_or(Path::new("."));
             parse_session(&text, &p.display().to_string(), base)
         }
@@ -133,11 +128,7 @@ fn check(path: &Path) -> Result<ExitCode> {
                 s.scene.units.name(),
                 s.scene.landmarks.len(),
                 s.steps.len(),
-                s.steps
-                    .iter()
-                    .map(|st| st.op.keyword())
-                    .collect::<Vec<_>>()
-                    .join(", ")
+                s.steps.iter().map(|st| st.op.keyword()).collect::<Vec<_>>().join(", ")
             );
             Ok(ExitCode::SUCCESS)
         }
@@ -186,15 +177,11 @@ fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     let tmp = partial_path(path);
     std::fs::write(&tmp, bytes).with_context(|| format!("cannot write {}", tmp.display()))?;
-    std::fs::rename(&tmp, path)
-        .with_context(|| format!("cannot rename {} to {}", tmp.display(), path.display()))
+    std::fs::rename(&tmp, path).with_context(|| format!("cannot rename {} to {}", tmp.display(), path.display()))
 }
 
 fn partial_path(path: &Path) -> PathBuf {
-    let mut name = path
-        .file_name()
-        .map(|n| n.to_os_string())
-        .unwrap_or_default();
+    let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
     name.push(".partial");
     path.with_file_name(name)
 }
@@ -238,17 +225,13 @@ fn run(args: RunArgs) -> Result<ExitCode> {
         RecordingTarget::Serve(args.port)
     } else {
         if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)
-                .with_context(|| format!("cannot create {}", dir.display()))?;
+            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
         }
         RecordingTarget::File(partial_path(&final_path))
     };
     let rec = open_recording(&target, &stem).context("cannot open the recording")?;
     if args.serve {
-        println!(
-            "serving on port {}; open it from any machine with:",
-            args.port
-        );
+        println!("serving on port {}; open it from any machine with:", args.port);
         println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.port);
     }
     eprintln!("running {} ({} step(s))", session.name, session.steps.len());
@@ -288,13 +271,8 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     }
     drop(logger); // closes the file sink (writes its footer)
     if let RecordingTarget::File(partial) = &target {
-        std::fs::rename(partial, &final_path).with_context(|| {
-            format!(
-                "cannot rename {} to {}",
-                partial.display(),
-                final_path.display()
-            )
-        })?;
+        std::fs::rename(partial, &final_path)
+            .with_context(|| format!("cannot rename {} to {}", partial.display(), final_path.display()))?;
         eprintln!(
             "recording: {} (view: rerun {})",
             final_path.display(),
@@ -321,19 +299,17 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
     if args.json {
         let regions: Vec<_> = ordered
             .iter()
-            .map(|e| serde_json::json!({"region": e.region, "polar": {"max_m": e.polar.max_m, "rms_m": e.polar.rms_m},
-                                        "chord": {"max_m": e.chord.max_m, "rms_m": e.chord.rms_m}}))
+            .map(|e| {
+                serde_json::json!({"region": e.region, "polar": {"max_m": e.polar.max_m, "rms_m": e.polar.rms_m},
+                                        "chord": {"max_m": e.chord.max_m, "rms_m": e.chord.rms_m}})
+            })
             .collect();
         let out = serde_json::json!({"layers": options.layers, "points": options.points, "regions": regions});
         println!("{}", serde_json::to_string_pretty(&out)?);
     } else {
         println!(
             "dress form {} layers x {} points, refined to {} x {} (k = {}); deviation from the true surface, mm",
-            options.layers,
-            options.points,
-            result.polar.points,
-            result.polar.layers,
-            options.subdivisions
+            options.layers, options.points, result.polar.points, result.polar.layers, options.subdivisions
         );
         println!(
             "{:<9} {:>10} {:>10} {:>10} {:>10}   {}",
@@ -362,8 +338,7 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
         }
         {
             let rec = open_recording(&RecordingTarget::File(partial.clone()), "mannequin")?;
-            let mut logger =
-                RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3))?;
+            let mut logger = RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3))?;
             let info = StageInfo {
                 step: 1,
                 op: "mannequin",

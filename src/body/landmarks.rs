@@ -97,10 +97,7 @@ impl LandmarkKind {
 
     /// Whether the landmark comes as a left/right pair.
     pub fn is_paired(self) -> bool {
-        matches!(
-            self,
-            Self::Ankle | Self::Knee | Self::SideNeck | Self::Shoulder
-        )
+        matches!(self, Self::Ankle | Self::Knee | Self::SideNeck | Self::Shoulder)
     }
 }
 
@@ -191,14 +188,10 @@ pub enum LandmarkError {
     #[error("cannot find the crotch: the two leg sections never join")]
     LegsNeverJoin,
     /// No arm beside the torso.
-    #[error(
-        "cannot find the armpits: no arm section separate from the torso (arms must hang apart from the body)"
-    )]
+    #[error("cannot find the armpits: no arm section separate from the torso (arms must hang apart from the body)")]
     NoArms,
     /// No narrowing above the shoulders.
-    #[error(
-        "cannot find the neck: the torso girth above the armpits never narrows and widens again"
-    )]
+    #[error("cannot find the neck: the torso girth above the armpits never narrows and widens again")]
     NoNeck,
     /// The body is flat or empty in height.
     #[error("the body has no height")]
@@ -270,13 +263,7 @@ impl Scan<'_> {
 
     /// Largest `t` in `[lo, hi]` where `separate(t)` still holds, given it holds at `lo`
     /// and not at `hi`.
-    fn bisect(
-        &self,
-        mut lo: f64,
-        mut hi: f64,
-        steps: usize,
-        separate: impl Fn(&[MeasuredLoop]) -> bool,
-    ) -> f64 {
+    fn bisect(&self, mut lo: f64, mut hi: f64, steps: usize, separate: impl Fn(&[MeasuredLoop]) -> bool) -> f64 {
         for _ in 0..steps {
             let mid = 0.5 * (lo + hi);
             if separate(&self.loops(mid)) {
@@ -295,8 +282,7 @@ fn front_z_at(l: &MeasuredLoop, x0: f64) -> Option<f64> {
     (0..n)
         .filter_map(|i| {
             let (a, b) = (l.flat[i], l.flat[(i + 1) % n]);
-            ((a.x - x0) * (b.x - x0) <= 0.0 && a.x != b.x)
-                .then(|| a.y + (x0 - a.x) / (b.x - a.x) * (b.y - a.y))
+            ((a.x - x0) * (b.x - x0) <= 0.0 && a.x != b.x).then(|| a.y + (x0 - a.x) / (b.x - a.x) * (b.y - a.y))
         })
         .max_by(f64::total_cmp)
 }
@@ -317,11 +303,7 @@ fn corner(curve: &[DVec2], side: DVec2) -> Option<usize> {
     })
 }
 
-fn arg_extreme(
-    values: &[(f64, f64)],
-    range: std::ops::Range<usize>,
-    larger: bool,
-) -> Option<usize> {
+fn arg_extreme(values: &[(f64, f64)], range: std::ops::Range<usize>, larger: bool) -> Option<usize> {
     range.filter(|&i| i < values.len()).max_by(|&a, &b| {
         let o = values[a].1.total_cmp(&values[b].1);
         if larger { o } else { o.reverse() }
@@ -393,8 +375,7 @@ pub fn detect_landmarks(
         let Some((_, pl, pr)) = legs.last() else {
             break;
         };
-        let (Some(li), Some(ri)) = (loop_at(&loops, pl.centroid), loop_at(&loops, pr.centroid))
-        else {
+        let (Some(li), Some(ri)) = (loop_at(&loops, pl.centroid), loop_at(&loops, pr.centroid)) else {
             continue;
         };
         if li == ri {
@@ -421,16 +402,14 @@ pub fn detect_landmarks(
     let n_legs = leg_girth.len();
     // The sole's slices are small too: the ankle is the narrowest leg above the foot's widest.
     let foot_i = arg_extreme(&leg_girth, 0..(n_legs / 4).max(1), true).unwrap_or(0);
-    let ankle_i =
-        arg_extreme(&leg_girth, foot_i..(n_legs * 7 / 10).max(foot_i + 1), false).unwrap_or(foot_i);
+    let ankle_i = arg_extreme(&leg_girth, foot_i..(n_legs * 7 / 10).max(foot_i + 1), false).unwrap_or(foot_i);
     // Calf: the first local maximum above the ankle (over a window of 1/15 of the leg);
     // knee: the narrowest leg between it and where the thigh grows past the calf. A leg
     // without a calf bulge falls back on the usual proportion, 45% from ankle to crotch.
     let g: Vec<f64> = leg_girth.iter().map(|e| e.1).collect();
     let window = (n_legs / 15).max(2);
-    let calf = (ankle_i + 1..n_legs).find(|&i| {
-        i >= window && i + window < n_legs && (i - window..=i + window).all(|j| g[j] <= g[i])
-    });
+    let calf = (ankle_i + 1..n_legs)
+        .find(|&i| i >= window && i + window < n_legs && (i - window..=i + window).all(|j| g[j] <= g[i]));
     let knee_i = calf
         .and_then(|c| {
             let end = (c + 1..n_legs).find(|&j| g[j] > g[c]).unwrap_or(n_legs);
@@ -545,16 +524,7 @@ pub fn detect_landmarks(
     let side_curve = |left: bool| -> Vec<DVec2> {
         silhouette
             .iter()
-            .map(|(y, l)| {
-                DVec2::new(
-                    if left {
-                        l.max.x - mid_x
-                    } else {
-                        mid_x - l.min.x
-                    },
-                    *y,
-                )
-            })
+            .map(|(y, l)| DVec2::new(if left { l.max.x - mid_x } else { mid_x - l.min.x }, *y))
             .collect()
     };
     let mut shoulder = [DVec3::ZERO; 2];
@@ -565,11 +535,7 @@ pub fn detect_landmarks(
         let ni = ai + corner(&curve[ai..], DVec2::new(-1.0, -1.0)).ok_or(LandmarkError::NoNeck)?;
         let extreme = |i: usize| {
             let l = &silhouette[i].1;
-            if left {
-                l.extreme(|p| p.x)
-            } else {
-                l.extreme(|p| -p.x)
-            }
+            if left { l.extreme(|p| p.x) } else { l.extreme(|p| -p.x) }
         };
         shoulder[s] = extreme(ai);
         side_neck[s] = extreme(ni);
@@ -595,42 +561,18 @@ pub fn detect_landmarks(
             overridden: false,
         });
     };
-    push(
-        LandmarkKind::Ankle,
-        Side::Left,
-        legs[ankle_i].1.front_point(),
-    );
-    push(
-        LandmarkKind::Ankle,
-        Side::Right,
-        legs[ankle_i].2.front_point(),
-    );
+    push(LandmarkKind::Ankle, Side::Left, legs[ankle_i].1.front_point());
+    push(LandmarkKind::Ankle, Side::Right, legs[ankle_i].2.front_point());
     push(LandmarkKind::Knee, Side::Left, legs[knee_i].1.front_point());
-    push(
-        LandmarkKind::Knee,
-        Side::Right,
-        legs[knee_i].2.front_point(),
-    );
+    push(LandmarkKind::Knee, Side::Right, legs[knee_i].2.front_point());
     push(
         LandmarkKind::Crotch,
         Side::Centre,
         DVec3::new(mid_x, crotch_y, 0.5 * (cl.y + cr.y)),
     );
-    push(
-        LandmarkKind::Hip,
-        Side::Centre,
-        centre_point(&torso[hip_i].1),
-    );
-    push(
-        LandmarkKind::Waist,
-        Side::Centre,
-        centre_point(&torso[waist_i].1),
-    );
-    push(
-        LandmarkKind::Bust,
-        Side::Centre,
-        centre_point(&torso[bust_i].1),
-    );
+    push(LandmarkKind::Hip, Side::Centre, centre_point(&torso[hip_i].1));
+    push(LandmarkKind::Waist, Side::Centre, centre_point(&torso[waist_i].1));
+    push(LandmarkKind::Bust, Side::Centre, centre_point(&torso[bust_i].1));
     let armpit_loop = scan.loops(armpit_y - eps);
     let armpit_point = loop_at(&armpit_loop, below_loop.centroid)
         .map_or(DVec3::new(mid_x, armpit_y, below_loop.max.y), |i| {
@@ -646,21 +588,11 @@ pub fn detect_landmarks(
     push(LandmarkKind::FrontNeck, Side::Centre, front_neck);
     push(LandmarkKind::SideNeck, Side::Left, side_neck[0]);
     push(LandmarkKind::SideNeck, Side::Right, side_neck[1]);
-    push(
-        LandmarkKind::Neck,
-        Side::Centre,
-        centre_point(&torso[neck_index].1),
-    );
+    push(LandmarkKind::Neck, Side::Centre, centre_point(&torso[neck_index].1));
     items.sort_by_key(|l| (LandmarkKind::ALL.iter().position(|k| *k == l.kind), l.side));
 
-    let leg_axis = legs
-        .iter()
-        .map(|(y, l, r)| (*y, l.centroid, r.centroid))
-        .collect();
-    let torso_axis = torso[..=neck_index]
-        .iter()
-        .map(|(y, l)| (*y, l.centroid))
-        .collect();
+    let leg_axis = legs.iter().map(|(y, l, r)| (*y, l.centroid, r.centroid)).collect();
+    let torso_axis = torso[..=neck_index].iter().map(|(y, l)| (*y, l.centroid)).collect();
     let mut landmarks = Landmarks {
         items,
         mid_x,
@@ -673,11 +605,7 @@ pub fn detect_landmarks(
 
 /// Applies session corrections: a height re-measures the landmark's point on the body at
 /// that height; a point is taken as given (mirrored for the right side of a pair).
-fn apply_overrides(
-    scan: &Scan<'_>,
-    landmarks: &mut Landmarks,
-    overrides: &[(LandmarkKind, LandmarkOverride)],
-) {
+fn apply_overrides(scan: &Scan<'_>, landmarks: &mut Landmarks, overrides: &[(LandmarkKind, LandmarkOverride)]) {
     for &(kind, correction) in overrides {
         let legs = match correction {
             LandmarkOverride::Height(y) => landmarks.legs_at(y),
@@ -700,32 +628,24 @@ fn apply_overrides(
                 LandmarkOverride::Height(y) => {
                     let loops = scan.loops(y);
                     let anchor = match (item.side, legs, torso) {
-                        (Side::Left, Some((l, _)), _)
-                            if matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
-                        {
+                        (Side::Left, Some((l, _)), _) if matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) => {
                             Some(l)
                         }
-                        (Side::Right, Some((_, r)), _)
-                            if matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
-                        {
+                        (Side::Right, Some((_, r)), _) if matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) => {
                             Some(r)
                         }
                         (_, _, t) => t,
                     };
                     let found = anchor.and_then(|a| loop_at(&loops, a)).map(|i| &loops[i]);
                     match (found, item.side) {
-                        (Some(l), Side::Centre) => {
-                            DVec3::new(mid_x, y, front_z_at(l, mid_x).unwrap_or(l.max.y))
-                        }
+                        (Some(l), Side::Centre) => DVec3::new(mid_x, y, front_z_at(l, mid_x).unwrap_or(l.max.y)),
                         (Some(l), Side::Left)
-                            if kind.is_paired()
-                                && !matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
+                            if kind.is_paired() && !matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
                         {
                             l.extreme(|p| p.x)
                         }
                         (Some(l), Side::Right)
-                            if kind.is_paired()
-                                && !matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
+                            if kind.is_paired() && !matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) =>
                         {
                             l.extreme(|p| -p.x)
                         }

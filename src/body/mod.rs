@@ -9,9 +9,7 @@ use std::path::{Path, PathBuf};
 
 use thiserror::Error;
 
-pub use landmarks::{
-    Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side,
-};
+pub use landmarks::{Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side};
 pub use partition::{DetectionMethod, Partition, PartitionId, PartitionOptions, ResponseRule};
 pub use rings::{BodyRing, RingError};
 
@@ -170,21 +168,17 @@ impl Body {
 
 /// Landmark detection on a body mesh (errors carry the body name).
 pub fn find_landmarks(mesh: &BodyMesh, options: &LandmarkOptions) -> Result<Landmarks, BodyError> {
-    landmarks::detect_landmarks(&mesh.mesh, &mesh.adjacency, options).map_err(|source| {
-        BodyError::Landmarks {
-            body: mesh.name.clone(),
-            source,
-        }
+    landmarks::detect_landmarks(&mesh.mesh, &mesh.adjacency, options).map_err(|source| BodyError::Landmarks {
+        body: mesh.name.clone(),
+        source,
     })
 }
 
 /// The landmark rings of a body.
 pub fn cut_rings(mesh: &BodyMesh, landmarks: &Landmarks) -> Result<Vec<BodyRing>, BodyError> {
-    rings::landmark_rings(&mesh.mesh, &mesh.adjacency, landmarks).map_err(|source| {
-        BodyError::Ring {
-            body: mesh.name.clone(),
-            source,
-        }
+    rings::landmark_rings(&mesh.mesh, &mesh.adjacency, landmarks).map_err(|source| BodyError::Ring {
+        body: mesh.name.clone(),
+        source,
     })
 }
 
@@ -194,10 +188,8 @@ pub fn build_partitions(
     landmarks: &Landmarks,
     options: &PartitionOptions,
 ) -> Result<Vec<Partition>, BodyError> {
-    partition::partitions(&mesh.mesh, &mesh.adjacency, landmarks, options).map_err(|source| {
-        BodyError::Ring {
-            body: mesh.name.clone(),
-            source,
-        }
+    partition::partitions(&mesh.mesh, &mesh.adjacency, landmarks, options).map_err(|source| BodyError::Ring {
+        body: mesh.name.clone(),
+        source,
     })
 }

@@ -26,15 +26,7 @@ pub enum PartitionId {
 
 impl PartitionId {
     /// All, bottom to top.
-    pub const ALL: [Self; 7] = [
-        Self::A,
-        Self::B,
-        Self::C,
-        Self::D,
-        Self::E,
-        Self::F,
-        Self::G,
-    ];
+    pub const ALL: [Self; 7] = [Self::A, Self::B, Self::C, Self::D, Self::E, Self::F, Self::G];
 
     /// The letter.
     pub fn letter(self) -> &'static str {
@@ -141,20 +133,14 @@ pub struct PartitionOptions {
 
 impl Default for PartitionOptions {
     fn default() -> Self {
-        Self {
-            margin_fraction: 0.01,
-        }
+        Self { margin_fraction: 0.01 }
     }
 }
 
 /// The bounds of each partition, from the landmarks:
 /// A floor..crotch, B crotch..hip, C hip..(hip+waist)/2, D ..(waist+bust)/2,
 /// E ..armpit, F armpit..front neck, G front neck..top.
-pub fn partition_bounds(
-    landmarks: &Landmarks,
-    floor: f64,
-    top: f64,
-) -> [(PartitionId, f64, f64); 7] {
+pub fn partition_bounds(landmarks: &Landmarks, floor: f64, top: f64) -> [(PartitionId, f64, f64); 7] {
     let h = |k| landmarks.height(k);
     let crotch = h(LandmarkKind::Crotch);
     let hip = h(LandmarkKind::Hip);

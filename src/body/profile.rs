@@ -84,9 +84,10 @@ pub fn outer_loops(mesh: &TriMesh, adjacency: &Adjacency, y: f64, scale: f64) ->
         .iter()
         .enumerate()
         .map(|(i, inner)| {
-            loops.iter().enumerate().any(|(j, outer)| {
-                i != j && outer.area > inner.area && outer.contains(inner.flat[0])
-            })
+            loops
+                .iter()
+                .enumerate()
+                .any(|(j, outer)| i != j && outer.area > inner.area && outer.contains(inner.flat[0]))
         })
         .collect();
     loops

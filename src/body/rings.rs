@@ -29,12 +29,7 @@ pub struct BodyRing {
 }
 
 impl BodyRing {
-    fn from_loop(
-        name: String,
-        landmark: Option<LandmarkKind>,
-        side: Side,
-        l: &MeasuredLoop,
-    ) -> Self {
+    fn from_loop(name: String, landmark: Option<LandmarkKind>, side: Side, l: &MeasuredLoop) -> Self {
         Self {
             name,
             landmark,
@@ -49,9 +44,7 @@ impl BodyRing {
 
 /// A ring that could not be cut.
 #[derive(Debug, Error, Clone, PartialEq)]
-#[error(
-    "no body section for ring '{ring}' at y = {y:.4} m (the body spans {floor:.4}..{top:.4} m)"
-)]
+#[error("no body section for ring '{ring}' at y = {y:.4} m (the body spans {floor:.4}..{top:.4} m)")]
 pub struct RingError {
     /// Ring name.
     pub ring: String,
@@ -107,12 +100,7 @@ pub fn pick_rings(
         }
         RingPick::Torso => {
             let t = take(landmarks.torso_at(y)).ok_or_else(missing)?;
-            Ok(vec![BodyRing::from_loop(
-                name.to_string(),
-                kind,
-                Side::Centre,
-                t,
-            )])
+            Ok(vec![BodyRing::from_loop(name.to_string(), kind, Side::Centre, t)])
         }
     }
 }

@@ -52,16 +52,11 @@ impl ChordSpline3 {
         }
         let ends_for = |axis: usize| match ends {
             CurveEnds::Closed => EndCondition::Periodic,
-            CurveEnds::Open {
-                start: None,
-                end: None,
-            } => EndCondition::Natural,
+            CurveEnds::Open { start: None, end: None } => EndCondition::Natural,
             CurveEnds::Open { start, end } => {
                 // One natural end with one clamped end is not offered by CubicSpline: a
                 // missing tangent becomes the chord direction there.
-                let first_chord = pts
-                    .get(1)
-                    .map_or(DVec3::ZERO, |p| (*p - pts[0]).normalize_or_zero());
+                let first_chord = pts.get(1).map_or(DVec3::ZERO, |p| (*p - pts[0]).normalize_or_zero());
                 let n = pts.len();
                 let last_chord = (pts[n - 1] - pts[n.saturating_sub(2)]).normalize_or_zero();
                 let s = start.map_or(first_chord, DVec3::normalize_or_zero);
@@ -93,11 +88,7 @@ impl ChordSpline3 {
 
     /// `P(l)`.
     pub fn sample(&self, l: f64) -> DVec3 {
-        DVec3::new(
-            self.axes[0].sample(l),
-            self.axes[1].sample(l),
-            self.axes[2].sample(l),
-        )
+        DVec3::new(self.axes[0].sample(l), self.axes[1].sample(l), self.axes[2].sample(l))
     }
 
     /// `dP/dl`.
@@ -140,10 +131,7 @@ mod tests {
             .collect();
         let c = ChordSpline3::try_new(&pts, CurveEnds::Closed).unwrap();
         for p in c.subdivide(5, true) {
-            assert!(
-                (DVec3::new(p.x, 0.0, p.z).length() - 1.0).abs() < 2e-5
-                    && (p.y - 0.5).abs() < 1e-14
-            );
+            assert!((DVec3::new(p.x, 0.0, p.z).length() - 1.0).abs() < 2e-5 && (p.y - 0.5).abs() < 1e-14);
         }
     }
 
@@ -151,13 +139,7 @@ mod tests {
     fn coincident_points_are_refused() {
         let pts = [DVec3::ZERO, DVec3::X, DVec3::X];
         assert!(matches!(
-            ChordSpline3::try_new(
-                &pts,
-                CurveEnds::Open {
-                    start: None,
-                    end: None
-                }
-            ),
+            ChordSpline3::try_new(&pts, CurveEnds::Open { start: None, end: None }),
             Err(SplineError::NotIncreasing { index: 2, .. })
         ));
     }

@@ -6,10 +6,7 @@ use glam::DVec2;
 /// Signed area (counter-clockwise positive), shoelace formula.
 pub fn signed_area(points: &[DVec2]) -> f64 {
     let n = points.len();
-    (0..n)
-        .map(|i| points[i].perp_dot(points[(i + 1) % n]))
-        .sum::<f64>()
-        * 0.5
+    (0..n).map(|i| points[i].perp_dot(points[(i + 1) % n])).sum::<f64>() * 0.5
 }
 
 /// Area centroid; the vertex mean for a polygon of (near) zero area.
@@ -30,9 +27,7 @@ pub fn centroid(points: &[DVec2]) -> DVec2 {
 /// Closed perimeter.
 pub fn perimeter(points: &[DVec2]) -> f64 {
     let n = points.len();
-    (0..n)
-        .map(|i| points[i].distance(points[(i + 1) % n]))
-        .sum()
+    (0..n).map(|i| points[i].distance(points[(i + 1) % n])).sum()
 }
 
 /// Convex hull, counter-clockwise, by Andrew's monotone chain (collinear points dropped).
@@ -53,9 +48,7 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
             Box::new(pts.iter().rev())
         };
         for &p in iter {
-            while hull.len() >= start + 2
-                && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
-            {
+            while hull.len() >= start + 2 && cross(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0 {
                 hull.pop();
             }
             hull.push(p);

@@ -39,11 +39,7 @@ impl SectionLoop {
 /// horizontal plane, the front-most point). Loops come in the order of their first
 /// triangle, so the output is deterministic.
 pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec<SectionLoop> {
-    let distance: Vec<f64> = mesh
-        .positions
-        .iter()
-        .map(|p| plane.signed_distance(*p))
-        .collect();
+    let distance: Vec<f64> = mesh.positions.iter().map(|p| plane.signed_distance(*p)).collect();
     let positive: Vec<bool> = distance.iter().map(|d| *d >= 0.0).collect();
     let crossed_edges = |t: usize| -> ([usize; 2], usize) {
         let tri = mesh.triangles[t];
@@ -88,11 +84,7 @@ pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec
         visited[start] = true;
         // Walk forward out of edge[1], then (if the walk ends on a boundary) backward out of edge[0].
         let mut forward = vec![crossing(start, edges[0]), crossing(start, edges[1])];
-        let walk = |exit_triangle: usize,
-                    exit_edge: usize,
-                    visited: &mut Vec<bool>,
-                    out: &mut Vec<DVec3>|
-         -> bool {
+        let walk = |exit_triangle: usize, exit_edge: usize, visited: &mut Vec<bool>, out: &mut Vec<DVec3>| -> bool {
             let (mut t, mut k) = (exit_triangle, exit_edge);
             loop {
                 let next = adjacency.neighbours[t][k];
@@ -114,11 +106,7 @@ pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec
                 if count_n != 2 {
                     return false;
                 }
-                let exit = if edges_n[0] == entry {
-                    edges_n[1]
-                } else {
-                    edges_n[0]
-                };
+                let exit = if edges_n[0] == entry { edges_n[1] } else { edges_n[0] };
                 out.push(crossing(n, exit));
                 t = n;
                 k = exit;
@@ -149,12 +137,7 @@ pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec
             }
             let (u, _) = plane.frame();
             let first = (0..points.len())
-                .max_by(|&i, &j| {
-                    points[i]
-                        .dot(u)
-                        .total_cmp(&points[j].dot(u))
-                        .then(j.cmp(&i))
-                })
+                .max_by(|&i, &j| points[i].dot(u).total_cmp(&points[j].dot(u)).then(j.cmp(&i)))
                 .unwrap_or(0);
             points.rotate_left(first);
         }

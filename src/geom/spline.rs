@@ -128,11 +128,7 @@ impl CubicSpline {
         }
         for (index, (&xi, &yi)) in x.iter().zip(y).enumerate() {
             if !xi.is_finite() || !yi.is_finite() {
-                return Err(SplineError::NotFinite {
-                    index,
-                    x: xi,
-                    y: yi,
-                });
+                return Err(SplineError::NotFinite { index, x: xi, y: yi });
             }
         }
         for (index, w) in x.windows(2).enumerate() {
@@ -158,10 +154,7 @@ impl CubicSpline {
                 }
                 m
             }
-            EndCondition::Clamped {
-                start_slope,
-                end_slope,
-            } => {
+            EndCondition::Clamped { start_slope, end_slope } => {
                 if !start_slope.is_finite() || !end_slope.is_finite() {
                     return Err(SplineError::SlopeNotFinite {
                         start: start_slope,
@@ -174,9 +167,7 @@ impl CubicSpline {
                 let (first, last) = (y[0], y[n]);
                 // Exact equality is what scipy asks for; a relative slack of a few ulps
                 // keeps data that went through one extra rounding usable.
-                if (first - last).abs()
-                    > 4.0 * f64::EPSILON * first.abs().max(last.abs()).max(f64::MIN_POSITIVE)
-                {
+                if (first - last).abs() > 4.0 * f64::EPSILON * first.abs().max(last.abs()).max(f64::MIN_POSITIVE) {
                     return Err(SplineError::NotPeriodic { first, last });
                 }
                 solve_periodic(&h, &d)
@@ -227,11 +218,7 @@ impl CubicSpline {
             t
         };
         // Interval i with x_i <= t < x_{i+1}, clamped to the end intervals for extrapolation.
-        let i = self
-            .x
-            .partition_point(|&k| k <= t)
-            .saturating_sub(1)
-            .min(n - 1);
+        let i = self.x.partition_point(|&k| k <= t).saturating_sub(1).min(n - 1);
         let (xa, xb) = (self.x[i], self.x[i + 1]);
         let (ya, yb) = (self.y[i], self.y[i + 1]);
         let (ma, mb) = (self.moments[i], self.moments[i + 1]);
@@ -241,8 +228,7 @@ impl CubicSpline {
             + mb * b * b * b / (6.0 * h)
             + (ya / h - ma * h / 6.0) * a
             + (yb / h - mb * h / 6.0) * b;
-        let slope =
-            -ma * a * a / (2.0 * h) + mb * b * b / (2.0 * h) + (yb - ya) / h - (mb - ma) * h / 6.0;
+        let slope = -ma * a * a / (2.0 * h) + mb * b * b / (2.0 * h) + (yb - ya) / h - (mb - ma) * h / 6.0;
         let curvature = (ma * a + mb * b) / h;
         (value, slope, curvature)
     }
@@ -315,10 +301,7 @@ fn solve_periodic(h: &[f64], d: &[f64]) -> Vec<f64> {
         let (a, b) = (diag[0], sup[0] + sub[0]);
         let (c, e) = (sup[1] + sub[1], diag[1]);
         let det = a * e - b * c;
-        vec![
-            (rhs[0] * e - b * rhs[1]) / det,
-            (a * rhs[1] - c * rhs[0]) / det,
-        ]
+        vec![(rhs[0] * e - b * rhs[1]) / det, (a * rhs[1] - c * rhs[0]) / det]
     } else {
         // A = T + u v^T with corner entries alpha = A[0][n-1] = sub[0], beta = A[n-1][0] = sup[n-1].
         let alpha = sub[0];

@@ -32,11 +32,7 @@ impl ErrorStats {
         }
         Self {
             max_m,
-            rms_m: if count > 0 {
-                (sum_sq / count as f64).sqrt()
-            } else {
-                0.0
-            },
+            rms_m: if count > 0 { (sum_sq / count as f64).sqrt() } else { 0.0 },
             count,
         }
     }
@@ -97,9 +93,7 @@ impl TrueSurface {
 
     /// Distance of `q` to the true surface and the region of the nearest point.
     pub fn distance(&self, q: DVec3) -> (f64, Region) {
-        let (projection, (triangle, _)) = self
-            .mesh
-            .project_local_point_and_get_location(q.as_vec3(), false);
+        let (projection, (triangle, _)) = self.mesh.project_local_point_and_get_location(q.as_vec3(), false);
         let foot = projection.point.as_dvec3();
         let params = self.corner_params[triangle as usize];
         let [a, b, c] = params.map(|(s, t)| self.form.point(s, t));

@@ -31,21 +31,9 @@ pub enum Region {
 
 impl Region {
     /// Bottom to top.
-    pub const ALL: [Self; 5] = [
-        Self::Hip,
-        Self::Waist,
-        Self::Bust,
-        Self::Shoulder,
-        Self::Neck,
-    ];
+    pub const ALL: [Self; 5] = [Self::Hip, Self::Waist, Self::Bust, Self::Shoulder, Self::Neck];
     /// The reporting order of the issue: neck first.
-    pub const REPORT_ORDER: [Self; 5] = [
-        Self::Neck,
-        Self::Shoulder,
-        Self::Bust,
-        Self::Waist,
-        Self::Hip,
-    ];
+    pub const REPORT_ORDER: [Self; 5] = [Self::Neck, Self::Shoulder, Self::Bust, Self::Waist, Self::Hip];
 
     /// Name.
     pub fn name(self) -> &'static str {
@@ -111,8 +99,7 @@ impl DressForm {
 
     /// Half depth (z).
     pub fn half_depth(&self, s: f64) -> f64 {
-        0.105 + 0.010 * bell(s, 0.10, 0.10) - 0.020 * step(s, 0.32, 0.05)
-            + 0.022 * bell(s, 0.53, 0.07)
+        0.105 + 0.010 * bell(s, 0.10, 0.10) - 0.020 * step(s, 0.32, 0.05) + 0.022 * bell(s, 0.53, 0.07)
             - 0.030 * step(s, 0.78, 0.04)
     }
 
@@ -133,12 +120,7 @@ impl DressForm {
 
     /// The surface point `P(s, t)`.
     pub fn point(&self, s: f64, t: f64) -> DVec3 {
-        let (a, b, e, phi) = (
-            self.half_width(s),
-            self.half_depth(s),
-            self.fullness(s),
-            self.tilt(s),
-        );
+        let (a, b, e, phi) = (self.half_width(s), self.half_depth(s), self.fullness(s), self.tilt(s));
         let (st, ct) = t.sin_cos();
         let depth = b * st * (1.0 + e * st);
         DVec3::new(

@@ -96,9 +96,7 @@ impl MannequinOptions {
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum MannequinError {
     /// Too coarse a grid.
-    #[error(
-        "a mannequin grid needs at least 4 layers and 6 points per layer (got {layers} x {points})"
-    )]
+    #[error("a mannequin grid needs at least 4 layers and 6 points per layer (got {layers} x {points})")]
     TooCoarse {
         /// Layers.
         layers: usize,
@@ -170,10 +168,7 @@ pub struct MannequinResult {
 }
 
 /// Samples the dress form, refines it both ways and measures both against the truth.
-pub fn run_mannequin(
-    form: &DressForm,
-    options: &MannequinOptions,
-) -> Result<MannequinResult, MannequinError> {
+pub fn run_mannequin(form: &DressForm, options: &MannequinOptions) -> Result<MannequinResult, MannequinError> {
     if options.layers < 4 || options.points < 6 {
         return Err(MannequinError::TooCoarse {
             layers: options.layers,

@@ -23,8 +23,7 @@ pub fn refine(grid: &RingGrid, k: usize) -> Result<RingGrid, MannequinError> {
     let mut rows: Vec<Vec<DVec3>> = Vec::with_capacity(layers);
     for i in 0..layers {
         let ring: Vec<DVec3> = (0..points).map(|j| grid.at(i, j)).collect();
-        let spline = ChordSpline3::try_new(&ring, CurveEnds::Closed)
-            .map_err(spline_error(format!("layer {i}")))?;
+        let spline = ChordSpline3::try_new(&ring, CurveEnds::Closed).map_err(spline_error(format!("layer {i}")))?;
         rows.push(spline.subdivide(k, true));
     }
     let dense_layers = (layers - 1) * k + 1;
@@ -36,8 +35,7 @@ pub fn refine(grid: &RingGrid, k: usize) -> Result<RingGrid, MannequinError> {
             start: Some(column[1] - column[0]),
             end: Some(column[n] - column[n - 1]),
         };
-        let spline =
-            ChordSpline3::try_new(&column, ends).map_err(spline_error(format!("meridian {c}")))?;
+        let spline = ChordSpline3::try_new(&column, ends).map_err(spline_error(format!("meridian {c}")))?;
         for (i, p) in spline.subdivide(k, false).into_iter().enumerate() {
             positions[i * dense_points + c] = p;
         }

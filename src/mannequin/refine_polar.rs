@@ -60,8 +60,8 @@ pub fn refine(grid: &RingGrid, k: usize) -> Result<RingGrid, MannequinError> {
         psi.push(closing);
         rho.push(rho[0]);
         ys.push(ys[0]);
-        let spline = CubicSpline::try_new(&psi, &rho, EndCondition::Periodic)
-            .map_err(spline_error(format!("layer {i}")))?;
+        let spline =
+            CubicSpline::try_new(&psi, &rho, EndCondition::Periodic).map_err(spline_error(format!("layer {i}")))?;
         let mut row = Vec::with_capacity(dense_points);
         for j in 0..points {
             for m in 0..k {
@@ -88,15 +88,8 @@ pub fn refine(grid: &RingGrid, k: usize) -> Result<RingGrid, MannequinError> {
         let n = layers - 1;
         let start_slope = (rhos[1] - rhos[0]) / (ys[1] - ys[0]);
         let end_slope = (rhos[n] - rhos[n - 1]) / (ys[n] - ys[n - 1]);
-        let spline = CubicSpline::try_new(
-            &ys,
-            &rhos,
-            EndCondition::Clamped {
-                start_slope,
-                end_slope,
-            },
-        )
-        .map_err(spline_error(format!("meridian {c}")))?;
+        let spline = CubicSpline::try_new(&ys, &rhos, EndCondition::Clamped { start_slope, end_slope })
+            .map_err(spline_error(format!("meridian {c}")))?;
         for i in 0..dense_layers {
             let (seg, m) = ((i / k).min(n - 1), i - (i / k).min(n - 1) * k);
             let f = m as f64 / k as f64;

@@ -96,7 +96,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
                     let Some((column, token)) = tokens.next() else {
                         return Err(syntax(
                             line,
-                            last_column + 1,
+                            last_column,
                             format!("expected 3 coordinates after 'v', found {k}"),
                         ));
                     };
@@ -105,11 +105,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
                         .parse()
                         .map_err(|_| syntax(line, column, format!("'{token}' is not a number")))?;
                     if !value.is_finite() {
-                        return Err(syntax(
-                            line,
-                            column,
-                            format!("coordinate '{token}' is not finite"),
-                        ));
+                        return Err(syntax(line, column, format!("coordinate '{token}' is not finite")));
                     }
                     *slot = value * scale;
                 }
@@ -119,9 +115,9 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
                 let mut corners = Vec::new();
                 for (column, token) in tokens {
                     let index_text = token.split('/').next().unwrap_or("");
-                    let index: i64 = index_text.parse().map_err(|_| {
-                        syntax(line, column, format!("'{token}' is not a vertex index"))
-                    })?;
+                    let index: i64 = index_text
+                        .parse()
+                        .map_err(|_| syntax(line, column, format!("'{token}' is not a vertex index")))?;
                     if index == 0 {
                         return Err(syntax(
                             line,
@@ -145,9 +141,10 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
                     corners.push((column, resolved));
                 }
                 if corners.len() < 3 {
+                    let end = content.trim_end().len() + 1;
                     return Err(syntax(
                         line,
-                        2,
+                        end,
                         format!("a face needs at least 3 vertices, found {}", corners.len()),
                     ));
                 }
@@ -195,10 +192,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
         }
     }
     Ok(ObjMesh {
-        mesh: TriMesh {
-            positions,
-            triangles,
-        },
+        mesh: TriMesh { positions, triangles },
         triangle_lines,
         polygons_triangulated,
     })

@@ -69,9 +69,6 @@ impl TriMesh {
 
     /// Positions as `f32` triples (for display and export).
     pub fn positions_f32(&self) -> Vec<[f32; 3]> {
-        self.positions
-            .iter()
-            .map(|p| p.as_vec3().to_array())
-            .collect()
+        self.positions.iter().map(|p| p.as_vec3().to_array()).collect()
     }
 }

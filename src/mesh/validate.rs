@@ -45,16 +45,10 @@ impl MeshReport {
                 notes.push(format!("{n} {text}"));
             }
         };
-        note(
-            self.dropped_repeated_vertex,
-            "triangle(s) repeating a vertex dropped",
-        );
+        note(self.dropped_repeated_vertex, "triangle(s) repeating a vertex dropped");
         note(self.dropped_duplicates, "duplicate triangle(s) dropped");
         note(self.zero_area_triangles, "zero-area triangle(s) kept");
-        note(
-            self.flipped,
-            "triangle(s) flipped to a consistent outward orientation",
-        );
+        note(self.flipped, "triangle(s) flipped to a consistent outward orientation");
         note(
             self.boundary_edges,
             "boundary edge(s): the mesh is open, inside/outside is approximate",
@@ -71,9 +65,7 @@ impl MeshReport {
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum MeshError {
     /// An edge with three or more triangles.
-    #[error(
-        "{place}edge between vertices {a} and {b} is shared by {count} faces{lines}: the mesh is not manifold"
-    )]
+    #[error("{place}edge between vertices {a} and {b} is shared by {count} faces{lines}: the mesh is not manifold")]
     NonManifold {
         /// `file:` prefix or empty.
         place: String,
@@ -87,9 +79,7 @@ pub enum MeshError {
         lines: String,
     },
     /// A part is a Moebius-like surface.
-    #[error(
-        "{place}the surface around face{line} cannot be oriented consistently (non-orientable part)"
-    )]
+    #[error("{place}the surface around face{line} cannot be oriented consistently (non-orientable part)")]
     NonOrientable {
         /// `file:` prefix or empty.
         place: String,
@@ -108,11 +98,7 @@ pub enum MeshError {
 
 /// Validates and repairs `mesh` in place. `name` and `triangle_lines` (source line of
 /// each triangle, may be empty) make error messages point into the file.
-pub fn validate_and_repair(
-    mesh: &mut TriMesh,
-    name: &str,
-    triangle_lines: &[usize],
-) -> Result<MeshReport, MeshError> {
+pub fn validate_and_repair(mesh: &mut TriMesh, name: &str, triangle_lines: &[usize]) -> Result<MeshReport, MeshError> {
     let place = if name.is_empty() {
         String::new()
     } else {
@@ -134,10 +120,7 @@ pub fn validate_and_repair(
         lines.push(triangle_lines.get(t).copied().unwrap_or(0));
     }
     if kept.is_empty() {
-        return Err(MeshError::NoTriangles {
-            place,
-            count: total,
-        });
+        return Err(MeshError::NoTriangles { place, count: total });
     }
     // Exact duplicates (same vertex set): keep the first in file order.
     let mut keys: Vec<([u32; 3], usize)> = kept
@@ -254,9 +237,7 @@ pub fn validate_and_repair(
     report.flipped = flipped.iter().filter(|f| **f).count();
     report.components = parts.len();
     report.triangles = n;
-    let diagonal_sq = mesh
-        .bounds()
-        .map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
+    let diagonal_sq = mesh.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
     report.zero_area_triangles = (0..n)
         .filter(|&t| mesh.scaled_normal(t).length() * 0.5 <= 1e-12 * diagonal_sq)
         .count();

@@ -16,23 +16,15 @@ pub struct ObjExporter {
 impl ObjExporter {
     /// Exports into `dir` (created if missing).
     pub fn new(dir: PathBuf) -> Result<Self, SinkError> {
-        std::fs::create_dir_all(&dir)
-            .map_err(|e| SinkError(format!("{}: cannot create: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir).map_err(|e| SinkError(format!("{}: cannot create: {e}", dir.display())))?;
         Ok(Self {
             dir,
             written: Vec::new(),
         })
     }
 
-    fn write(
-        &mut self,
-        info: &StageInfo,
-        mesh_name: &str,
-        mesh: &TriMesh,
-    ) -> Result<(), SinkError> {
-        let path = self
-            .dir
-            .join(format!("step{:02}_{mesh_name}.obj", info.step));
+    fn write(&mut self, info: &StageInfo, mesh_name: &str, mesh: &TriMesh) -> Result<(), SinkError> {
+        let path = self.dir.join(format!("step{:02}_{mesh_name}.obj", info.step));
         let header = format!(
             "drape export: step {} ({}), mesh {mesh_name}; metres, y up",
             info.step, info.op
@@ -52,10 +44,7 @@ impl StageSink for ObjExporter {
         match stage {
             Stage::BodyMesh(body) => self.write(info, "body", &body.mesh),
             Stage::Mannequin(result) => {
-                for (name, grid) in [
-                    ("mannequin_polar", &result.polar),
-                    ("mannequin_chord", &result.chord),
-                ] {
+                for (name, grid) in [("mannequin_polar", &result.polar), ("mannequin_chord", &result.chord)] {
                     let mesh = TriMesh {
                         positions: grid.positions.clone(),
                         triangles: grid.triangles(),

@@ -206,12 +206,7 @@ struct Args<'a> {
 }
 
 impl<'a> Args<'a> {
-    fn parse(
-        line: &Line<'a>,
-        tokens: &[Token<'a>],
-        allowed: &[&str],
-        statement: &str,
-    ) -> Result<Self, ParseError> {
+    fn parse(line: &Line<'a>, tokens: &[Token<'a>], allowed: &[&str], statement: &str) -> Result<Self, ParseError> {
         let mut pairs: Vec<(&'a str, Token<'a>, usize)> = Vec::new();
         for t in tokens {
             let Some((key, value)) = t.text.split_once('=').filter(|_| !t.quoted) else {
@@ -250,25 +245,17 @@ impl<'a> Args<'a> {
     }
 
     fn get(&self, key: &str) -> Option<Token<'a>> {
-        self.pairs
-            .iter()
-            .find(|(k, _, _)| *k == key)
-            .map(|(_, v, _)| *v)
+        self.pairs.iter().find(|(k, _, _)| *k == key).map(|(_, v, _)| *v)
     }
 }
 
 fn number(line: &Line<'_>, t: Token<'_>, what: &str) -> Result<f64, ParseError> {
-    let v: f64 = t.text.parse().map_err(|_| {
-        line.error(
-            t.column,
-            format!("expected a number for {what}, found '{}'", t.text),
-        )
-    })?;
+    let v: f64 = t
+        .text
+        .parse()
+        .map_err(|_| line.error(t.column, format!("expected a number for {what}, found '{}'", t.text)))?;
     if !v.is_finite() {
-        return Err(line.error(
-            t.column,
-            format!("{what} must be finite, found '{}'", t.text),
-        ));
+        return Err(line.error(t.column, format!("{what} must be finite, found '{}'", t.text)));
     }
     Ok(v)
 }
@@ -288,11 +275,7 @@ fn integer_in(
     if !range.contains(&v) {
         return Err(line.error(
             t.column,
-            format!(
-                "{what} must be from {} to {}, found {v}",
-                range.start(),
-                range.end()
-            ),
+            format!("{what} must be from {} to {}, found {v}", range.start(), range.end()),
         ));
     }
     Ok(v)
@@ -328,23 +311,14 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 [v] => {
                     return Err(line.error(
                         v.column,
-                        format!(
-                            "unsupported format version '{}': this drape reads version 1",
-                            v.text
-                        ),
+                        format!("unsupported format version '{}': this drape reads version 1", v.text),
                     ));
                 }
                 [] => {
-                    return Err(line.error(
-                        line.end_column,
-                        "expected a format version after 'drape' (drape 1)",
-                    ));
+                    return Err(line.error(line.end_column, "expected a format version after 'drape' (drape 1)"));
                 }
                 [_, extra, ..] => {
-                    return Err(line.error(
-                        extra.column,
-                        format!("unexpected '{}' after the version", extra.text),
-                    ));
+                    return Err(line.error(extra.column, format!("unexpected '{}' after the version", extra.text)));
                 }
             }
             continue;
@@ -357,17 +331,11 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         }
         match keyword {
             "drape" => {
-                return Err(line.error(
-                    head.column,
-                    "'drape' may appear only once, as the first statement",
-                ));
+                return Err(line.error(head.column, "'drape' may appear only once, as the first statement"));
             }
             "body" => {
                 if let Some((_, first)) = body {
-                    return Err(line.error(
-                        head.column,
-                        format!("the body is already set on line {first}"),
-                    ));
+                    return Err(line.error(head.column, format!("the body is already set on line {first}")));
                 }
                 let source = match rest {
                     [t] if !t.quoted && t.text == "builtin" => BodySource::Builtin,
@@ -378,33 +346,21 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                     [t] => {
                         return Err(line.error(
                             t.column,
-                            format!(
-                                "expected 'builtin' or a quoted OBJ path, found '{}'",
-                                t.text
-                            ),
+                            format!("expected 'builtin' or a quoted OBJ path, found '{}'", t.text),
                         ));
                     }
                     [] => {
-                        return Err(line.error(
-                            line.end_column,
-                            "expected 'builtin' or a quoted OBJ path after 'body'",
-                        ));
+                        return Err(line.error(line.end_column, "expected 'builtin' or a quoted OBJ path after 'body'"));
                     }
                     [_, extra, ..] => {
-                        return Err(line.error(
-                            extra.column,
-                            format!("unexpected '{}' after the body", extra.text),
-                        ));
+                        return Err(line.error(extra.column, format!("unexpected '{}' after the body", extra.text)));
                     }
                 };
                 body = Some((source, line.number));
             }
             "units" => {
                 if let Some((_, first)) = units {
-                    return Err(line.error(
-                        head.column,
-                        format!("units are already set on line {first}"),
-                    ));
+                    return Err(line.error(head.column, format!("units are already set on line {first}")));
                 }
                 let u = match rest {
                     [t] => match t.text {
@@ -412,31 +368,21 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                         "cm" => Units::Centimetres,
                         "mm" => Units::Millimetres,
                         other => {
-                            return Err(line.error(
-                                t.column,
-                                format!("unknown units '{other}': expected m, cm or mm"),
-                            ));
+                            return Err(line.error(t.column, format!("unknown units '{other}': expected m, cm or mm")));
                         }
                     },
                     [] => {
-                        return Err(
-                            line.error(line.end_column, "expected m, cm or mm after 'units'")
-                        );
+                        return Err(line.error(line.end_column, "expected m, cm or mm after 'units'"));
                     }
                     [_, extra, ..] => {
-                        return Err(line.error(
-                            extra.column,
-                            format!("unexpected '{}' after the units", extra.text),
-                        ));
+                        return Err(line.error(extra.column, format!("unexpected '{}' after the units", extra.text)));
                     }
                 };
                 units = Some((u, line.number));
             }
             "landmark" => {
                 let Some((which, args)) = rest.split_first() else {
-                    return Err(
-                        line.error(line.end_column, "expected a landmark name after 'landmark'")
-                    );
+                    return Err(line.error(line.end_column, "expected a landmark name after 'landmark'"));
                 };
                 let names: Vec<&str> = LandmarkKind::ALL.iter().map(|k| k.name()).collect();
                 let kind = LandmarkKind::from_name(which.text).ok_or_else(|| {
@@ -461,10 +407,9 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                     (None, Some(at)) => {
                         let parts: Vec<&str> = at.text.split(',').collect();
                         if parts.len() != 3 {
-                            return Err(line.error(
-                                at.column,
-                                format!("expected at=x,y,z (3 numbers), found '{}'", at.text),
-                            ));
+                            return Err(
+                                line.error(at.column, format!("expected at=x,y,z (3 numbers), found '{}'", at.text))
+                            );
                         }
                         let mut xyz = [0.0; 3];
                         let mut column = at.column;
@@ -493,12 +438,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 landmark_lines.push((kind, line.number));
             }
             "mannequin" => {
-                let a = Args::parse(
-                    &line,
-                    rest,
-                    &["layers", "points", "subdivisions"],
-                    "mannequin",
-                )?;
+                let a = Args::parse(&line, rest, &["layers", "points", "subdivisions"], "mannequin")?;
                 let mut options = MannequinOptions::default();
                 if let Some(t) = a.get("layers") {
                     options.layers = integer_in(&line, t, "layers", 4..=200)?;
@@ -523,20 +463,11 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                     }
                 };
                 let name = match a.get("name") {
-                    Some(t)
-                        if t.text
-                            .chars()
-                            .all(|c| c.is_ascii_alphanumeric() || c == '_') =>
-                    {
-                        t.text.to_string()
-                    }
+                    Some(t) if t.text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') => t.text.to_string(),
                     Some(t) => {
                         return Err(line.error(
                             t.column,
-                            format!(
-                                "a name may hold letters, digits and '_' only, found '{}'",
-                                t.text
-                            ),
+                            format!("a name may hold letters, digits and '_' only, found '{}'", t.text),
                         ));
                     }
                     None => format!("y{:.0}mm", y * 1000.0),

@@ -30,11 +30,7 @@ impl StepMetrics {
         let mut object = Map::new();
         object.insert("step".into(), self.step.into());
         object.insert("op".into(), self.op.clone().into());
-        let timings: Map<String, Value> = self
-            .timings_ms
-            .iter()
-            .map(|(k, v)| (k.clone(), (*v).into()))
-            .collect();
+        let timings: Map<String, Value> = self.timings_ms.iter().map(|(k, v)| (k.clone(), (*v).into())).collect();
         object.insert("timings_ms".into(), Value::Object(timings));
         for (k, v) in &self.figures {
             object.insert(k.clone(), v.clone());

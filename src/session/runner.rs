@@ -11,8 +11,7 @@ use thiserror::Error;
 use super::format::{Op, Session};
 use super::metrics::StepMetrics;
 use crate::body::{
-    self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition,
-    PartitionOptions,
+    self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition, PartitionOptions,
 };
 use crate::geom::{Plane, SectionLoop, section_mesh};
 use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
@@ -114,14 +113,7 @@ struct Driver<'s, 'k> {
 }
 
 impl Driver<'_, '_> {
-    fn emit(
-        &mut self,
-        step: usize,
-        op: &'static str,
-        name: &'static str,
-        stage: Stage<'_>,
-        metrics: &mut StepMetrics,
-    ) {
+    fn emit(&mut self, step: usize, op: &'static str, name: &'static str, stage: Stage<'_>, metrics: &mut StepMetrics) {
         let info = StageInfo {
             step,
             op,
@@ -135,10 +127,7 @@ impl Driver<'_, '_> {
                 self.sink_errors.push(format!("{name}: {e}"));
             }
         }
-        *metrics
-            .timings_ms
-            .entry(format!("log.{name}"))
-            .or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
+        *metrics.timings_ms.entry(format!("log.{name}")).or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
     }
 }
 
@@ -153,11 +142,7 @@ fn timed<T>(metrics: &mut StepMetrics, name: &str, f: impl FnOnce() -> T) -> T {
 
 /// Runs a session: the scene (step 0), then each step. Stops at the first failure,
 /// which is reported to the sinks as a [`Stage::Failed`] and returned in the report.
-pub fn run_session(
-    session: &Session,
-    options: &RunOptions,
-    sinks: &mut [&mut dyn StageSink],
-) -> RunReport {
+pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dyn StageSink]) -> RunReport {
     let mut driver = Driver {
         sinks,
         stage: 0,
@@ -193,18 +178,12 @@ pub fn run_session(
         m.set("triangles", mesh.mesh.triangles.len());
         m.set("height_m", mesh.height());
         m.set("repairs", mesh.report.notes());
-        m.set(
-            "mesh_report",
-            serde_json::to_value(&mesh.report).unwrap_or_default(),
-        );
+        m.set("mesh_report", serde_json::to_value(&mesh.report).unwrap_or_default());
         driver.emit(0, "scene", "body.load", Stage::BodyMesh(&mesh), &mut m);
         let landmarks = timed(&mut m, "body.landmarks", || {
             body::find_landmarks(&mesh, &landmark_options)
         })?;
-        m.set(
-            "landmarks",
-            serde_json::to_value(&landmarks.items).unwrap_or_default(),
-        );
+        m.set("landmarks", serde_json::to_value(&landmarks.items).unwrap_or_default());
         driver.emit(
             0,
             "scene",
@@ -218,10 +197,7 @@ pub fn run_session(
         let partitions = timed(&mut m, "body.partitions", || {
             body::build_partitions(&mesh, &landmarks, &options.partitions)
         })?;
-        m.set(
-            "partitions",
-            serde_json::to_value(&partitions).unwrap_or_default(),
-        );
+        m.set("partitions", serde_json::to_value(&partitions).unwrap_or_default());
         driver.emit(
             0,
             "scene",
@@ -272,18 +248,10 @@ pub fn run_session(
                         let regions: Vec<_> = Region::REPORT_ORDER
                             .iter()
                             .filter_map(|r| result.regions.iter().find(|e| e.region == r.name()))
-                            .map(
-                                |e| json!({"region": e.region, "polar": e.polar, "chord": e.chord}),
-                            )
+                            .map(|e| json!({"region": e.region, "polar": e.polar, "chord": e.chord}))
                             .collect();
                         m.set("regions", regions);
-                        driver.emit(
-                            index,
-                            op,
-                            "mannequin.refine",
-                            Stage::Mannequin(&result),
-                            &mut m,
-                        );
+                        driver.emit(index, op, "mannequin.refine", Stage::Mannequin(&result), &mut m);
                         Ok(())
                     }
                     Err(e) => Err(e.to_string()),
@@ -291,27 +259,16 @@ pub fn run_session(
             }
             Op::Section { name, y } => {
                 let loops = timed(&mut m, "section.cut", || {
-                    section_mesh(
-                        &body.mesh.mesh,
-                        &body.mesh.adjacency,
-                        &Plane::horizontal(*y),
-                    )
+                    section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &Plane::horizontal(*y))
                 });
                 if loops.is_empty() {
-                    let (lo, hi) = body
-                        .mesh
-                        .mesh
-                        .bounds()
-                        .map_or((0.0, 0.0), |(l, h)| (l.y, h.y));
+                    let (lo, hi) = body.mesh.mesh.bounds().map_or((0.0, 0.0), |(l, h)| (l.y, h.y));
                     Err(format!(
                         "section '{name}' at y = {y:.4} m cuts nothing: the body spans {lo:.4}..{hi:.4} m"
                     ))
                 } else {
                     m.set("loops", loops.len());
-                    m.set(
-                        "lengths_m",
-                        loops.iter().map(SectionLoop::length).collect::<Vec<_>>(),
-                    );
+                    m.set("lengths_m", loops.iter().map(SectionLoop::length).collect::<Vec<_>>());
                     driver.emit(
                         index,
                         op,

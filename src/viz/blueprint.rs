@@ -1,8 +1,6 @@
 //! The default layout sent with every recording: the 3D scene, metrics plots and the log.
 
-use rerun::blueprint::{
-    Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical,
-};
+use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical};
 
 /// 3D view of everything spatial on the left; metrics and the per-stage log on the right;
 /// the time panel on the `stage` timeline.
@@ -20,9 +18,7 @@ pub fn default_blueprint() -> Blueprint {
                 ])
                 .into(),
             Vertical::new([
-                TimeSeriesView::new("Metrics")
-                    .with_origin("/metrics")
-                    .into(),
+                TimeSeriesView::new("Metrics").with_origin("/metrics").into(),
                 TextLogView::new("Log").with_origin("/log").into(),
             ])
             .with_row_shares([1.0, 1.0])

@@ -30,11 +30,7 @@ pub fn error_color(value: f64, max: f64) -> [u8; 3] {
         [250.0, 210.0, 40.0],
         [220.0, 30.0, 30.0],
     ];
-    let x = if max > 0.0 {
-        (value / max).clamp(0.0, 1.0)
-    } else {
-        0.0
-    } * (STOPS.len() - 1) as f64;
+    let x = if max > 0.0 { (value / max).clamp(0.0, 1.0) } else { 0.0 } * (STOPS.len() - 1) as f64;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f64;
     let (a, b) = (STOPS[i], STOPS[i + 1]);

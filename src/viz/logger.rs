@@ -2,13 +2,14 @@
 
 use glam::DVec3;
 use rerun::{
-    LineStrips3D, Mesh3D, Points3D, RecordingStream, Scalars, SeriesLines, TextLog, TextLogLevel,
-    Transform3D, ViewCoordinates,
+    LineStrips3D, Mesh3D, Points3D, RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, Transform3D,
+    ViewCoordinates,
 };
 
 use super::colors::{error_color, partition_color, partition_tint};
 use crate::body::{BodyMesh, LandmarkKind, PartitionId};
-use crate::mannequin::{MannequinResult, RingGrid};
+use crate::body::{DetectionMethod, ResponseRule};
+use crate::mannequin::{MannequinResult, Region, RingGrid};
 use crate::session::runner::{SinkError, Stage, StageInfo, StageSink};
 
 /// What the logger logs.
@@ -77,33 +78,24 @@ impl RerunLogger {
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
-        for (path, name, color) in [
-            (
-                "metrics/mannequin/neck/polar_max_mm",
-                "neck polar max",
-                [220, 30, 30],
-            ),
-            (
-                "metrics/mannequin/neck/chord_max_mm",
-                "neck chord max",
-                [30, 150, 230],
-            ),
-            (
-                "metrics/mannequin/shoulder/polar_max_mm",
-                "shoulder polar max",
-                [250, 120, 40],
-            ),
-            (
-                "metrics/mannequin/shoulder/chord_max_mm",
-                "shoulder chord max",
-                [60, 200, 90],
-            ),
-        ] {
-            rec.log_static(
-                path,
-                &SeriesLines::new().with_names([name]).with_colors([color]),
-            )
-            .map_err(to_sink)?;
+        // The mannequin figures are one value per run: markers, polar warm and chord cool.
+        for region in Region::ALL {
+            for (method, stat, color) in [
+                ("polar", "max", [220, 40, 30]),
+                ("polar", "rms", [250, 150, 60]),
+                ("chord", "max", [30, 110, 230]),
+                ("chord", "rms", [90, 200, 230]),
+            ] {
+                let name = format!("{} {method} {stat} (mm)", region.name());
+                rec.log_static(
+                    format!("metrics/mannequin/{}/{method}_{stat}_mm", region.name()),
+                    &SeriesPoints::new()
+                        .with_names([name])
+                        .with_colors([color])
+                        .with_marker_sizes([4.0]),
+                )
+                .map_err(to_sink)?;
+            }
         }
         Ok(Self {
             rec,
@@ -129,11 +121,7 @@ impl RerunLogger {
 
     fn body_mesh(&self, body: &BodyMesh) -> Result<(), SinkError> {
         let mesh = &body.mesh;
-        let normals: Vec<[f32; 3]> = mesh
-            .vertex_normals()
-            .iter()
-            .map(|n| n.as_vec3().to_array())
-            .collect();
+        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
         self.rec
             .log(
                 "body/mesh",
@@ -176,10 +164,7 @@ impl RerunLogger {
         ] {
             let base = format!("mannequin/{name}");
             self.rec
-                .log(
-                    base.as_str(),
-                    &Transform3D::from_translation([dx as f32, 0.0, 0.0]),
-                )
+                .log(base.as_str(), &Transform3D::from_translation([dx as f32, 0.0, 0.0]))
                 .map_err(to_sink)?;
             let colors: Vec<[u8; 3]> = errors.iter().map(|e| error_color(*e, scale)).collect();
             self.rec
@@ -242,6 +227,22 @@ impl RerunLogger {
     }
 }
 
+fn method_name(m: DetectionMethod) -> &'static str {
+    match m {
+        DetectionMethod::PointFace => "point-face",
+        DetectionMethod::LineLine => "line-line",
+    }
+}
+
+fn response_name(r: ResponseRule) -> &'static str {
+    match r {
+        ResponseRule::RingCentre => "ring-centre",
+        ResponseRule::BodyNormal => "body-normal",
+        ResponseRule::ViewDirection => "view-direction",
+        ResponseRule::VertexNormal => "vertex-normal",
+    }
+}
+
 fn grid_top(grid: &RingGrid) -> DVec3 {
     let last = grid.layers.saturating_sub(1);
     let n = grid.points.max(1) as f64;
@@ -264,13 +265,7 @@ impl StageSink for RerunLogger {
                 let colors: Vec<[u8; 3]> = landmarks
                     .items
                     .iter()
-                    .map(|l| {
-                        if l.overridden {
-                            [255, 140, 0]
-                        } else {
-                            [200, 20, 60]
-                        }
-                    })
+                    .map(|l| if l.overridden { [255, 140, 0] } else { [200, 20, 60] })
                     .collect();
                 self.rec
                     .log(
@@ -299,7 +294,8 @@ impl StageSink for RerunLogger {
                             &LineStrips3D::new([closed(&ring.points)])
                                 .with_radii([0.0025])
                                 .with_colors([[250, 250, 250]])
-                                .with_labels([format!("{} {:.3} m", ring.name, ring.tape_girth)]),
+                                .with_labels([format!("{} {:.3} m", ring.name, ring.tape_girth)])
+                                .with_show_labels(false),
                         )
                         .map_err(to_sink)?;
                 }
@@ -327,56 +323,61 @@ impl StageSink for RerunLogger {
                     .map(|id| id.map_or([200, 200, 200], partition_tint))
                     .collect();
                 self.rec
-                    .log(
-                        "body/mesh",
-                        &Mesh3D::update_fields().with_vertex_colors(colors),
-                    )
+                    .log("body/mesh", &Mesh3D::update_fields().with_vertex_colors(colors))
                     .map_err(to_sink)?;
-                let mut lines = vec![
-                    "partitions (bounds m, triangles with margin, test, response):".to_string(),
-                ];
+                let mut lines = vec!["partitions (bounds m, triangles with margin, test, response):".to_string()];
+                // A legend column beside the body, one labelled dot per partition at mid-height.
+                let legend_x = mesh.bounds().map_or(-0.6, |(lo, _)| lo.x - 0.15) as f32;
+                let mut legend_points = Vec::new();
+                let mut legend_labels = Vec::new();
+                let mut legend_colors = Vec::new();
                 for p in partitions.iter() {
-                    let strips: Vec<Vec<[f32; 3]>> =
-                        p.rings.iter().map(|r| closed(&r.points)).collect();
-                    let label = format!("{} {}", p.id.letter(), p.id.region());
-                    let n = strips.len();
+                    let strips: Vec<Vec<[f32; 3]>> = p.rings.iter().map(|r| closed(&r.points)).collect();
                     self.rec
                         .log(
                             format!("body/partitions/{}", p.id.letter()),
                             &LineStrips3D::new(strips)
                                 .with_radii([0.004])
-                                .with_colors([partition_color(p.id)])
-                                .with_labels(vec![label; n]),
+                                .with_colors([partition_color(p.id)]),
                         )
                         .map_err(to_sink)?;
+                    legend_points.push([legend_x, (0.5 * (p.lower_y + p.upper_y)) as f32, 0.0]);
+                    legend_labels.push(format!(
+                        "{} {}: {} test, {} response",
+                        p.id.letter(),
+                        p.id.region(),
+                        method_name(p.method),
+                        response_name(p.response)
+                    ));
+                    legend_colors.push(partition_color(p.id));
                     lines.push(format!(
-                        "  {} {:<8} {:.3}..{:.3}  {:>5}  {:?}  {:?}",
+                        "  {} {:<8} {:.3}..{:.3}  {:>5}  {}  {}",
                         p.id.letter(),
                         p.id.region(),
                         p.lower_y,
                         p.upper_y,
                         p.triangle_count,
-                        p.method,
-                        p.response
+                        method_name(p.method),
+                        response_name(p.response)
                     ));
-                    self.scalar(
-                        &format!("metrics/partitions/{}/triangles", p.id.letter()),
-                        p.triangle_count as f64,
-                    )?;
                 }
+                self.rec
+                    .log(
+                        "body/partitions/legend",
+                        &Points3D::new(legend_points)
+                            .with_labels(legend_labels)
+                            .with_colors(legend_colors)
+                            .with_radii([0.02])
+                            .with_show_labels(true),
+                    )
+                    .map_err(to_sink)?;
                 self.text(TextLogLevel::INFO, lines.join("\n"))
             }
             Stage::Mannequin(result) => self.mannequin(result),
             Stage::Section { name, y, loops } => {
                 let strips: Vec<Vec<[f32; 3]>> = loops
                     .iter()
-                    .map(|l| {
-                        if l.closed {
-                            closed(&l.points)
-                        } else {
-                            f32s(&l.points)
-                        }
-                    })
+                    .map(|l| if l.closed { closed(&l.points) } else { f32s(&l.points) })
                     .collect();
                 self.rec
                     .log(
@@ -386,8 +387,7 @@ impl StageSink for RerunLogger {
                             .with_colors([[255, 220, 0]]),
                     )
                     .map_err(to_sink)?;
-                let lengths: Vec<String> =
-                    loops.iter().map(|l| format!("{:.3}", l.length())).collect();
+                let lengths: Vec<String> = loops.iter().map(|l| format!("{:.3}", l.length())).collect();
                 self.text(
                     TextLogLevel::INFO,
                     format!(

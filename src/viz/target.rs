@@ -19,10 +19,7 @@ pub enum RecordingTarget {
 
 /// Opens a recording with the default blueprint, no wall-clock `log_time`, and a
 /// recording id derived from `name`, so the same session logs the same data.
-pub fn open_recording(
-    target: &RecordingTarget,
-    name: &str,
-) -> RecordingStreamResult<RecordingStream> {
+pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamResult<RecordingStream> {
     let builder = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))
         .recording_name(name)
@@ -30,18 +27,14 @@ pub fn open_recording(
     let rec = match target {
         RecordingTarget::File(path) => builder.save(path)?,
         RecordingTarget::Connect(url) => builder.connect_grpc_opts(url.as_str())?,
-        RecordingTarget::Serve(port) => {
-            builder.serve_grpc_opts("0.0.0.0", *port, rerun::ServerOptions::default())?
-        }
+        RecordingTarget::Serve(port) => builder.serve_grpc_opts("0.0.0.0", *port, rerun::ServerOptions::default())?,
     };
     rec.set_log_time_enabled(false);
     Ok(rec)
 }
 
 /// An in-memory recording for tests, set up like [`open_recording`].
-pub fn memory_recording(
-    name: &str,
-) -> RecordingStreamResult<(RecordingStream, rerun::sink::MemorySinkStorage)> {
+pub fn memory_recording(name: &str) -> RecordingStreamResult<(RecordingStream, rerun::sink::MemorySinkStorage)> {
     let (rec, storage) = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))
         .recording_name(name)

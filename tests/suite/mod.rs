@@ -1,0 +1,9 @@
+mod common;
+mod landmarks;
+mod mannequin;
+mod meshes;
+mod obj_errors;
+mod sections;
+mod session_errors;
+mod snapshot;
+mod splines;

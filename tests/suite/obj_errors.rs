@@ -1,0 +1,106 @@
+//! Broken OBJ files: each gets a clear error naming the place, never a panic.
+
+use drape::body::BodyMesh;
+
+fn error_of(text: &str) -> String {
+    match BodyMesh::from_obj_text(text, "bad.obj", 1.0) {
+        Ok(_) => panic!("accepted a broken file:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+
+#[test]
+fn nan_coordinate() {
+    assert_eq!(
+        error_of("v 0 0 0\nv 1 nan 0\n"),
+        "bad.obj:2:5: coordinate 'nan' is not finite"
+    );
+}
+
+#[test]
+fn infinite_coordinate() {
+    assert_eq!(error_of("v 0 0 -inf\n"), "bad.obj:1:7: coordinate '-inf' is not finite");
+}
+
+#[test]
+fn missing_coordinate() {
+    assert_eq!(
+        error_of("v 0 0\n"),
+        "bad.obj:1:6: expected 3 coordinates after 'v', found 2"
+    );
+}
+
+#[test]
+fn not_a_number() {
+    assert_eq!(error_of("v 0 0 0,5\n"), "bad.obj:1:7: '0,5' is not a number");
+}
+
+#[test]
+fn index_out_of_range() {
+    assert_eq!(
+        error_of(&format!("{TRIANGLE}f 1 2 9\n")),
+        "bad.obj:4:7: vertex index 9 is out of range: the file has 3 vertices"
+    );
+}
+
+#[test]
+fn index_zero() {
+    assert_eq!(
+        error_of(&format!("{TRIANGLE}f 0 1 2\n")),
+        "bad.obj:4:3: vertex index 0 is invalid (OBJ indices start at 1)"
+    );
+}
+
+#[test]
+fn relative_index_before_the_first_vertex() {
+    assert_eq!(
+        error_of(&format!("{TRIANGLE}f -1 -2 -4\n")),
+        "bad.obj:4:9: relative index -4 reaches before the first vertex"
+    );
+}
+
+#[test]
+fn face_with_two_corners() {
+    assert_eq!(
+        error_of(&format!("{TRIANGLE}f 1 2  # a line?\n")),
+        "bad.obj:4:6: a face needs at least 3 vertices, found 2"
+    );
+}
+
+#[test]
+fn no_faces() {
+    assert_eq!(error_of(TRIANGLE), "bad.obj: no faces ('f' lines)");
+}
+
+#[test]
+fn no_vertices() {
+    assert_eq!(error_of("# nothing\n"), "bad.obj: no vertices ('v' lines)");
+}
+
+#[test]
+fn only_degenerate_faces() {
+    assert_eq!(
+        error_of(&format!("{TRIANGLE}f 1 1 2\n")),
+        "bad.obj: no usable triangles: all 1 repeat a vertex"
+    );
+}
+
+#[test]
+fn non_manifold_edge() {
+    // Three triangles on the edge 1-2 (a fin).
+    let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    assert_eq!(
+        error_of(text),
+        "bad.obj: edge between vertices 1 and 2 is shared by 3 faces (lines 6, 7, 8): the mesh is not manifold"
+    );
+}
+
+#[test]
+fn unreadable_file() {
+    let e = BodyMesh::load(&drape::body::BodySource::File("no/such/body.obj".into()), 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("no/such/body.obj: cannot read: "), "{e}");
+}

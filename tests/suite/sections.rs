@@ -1,0 +1,131 @@
+//! Plane sections: exact girths of analytic shapes, and the real body's loops.
+
+use drape::body::LandmarkKind;
+use drape::body::profile::outer_loops;
+use drape::geom::{Plane, section_mesh};
+use drape::mesh::{Adjacency, validate_and_repair};
+use glam::DVec3;
+
+use super::common::{angle, closed_grid, ellipse_perimeter, ellipse_point, real_body};
+
+#[test]
+fn cylinder_girth_is_exact() {
+    let (r, n) = (0.13, 2048);
+    let mut mesh = closed_grid(
+        9,
+        n,
+        |i, j| ellipse_point(r, r, 0.1 * i as f64, angle(j, n)),
+        DVec3::ZERO,
+        DVec3::new(0.0, 0.8, 0.0),
+    );
+    validate_and_repair(&mut mesh, "cylinder", &[]).expect("valid");
+    let adjacency = Adjacency::try_new(&mesh).expect("manifold");
+    for y in [0.05, 0.333, 0.71] {
+        let loops = section_mesh(&mesh, &adjacency, &Plane::horizontal(y));
+        assert_eq!(loops.len(), 1);
+        assert!(loops[0].closed);
+        // The section of the prism is the regular n-gon, exactly.
+        let polygon = 2.0 * n as f64 * r * (std::f64::consts::PI / n as f64).sin();
+        assert!(
+            (loops[0].length() - polygon).abs() < 1e-12,
+            "{} vs {polygon}",
+            loops[0].length()
+        );
+        // And that is the circle within 1e-6 m.
+        assert!((loops[0].length() - std::f64::consts::TAU * r).abs() < 1e-6);
+    }
+}
+
+#[test]
+fn ellipsoid_girth_at_a_ring_is_the_ellipse() {
+    let (a, b, c) = (0.2, 0.5, 0.1); // semi-axes x, y, z
+    let (rings, n) = (99, 4096);
+    let lat = |i: usize| std::f64::consts::PI * (i + 1) as f64 / (rings + 1) as f64;
+    let mut mesh = closed_grid(
+        rings,
+        n,
+        |i, j| {
+            let (s, co) = lat(i).sin_cos();
+            ellipse_point(a * s, c * s, -b * co, angle(j, n))
+        },
+        DVec3::new(0.0, -b, 0.0),
+        DVec3::new(0.0, b, 0.0),
+    );
+    validate_and_repair(&mut mesh, "ellipsoid", &[]).expect("valid");
+    let adjacency = Adjacency::try_new(&mesh).expect("manifold");
+    for i in [20, 49, 77] {
+        let y = -b * lat(i).cos();
+        let loops = section_mesh(&mesh, &adjacency, &Plane::horizontal(y));
+        assert_eq!(loops.len(), 1, "ring {i}");
+        let s = lat(i).sin();
+        let exact = ellipse_perimeter(a * s, c * s);
+        assert!(
+            (loops[0].length() - exact).abs() < 1e-6,
+            "ring {i}: {} vs {exact}",
+            loops[0].length()
+        );
+    }
+}
+
+#[test]
+fn real_body_has_one_torso_loop_at_the_waist_and_two_legs_at_the_knee() {
+    let body = real_body();
+    let (mesh, adjacency) = (&body.mesh.mesh, &body.mesh.adjacency);
+    let height = body.mesh.height();
+    let waist_y = body.landmarks.height(LandmarkKind::Waist);
+    let waist_loops = outer_loops(mesh, adjacency, waist_y, height);
+    let torso: Vec<_> = waist_loops
+        .iter()
+        .filter(|l| l.contains(body.landmarks.torso_at(waist_y).unwrap()))
+        .collect();
+    assert_eq!(torso.len(), 1);
+    let g = torso[0].tape_girth;
+    assert!((0.6..=0.9).contains(&g), "waist girth {g}");
+    let waist_ring = body.rings.iter().find(|r| r.name == "waist").unwrap();
+    assert!((waist_ring.tape_girth - g).abs() < 1e-9);
+    // Whatever else the knee plane cuts (hands hang lower on some bodies), two loops hold
+    // the two leg axes, one on each side of the body's middle.
+    let knee_y = body.landmarks.height(LandmarkKind::Knee);
+    let knee_loops = outer_loops(mesh, adjacency, knee_y, height);
+    let (l, r) = body.landmarks.legs_at(knee_y).unwrap();
+    let left = knee_loops.iter().position(|lp| lp.contains(l)).expect("left leg");
+    let right = knee_loops.iter().position(|lp| lp.contains(r)).expect("right leg");
+    assert_ne!(left, right);
+    assert!(knee_loops[left].centroid.x > body.landmarks.mid_x && knee_loops[right].centroid.x < body.landmarks.mid_x);
+    for i in [left, right] {
+        assert!(
+            (0.25..=0.5).contains(&knee_loops[i].tape_girth),
+            "knee girth {}",
+            knee_loops[i].tape_girth
+        );
+    }
+}
+
+#[test]
+fn body_sections_agree_with_an_independent_segment_soup() {
+    // Independent check of the adjacency walk: sum the lengths of every triangle's own
+    // crossing segment, with no chaining at all.
+    let body = real_body();
+    let mesh = &body.mesh.mesh;
+    for y in [0.3, 0.95, 1.25] {
+        let walked: f64 = section_mesh(mesh, &body.mesh.adjacency, &Plane::horizontal(y))
+            .iter()
+            .map(|l| l.length())
+            .sum();
+        let mut soup = 0.0;
+        for t in 0..mesh.triangles.len() {
+            let p = mesh.corners(t);
+            let mut pts = Vec::new();
+            for k in 0..3 {
+                let (a, b) = (p[k], p[(k + 1) % 3]);
+                if (a.y >= y) != (b.y >= y) {
+                    pts.push(a + (b - a) * ((y - a.y) / (b.y - a.y)));
+                }
+            }
+            if pts.len() == 2 {
+                soup += pts[0].distance(pts[1]);
+            }
+        }
+        assert!((walked - soup).abs() < 1e-9, "y={y}: walk {walked} soup {soup}");
+    }
+}

@@ -1,0 +1,252 @@
+//! Malformed sessions: each error names file, line and column and says what was expected.
+//! Then a step that fails at run time: the recording keeps what came before, plus the error.
+
+use std::path::Path;
+use std::process::Command;
+
+use drape::session::{Op, parse_session};
+
+fn error_of(text: &str) -> String {
+    match parse_session(text, "s.drape", Path::new(".")) {
+        Ok(s) => panic!("accepted {text:?}: {s:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn empty_session() {
+    assert_eq!(
+        error_of("# only a comment\n"),
+        "s.drape:1:1: empty session: expected 'drape 1' as the first statement"
+    );
+}
+
+#[test]
+fn missing_header() {
+    assert_eq!(
+        error_of("body builtin\n"),
+        "s.drape:1:1: expected 'drape 1' as the first statement, found 'body'"
+    );
+}
+
+#[test]
+fn unsupported_version() {
+    assert_eq!(
+        error_of("drape 2\n"),
+        "s.drape:1:7: unsupported format version '2': this drape reads version 1"
+    );
+}
+
+#[test]
+fn unknown_statement() {
+    assert_eq!(
+        error_of("drape 1\n  frobnicate y=1\n"),
+        "s.drape:2:3: unknown statement 'frobnicate': expected a scene statement (drape, body, units, landmark) or a step (mannequin, section)"
+    );
+}
+
+#[test]
+fn unknown_key() {
+    assert_eq!(
+        error_of("drape 1\nmannequin layer=18\n"),
+        "s.drape:2:11: unknown key 'layer' for 'mannequin': expected one of layers, points, subdivisions"
+    );
+}
+
+#[test]
+fn not_a_number() {
+    assert_eq!(
+        error_of("drape 1\nsection y=abc\n"),
+        "s.drape:2:11: expected a number for y, found 'abc'"
+    );
+}
+
+#[test]
+fn not_finite() {
+    assert_eq!(
+        error_of("drape 1\nsection y=nan\n"),
+        "s.drape:2:11: y must be finite, found 'nan'"
+    );
+}
+
+#[test]
+fn out_of_range() {
+    assert_eq!(
+        error_of("drape 1\nmannequin points=12 layers=2\n"),
+        "s.drape:2:28: layers must be from 4 to 200, found 2"
+    );
+}
+
+#[test]
+fn unknown_units() {
+    assert_eq!(
+        error_of("drape 1\nunits ft\n"),
+        "s.drape:2:7: unknown units 'ft': expected m, cm or mm"
+    );
+}
+
+#[test]
+fn scene_after_a_step() {
+    assert_eq!(
+        error_of("drape 1\nsection y=0.5\nunits m\n"),
+        "s.drape:3:1: 'units' belongs to the scene and must come before the first step"
+    );
+}
+
+#[test]
+fn unknown_landmark() {
+    assert_eq!(
+        error_of("drape 1\nlandmark elbow y=1\n"),
+        "s.drape:2:10: unknown landmark 'elbow': expected one of ankle, knee, crotch, hip, waist, bust, armpit, shoulder, front_neck, side_neck, neck"
+    );
+}
+
+#[test]
+fn landmark_point_with_two_coordinates() {
+    assert_eq!(
+        error_of("drape 1\nlandmark waist at=0,1\n"),
+        "s.drape:2:19: expected at=x,y,z (3 numbers), found '0,1'"
+    );
+}
+
+#[test]
+fn landmark_point_with_a_bad_coordinate() {
+    assert_eq!(
+        error_of("drape 1\nlandmark waist at=0,1.0,zz\n"),
+        "s.drape:2:25: expected a number for a coordinate, found 'zz'"
+    );
+}
+
+#[test]
+fn unterminated_string() {
+    assert_eq!(
+        error_of("drape 1\nbody \"my body.obj\n"),
+        "s.drape:2:6: unterminated string: expected a closing '\"'"
+    );
+}
+
+#[test]
+fn key_given_twice() {
+    assert_eq!(
+        error_of("drape 1\nsection y=1 y=2\n"),
+        "s.drape:2:13: 'y' is given twice"
+    );
+}
+
+#[test]
+fn missing_required_key() {
+    assert_eq!(
+        error_of("drape 1\nsection name=a   \n"),
+        "s.drape:2:15: expected y=<height> for 'section'"
+    );
+}
+
+#[test]
+fn positional_argument() {
+    assert_eq!(
+        error_of("drape 1\nmannequin 18\n"),
+        "s.drape:2:11: expected key=value after 'mannequin', found '18'"
+    );
+}
+
+#[test]
+fn body_set_twice() {
+    assert_eq!(
+        error_of("drape 1\nbody builtin\nbody builtin\n"),
+        "s.drape:3:1: the body is already set on line 2"
+    );
+}
+
+#[test]
+fn a_valid_session_parses_to_typed_steps() {
+    let s = parse_session(
+        "drape 1 # v1\nbody \"b.obj\"\nunits cm\nlandmark waist y=0.98\n\nmannequin layers=20\nsection y=0.6 name=thigh\n",
+        "ok.drape",
+        Path::new("/data"),
+    )
+    .unwrap();
+    assert_eq!(s.scene.body, drape::body::BodySource::File("/data/b.obj".into()));
+    assert_eq!(s.scene.units.scale(), 0.01);
+    assert_eq!(s.steps.len(), 2);
+    assert_eq!((s.steps[0].line, s.steps[1].line), (6, 7));
+    assert!(matches!(&s.steps[0].op, Op::Mannequin(o) if o.layers == 20 && o.points == 12));
+    assert_eq!(
+        s.steps[1].op,
+        Op::Section {
+            name: "thigh".into(),
+            y: 0.6
+        }
+    );
+}
+
+#[test]
+fn the_demo_session_file_is_the_embedded_one() {
+    let on_disk = std::fs::read_to_string("assets/sessions/demo.drape").unwrap();
+    assert_eq!(on_disk, drape::session::DEMO_SESSION);
+}
+
+/// Runs the binary; returns (exit code, stderr).
+fn drape(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(args)
+        .output()
+        .expect("drape runs");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_step_failing_at_run_time_keeps_a_valid_recording_with_the_error() {
+    let dir = std::env::temp_dir().join(format!("drape-fail-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("fail.drape");
+    std::fs::write(
+        &session,
+        "drape 1\nsection y=0.5 name=ok\nsection y=5 name=too_high\nsection y=0.7\n",
+    )
+    .unwrap();
+    let rrd = dir.join("fail.rrd");
+    let metrics = dir.join("fail.json");
+    let (code, stderr) = drape(&[
+        "run",
+        session.to_str().unwrap(),
+        "--save",
+        rrd.to_str().unwrap(),
+        "--metrics",
+        metrics.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(
+        stderr.contains(":3: step 2 (section) failed: section 'too_high' at y = 5.0000 m cuts nothing: the body spans 0.0000..1.5898 m"),
+        "{stderr}"
+    );
+    // The file decodes completely and holds the body, the first section and the error.
+    let bytes = std::fs::read(&rrd).unwrap();
+    let summary = super::snapshot::summarize_rrd(&bytes);
+    assert!(summary.contains("/body/mesh"), "{summary}");
+    assert!(summary.contains("/section/ok"), "{summary}");
+    assert!(!summary.contains("/section/too_high"), "{summary}");
+    assert!(summary.contains("ERROR"), "{summary}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&metrics).unwrap()).unwrap();
+    let steps = json.as_array().unwrap();
+    assert_eq!(steps.len(), 3);
+    assert!(steps[2]["error"].as_str().unwrap().contains("cuts nothing"));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn check_reports_a_parse_error_with_exit_code_2() {
+    let dir = std::env::temp_dir().join(format!("drape-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("bad.drape");
+    std::fs::write(&session, "drape 1\nmannequin layers=x\n").unwrap();
+    let (code, stderr) = drape(&["check", session.to_str().unwrap()]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("bad.drape:2:18: expected a whole number for layers, found 'x'"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

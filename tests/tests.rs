@@ -1,0 +1,3 @@
+//! drape's integration tests, one binary with thematic modules.
+
+mod suite;
