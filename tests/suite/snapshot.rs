@@ -13,11 +13,25 @@ use rerun::log::{Chunk, LogMsg};
 #[derive(Default)]
 struct EntitySummary {
     components: BTreeMap<String, usize>,
-    values: Vec<String>,
+    /// (component, stage, text): sorted on output, so chunk boundaries do not matter.
+    values: Vec<(String, i64, String)>,
 }
 
 fn round3(v: f32) -> f32 {
     (v * 1000.0).round() / 1000.0
+}
+
+/// The `stage` time of each row holding `component` (static rows count as -1).
+fn stages<'a>(chunk: &'a Chunk, component: rerun::ComponentIdentifier) -> Box<dyn Iterator<Item = i64> + 'a> {
+    if chunk.is_static() {
+        Box::new(std::iter::repeat(-1))
+    } else {
+        Box::new(
+            chunk
+                .iter_component_indices("stage".into(), component)
+                .map(|(t, _)| t.as_i64()),
+        )
+    }
 }
 
 /// Summarizes decoded recording messages: per entity path, each component's row count,
@@ -44,29 +58,36 @@ pub fn summarize(msgs: impl IntoIterator<Item = LogMsg>) -> String {
             *entry.components.entry(id.to_string()).or_insert(0) += rows;
             match id.as_str() {
                 "Points3D:positions" | "Mesh3D:vertex_positions" => {
-                    for batch in chunk.iter_component::<rerun::Position3D>(id) {
+                    for (stage, batch) in stages(&chunk, id).zip(chunk.iter_component::<rerun::Position3D>(id)) {
                         let n = batch.len();
                         let first = batch.first().map(|p| p.0.0.map(round3));
-                        entry.values.push(format!("{id}: {n} points, first {first:?}"));
+                        entry
+                            .values
+                            .push((id.to_string(), stage, format!("{n} points, first {first:?}")));
                     }
                 }
                 "LineStrips3D:strips" => {
-                    for batch in chunk.iter_component::<rerun::components::LineStrip3D>(id) {
+                    for (stage, batch) in
+                        stages(&chunk, id).zip(chunk.iter_component::<rerun::components::LineStrip3D>(id))
+                    {
                         let sizes: Vec<usize> = batch.iter().map(|s| s.0.len()).collect();
-                        entry.values.push(format!("{id}: strip sizes {sizes:?}"));
+                        entry
+                            .values
+                            .push((id.to_string(), stage, format!("strip sizes {sizes:?}")));
                     }
                 }
                 "Scalars:scalars" => {
-                    for batch in chunk.iter_component::<rerun::components::Scalar>(id) {
+                    for (stage, batch) in stages(&chunk, id).zip(chunk.iter_component::<rerun::components::Scalar>(id))
+                    {
                         let v: Vec<String> = batch.iter().map(|s| format!("{:.3}", s.0.0)).collect();
-                        entry.values.push(format!("{id}: {}", v.join(", ")));
+                        entry.values.push((id.to_string(), stage, v.join(", ")));
                     }
                 }
                 "TextLog:text" | "TextLog:level" => {
-                    for batch in chunk.iter_component::<rerun::components::Text>(id) {
+                    for (stage, batch) in stages(&chunk, id).zip(chunk.iter_component::<rerun::components::Text>(id)) {
                         for t in batch.iter() {
                             let first_line = t.as_str().lines().next().unwrap_or("").to_string();
-                            entry.values.push(format!("{id}: {first_line}"));
+                            entry.values.push((id.to_string(), stage, first_line.clone()));
                         }
                     }
                 }
@@ -75,13 +96,14 @@ pub fn summarize(msgs: impl IntoIterator<Item = LogMsg>) -> String {
         }
     }
     let mut out = String::new();
-    for (path, e) in &entities {
+    for (path, e) in &mut entities {
+        e.values.sort();
         writeln!(out, "{path}").ok();
         for (c, rows) in &e.components {
             writeln!(out, "  {c} x{rows}").ok();
         }
-        for v in &e.values {
-            writeln!(out, "    {v}").ok();
+        for (component, stage, v) in &e.values {
+            writeln!(out, "    {component} @stage {stage}: {v}").ok();
         }
     }
     out
