@@ -253,6 +253,16 @@ impl StageSink for RerunLogger {
     fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
         self.rec.set_time_sequence("step", info.step as i64);
         self.rec.set_time_sequence("stage", info.stage as i64);
+        self.log_stage(stage)?;
+        // One chunk boundary per stage (the batcher never flushes on its own, see viz::target).
+        self.rec
+            .flush_async()
+            .map_err(|e| SinkError(format!("rerun flush: {e}")))
+    }
+}
+
+impl RerunLogger {
+    fn log_stage(&mut self, stage: Stage<'_>) -> Result<(), SinkError> {
         match stage {
             Stage::BodyMesh(body) => self.body_mesh(body),
             Stage::Landmarks(_, landmarks) => {

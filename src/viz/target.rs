@@ -17,12 +17,19 @@ pub enum RecordingTarget {
     Serve(u16),
 }
 
-/// Opens a recording with the default blueprint, no wall-clock `log_time`, and a
-/// recording id derived from `name`, so the same session logs the same data.
+/// Batching without clock- or size-driven flushes: the logger flushes at the end of
+/// every stage, so chunk boundaries follow the stages and two runs write the same chunks.
+fn batcher() -> rerun::log::ChunkBatcherConfig {
+    rerun::log::ChunkBatcherConfig::NEVER
+}
+
+/// Opens a recording with the default blueprint, no wall-clock `log_time`, a recording id
+/// derived from `name` and stage-aligned chunks, so the same session logs the same data.
 pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamResult<RecordingStream> {
     let builder = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))
         .recording_name(name)
+        .batcher_config(batcher())
         .with_blueprint(default_blueprint());
     let rec = match target {
         RecordingTarget::File(path) => builder.save(path)?,
@@ -38,6 +45,7 @@ pub fn memory_recording(name: &str) -> RecordingStreamResult<(RecordingStream, r
     let (rec, storage) = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))
         .recording_name(name)
+        .batcher_config(batcher())
         .memory()?;
     rec.set_log_time_enabled(false);
     Ok((rec, storage))
