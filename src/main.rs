@@ -269,6 +269,19 @@ fn run(args: RunArgs) -> Result<ExitCode> {
             std::thread::sleep(std::time::Duration::from_secs(3600));
         }
     }
+    if let Some(url) = &args.connect {
+        // Without a listener the SDK would drop the data with only a log line: say so.
+        if let Err(e) = logger
+            .recording()
+            .flush_with_timeout(std::time::Duration::from_secs(10))
+        {
+            eprintln!("error: the recording could not be delivered to {url}: {e}");
+            // Dropping a gRPC stream that never connected waits on its sender thread for
+            // good; metrics and exports are written already, so leave without it.
+            std::process::exit(1);
+        }
+        eprintln!("recording sent to {url}");
+    }
     drop(logger); // closes the file sink (writes its footer)
     if let RecordingTarget::File(partial) = &target {
         std::fs::rename(partial, &final_path)

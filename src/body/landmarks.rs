@@ -166,6 +166,20 @@ pub struct LandmarkOptions {
 impl LandmarkOptions {
     /// Default value of [`Self::levels`].
     pub const DEFAULT_LEVELS: usize = 320;
+
+    /// Sets [`Self::levels`].
+    #[must_use]
+    pub fn with_levels(mut self, levels: usize) -> Self {
+        self.levels = levels;
+        self
+    }
+
+    /// Sets [`Self::overrides`].
+    #[must_use]
+    pub fn with_overrides(mut self, overrides: Vec<(LandmarkKind, LandmarkOverride)>) -> Self {
+        self.overrides = overrides;
+        self
+    }
 }
 
 impl Default for LandmarkOptions {
@@ -226,6 +240,20 @@ impl Landmarks {
             .map(|l| l.point[1])
             .collect();
         ys.iter().sum::<f64>() / ys.len().max(1) as f64
+    }
+
+    /// The neck-base plane through the front-neck and both side-neck points (the garment's
+    /// neckline plane); `None` if they are collinear.
+    pub fn neck_plane(&self) -> Option<crate::geom::Plane> {
+        let points: Vec<DVec3> = [
+            self.get(LandmarkKind::FrontNeck, Side::Centre),
+            self.get(LandmarkKind::SideNeck, Side::Left),
+            self.get(LandmarkKind::SideNeck, Side::Right),
+        ]
+        .iter()
+        .map(|l| l.map(Landmark::position))
+        .collect::<Option<Vec<_>>>()?;
+        crate::geom::Plane::fit(&points)
     }
 
     /// Leg centroids at height `y` (nearest tracked level).

@@ -184,6 +184,9 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
             body::find_landmarks(&mesh, &landmark_options)
         })?;
         m.set("landmarks", serde_json::to_value(&landmarks.items).unwrap_or_default());
+        if let Some(plane) = landmarks.neck_plane() {
+            m.set("neck_plane_tilt_deg", plane.tilt().to_degrees());
+        }
         driver.emit(
             0,
             "scene",

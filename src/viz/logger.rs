@@ -291,9 +291,16 @@ impl RerunLogger {
                     .iter()
                     .map(|k| format!("{} {:.3}", k.name(), landmarks.height(*k)))
                     .collect();
+                let tilt = landmarks.neck_plane().map_or_else(
+                    || "undetermined".to_string(),
+                    |p| format!("{:.1} deg", p.tilt().to_degrees()),
+                );
                 self.text(
                     TextLogLevel::INFO,
-                    format!("landmarks (height, m): {}", listed.join(", ")),
+                    format!(
+                        "landmarks (height, m): {}; neck-base plane tilt {tilt}",
+                        listed.join(", ")
+                    ),
                 )
             }
             Stage::Rings(rings) => {
