@@ -84,9 +84,9 @@ struct MannequinArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
-    /// Also log both surfaces, coloured by error, to this recording.
-    #[arg(long, value_name = "PATH")]
-    save: Option<PathBuf>,
+    /// Log both surfaces, coloured by their distance to the true surface, to this recording.
+    #[arg(long, value_name = "PATH", default_value = "recordings/mannequin.rrd")]
+    save: PathBuf,
 }
 
 fn main() -> ExitCode {
@@ -334,17 +334,12 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
             } else {
                 "polar"
             };
-            println!(
-                "{:<9} {:>10.3} {:>10.3} {:>10.3} {:>10.3}   {better}",
-                e.region,
-                e.polar.max_m * 1e3,
-                e.polar.rms_m * 1e3,
-                e.chord.max_m * 1e3,
-                e.chord.rms_m * 1e3
-            );
+            let [pm, pr, cm, cr] = e.millimetres();
+            println!("{:<9} {pm:>10.3} {pr:>10.3} {cm:>10.3} {cr:>10.3}   {better}", e.region);
         }
     }
-    if let Some(path) = &args.save {
+    {
+        let path = &args.save;
         let partial = partial_path(path);
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir)?;

@@ -146,6 +146,13 @@ pub struct RegionErrors {
     pub chord: ErrorStats,
 }
 
+impl RegionErrors {
+    /// `[polar max, polar rms, chord max, chord rms]` in millimetres.
+    pub fn millimetres(&self) -> [f64; 4] {
+        [self.polar.max_m, self.polar.rms_m, self.chord.max_m, self.chord.rms_m].map(|m| m * 1e3)
+    }
+}
+
 /// Everything the mannequin step produces.
 #[derive(Clone, Debug)]
 pub struct MannequinResult {

@@ -249,6 +249,21 @@ impl<'a> Args<'a> {
     }
 }
 
+/// The single argument of a statement: an error at the line's end if it is missing, or at
+/// the first extra token. `(keyword, noun)` name the statement in the messages.
+fn one_argument<'a>(
+    line: &Line<'a>,
+    rest: &[Token<'a>],
+    (keyword, noun): (&str, &str),
+    expected: &str,
+) -> Result<Token<'a>, ParseError> {
+    match rest {
+        [t] => Ok(*t),
+        [] => Err(line.error(line.end_column, format!("expected {expected} after '{keyword}'"))),
+        [_, extra, ..] => Err(line.error(extra.column, format!("unexpected '{}' after the {noun}", extra.text))),
+    }
+}
+
 fn number(line: &Line<'_>, t: Token<'_>, what: &str) -> Result<f64, ParseError> {
     let v: f64 = t
         .text
@@ -306,21 +321,14 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                     format!("expected 'drape 1' as the first statement, found '{keyword}'"),
                 ));
             }
-            match rest {
-                [v] if v.text == "1" => version_seen = true,
-                [v] => {
-                    return Err(line.error(
-                        v.column,
-                        format!("unsupported format version '{}': this drape reads version 1", v.text),
-                    ));
-                }
-                [] => {
-                    return Err(line.error(line.end_column, "expected a format version after 'drape' (drape 1)"));
-                }
-                [_, extra, ..] => {
-                    return Err(line.error(extra.column, format!("unexpected '{}' after the version", extra.text)));
-                }
+            let v = one_argument(&line, rest, ("drape", "version"), "a format version (drape 1)")?;
+            if v.text != "1" {
+                return Err(line.error(
+                    v.column,
+                    format!("unsupported format version '{}': this drape reads version 1", v.text),
+                ));
             }
+            version_seen = true;
             continue;
         }
         if SCENE_KEYWORDS.contains(&keyword) && !steps.is_empty() {
@@ -337,23 +345,18 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 if let Some((_, first)) = body {
                     return Err(line.error(head.column, format!("the body is already set on line {first}")));
                 }
-                let source = match rest {
-                    [t] if !t.quoted && t.text == "builtin" => BodySource::Builtin,
-                    [t] if t.quoted => {
+                let t = one_argument(&line, rest, ("body", "body"), "'builtin' or a quoted OBJ path")?;
+                let source = match t {
+                    t if !t.quoted && t.text == "builtin" => BodySource::Builtin,
+                    t if t.quoted => {
                         let p = PathBuf::from(t.text);
                         BodySource::File(if p.is_absolute() { p } else { base_dir.join(p) })
                     }
-                    [t] => {
+                    t => {
                         return Err(line.error(
                             t.column,
                             format!("expected 'builtin' or a quoted OBJ path, found '{}'", t.text),
                         ));
-                    }
-                    [] => {
-                        return Err(line.error(line.end_column, "expected 'builtin' or a quoted OBJ path after 'body'"));
-                    }
-                    [_, extra, ..] => {
-                        return Err(line.error(extra.column, format!("unexpected '{}' after the body", extra.text)));
                     }
                 };
                 body = Some((source, line.number));
@@ -362,21 +365,12 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 if let Some((_, first)) = units {
                     return Err(line.error(head.column, format!("units are already set on line {first}")));
                 }
-                let u = match rest {
-                    [t] => match t.text {
-                        "m" => Units::Metres,
-                        "cm" => Units::Centimetres,
-                        "mm" => Units::Millimetres,
-                        other => {
-                            return Err(line.error(t.column, format!("unknown units '{other}': expected m, cm or mm")));
-                        }
-                    },
-                    [] => {
-                        return Err(line.error(line.end_column, "expected m, cm or mm after 'units'"));
-                    }
-                    [_, extra, ..] => {
-                        return Err(line.error(extra.column, format!("unexpected '{}' after the units", extra.text)));
-                    }
+                let t = one_argument(&line, rest, ("units", "units"), "m, cm or mm")?;
+                let u = match t.text {
+                    "m" => Units::Metres,
+                    "cm" => Units::Centimetres,
+                    "mm" => Units::Millimetres,
+                    other => return Err(line.error(t.column, format!("unknown units '{other}': expected m, cm or mm"))),
                 };
                 units = Some((u, line.number));
             }

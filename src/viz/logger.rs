@@ -204,13 +204,10 @@ impl RerunLogger {
             scale * 1e3
         )];
         for r in &result.regions {
+            let [pm, pr, cm, cr] = r.millimetres();
             lines.push(format!(
-                "  {:<8} polar max {:.3} mm rms {:.3} mm | chord max {:.3} mm rms {:.3} mm",
-                r.region,
-                r.polar.max_m * 1e3,
-                r.polar.rms_m * 1e3,
-                r.chord.max_m * 1e3,
-                r.chord.rms_m * 1e3
+                "  {:<8} polar max {pm:.3} mm rms {pr:.3} mm | chord max {cm:.3} mm rms {cr:.3} mm",
+                r.region
             ));
             for (method, stats) in [("polar", r.polar), ("chord", r.chord)] {
                 self.scalar(

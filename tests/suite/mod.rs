@@ -6,4 +6,5 @@ mod obj_errors;
 mod sections;
 mod session_errors;
 mod snapshot;
+mod spline_properties;
 mod splines;
