@@ -1,12 +1,14 @@
 //! Curves, planes and sections: the geometry every stage builds on.
 
 pub mod chord_spline;
+pub mod coons;
 pub mod plane;
 pub mod polygon;
 pub mod section;
 pub mod spline;
 
 pub use chord_spline::{ChordSpline3, CurveEnds};
+pub use coons::{CoonsPatch, CornerMismatch, ParametricCurve};
 pub use plane::Plane;
 pub use section::{SectionLoop, section_mesh};
 pub use spline::{CubicSpline, EndCondition, SplineError};

@@ -1,4 +1,5 @@
 mod common;
+mod coons;
 mod landmarks;
 mod mannequin;
 mod meshes;
