@@ -1,4 +1,5 @@
 mod common;
+mod convexify;
 mod coons;
 mod landmarks;
 mod mannequin;

@@ -1,0 +1,95 @@
+//! Ring convexification: a convex ring that keeps the 4 extremes and is exactly the convex
+//! hull's vertices in ring order, for star-shaped and non-star-shaped rings.
+
+use drape::garment::{convexify, extremes};
+use drape::geom::polygon;
+use glam::DVec2;
+use proptest::prelude::*;
+
+/// A star-shaped ring (radius against sorted angles), then bent by `y += bend * x^2`,
+/// which for large `bend` makes it banana-shaped and not star-shaped.
+fn ring() -> impl Strategy<Value = Vec<DVec2>> {
+    (8usize..80, 0.0f64..3.0).prop_flat_map(|(n, bend)| {
+        (prop::collection::vec((0.0f64..1.0, 0.4f64..1.6), n), Just(bend)).prop_map(move |(raw, bend)| {
+            let mut samples: Vec<(f64, f64)> = raw.into_iter().map(|(a, r)| (a * std::f64::consts::TAU, r)).collect();
+            samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+            samples.dedup_by(|a, b| (a.0 - b.0).abs() < 1e-6);
+            samples
+                .into_iter()
+                .map(|(a, r)| {
+                    let (x, y) = (r * a.cos(), r * a.sin());
+                    DVec2::new(x, y + bend * x * x)
+                })
+                .collect()
+        })
+    })
+}
+
+/// Whether the closed polygon has no two non-adjacent edges that touch (brute force).
+fn is_simple(p: &[DVec2]) -> bool {
+    let n = p.len();
+    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    for i in 0..n {
+        for j in i + 1..n {
+            if j == i + 1 || (i == 0 && j == n - 1) {
+                continue;
+            }
+            let (a, b, c, d) = (p[i], p[(i + 1) % n], p[j], p[(j + 1) % n]);
+            let (d1, d2) = (cross(a, b, c), cross(a, b, d));
+            let (d3, d4) = (cross(c, d, a), cross(c, d, b));
+            if d1 * d2 <= 0.0 && d3 * d4 <= 0.0 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(400))]
+
+    #[test]
+    fn convexify_gives_the_hull_in_ring_order_keeping_the_extremes(points in ring()) {
+        prop_assume!(points.len() >= 4);
+        let (kept, _report) = convexify(&points);
+        // A simple ring keeps its order (a self-crossing one has none to keep).
+        if is_simple(&points) {
+            prop_assert!(kept.windows(2).all(|w| w[0] < w[1]), "ring order lost: {:?}", kept);
+        }
+        // The 4 extremes survive.
+        for e in extremes(&points) {
+            prop_assert!(kept.contains(&e), "extreme {} lost", e);
+        }
+        // Convex: every turn has the orientation's sign (or is zero at a tied extreme).
+        let m = kept.len();
+        let pts: Vec<DVec2> = kept.iter().map(|&i| points[i]).collect();
+        let orientation = polygon::signed_area(&pts).signum();
+        for k in 0..m {
+            let (a, b, c) = (pts[(k + m - 1) % m], pts[k], pts[(k + 1) % m]);
+            prop_assert!((b - a).perp_dot(c - b) * orientation >= -1e-12, "reflex turn at kept point {}", kept[k]);
+        }
+        // Exactly the convex hull's vertices (an independent monotone-chain hull).
+        let hull = polygon::convex_hull(&points);
+        prop_assert!(hull.iter().all(|h| pts.contains(h)), "a hull vertex was deleted");
+        prop_assert!((polygon::signed_area(&pts).abs() - polygon::signed_area(&hull).abs()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn a_star_shaped_notch_is_removed_by_the_scan_itself() {
+    // A square with a notch in its top edge: one pass deletes the notch, no fallback.
+    let pts = [
+        (0.0, 0.0),
+        (1.0, 0.0),
+        (1.0, 1.0),
+        (0.6, 1.0),
+        (0.5, 0.7),
+        (0.4, 1.0),
+        (0.0, 1.0),
+    ]
+    .map(|(x, y)| DVec2::new(x, y));
+    let (kept, report) = convexify(&pts);
+    assert_eq!(kept, vec![0, 1, 2, 6]);
+    assert!(!report.fallback);
+    assert_eq!(report.removed, 3);
+}
