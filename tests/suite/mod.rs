@@ -5,6 +5,7 @@ mod landmarks;
 mod mannequin;
 mod meshes;
 mod obj_errors;
+mod resample;
 mod sections;
 mod session_errors;
 mod snapshot;
