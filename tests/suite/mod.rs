@@ -1,6 +1,7 @@
 mod common;
 mod convexify;
 mod coons;
+mod ease;
 mod landmarks;
 mod mannequin;
 mod meshes;
