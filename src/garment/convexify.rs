@@ -111,3 +111,31 @@ pub fn convexify(points: &[DVec2]) -> (Vec<usize>, ConvexifyReport) {
     }
     (kept, report)
 }
+
+/// A convexified ring with its extremes located in it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvexRing {
+    /// The kept points, in order.
+    pub points: Vec<glam::DVec3>,
+    /// Positions of the extremes within `points`, in ring order, duplicates removed.
+    pub anchors: Vec<usize>,
+    /// What convexification did.
+    pub report: ConvexifyReport,
+}
+
+/// Convexifies a 3D ring lying in `plane` and locates its extremes: the input of resampling.
+pub fn convex_ring(points: &[glam::DVec3], plane: &crate::geom::Plane) -> ConvexRing {
+    let flat: Vec<DVec2> = points.iter().map(|p| plane.project(*p)).collect();
+    let (kept, report) = convexify(&flat);
+    let mut anchors: Vec<usize> = extremes(&flat)
+        .iter()
+        .filter_map(|e| kept.iter().position(|k| k == e))
+        .collect();
+    anchors.sort_unstable();
+    anchors.dedup();
+    ConvexRing {
+        points: kept.iter().map(|&i| points[i]).collect(),
+        anchors,
+        report,
+    }
+}

@@ -5,6 +5,6 @@ pub mod convexify;
 pub mod ease;
 pub mod resample;
 
-pub use convexify::{ConvexifyReport, convexify, extremes};
+pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, extremes};
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};
 pub use resample::{ResampleError, resample_closed, resample_open};

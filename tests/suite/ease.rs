@@ -1,7 +1,7 @@
 //! Easing the real body's rings: every eased point's gap to the (convexified) body ring
 //! equals the ease, and no point comes nearer the raw section than that.
 
-use drape::garment::{Ease, convexify, ease_ring, extremes, resample_closed};
+use drape::garment::{ConvexRing, Ease, convex_ring, ease_ring, extremes, resample_closed};
 use drape::geom::{Plane, polygon};
 use glam::{DVec2, DVec3};
 
@@ -38,14 +38,11 @@ fn prepared_rings() -> Vec<Prepared> {
         .map(|ring| {
             let plane = Plane::horizontal(ring.y);
             let raw: Vec<DVec2> = ring.points.iter().map(|p| plane.project(*p)).collect();
-            let (kept, _) = convexify(&raw);
-            let convex: Vec<DVec3> = kept.iter().map(|&i| ring.points[i]).collect();
-            let mut anchors: Vec<usize> = extremes(&raw)
-                .iter()
-                .map(|e| kept.iter().position(|k| k == e).unwrap())
-                .collect();
-            anchors.sort_unstable();
-            anchors.dedup();
+            let ConvexRing {
+                points: convex,
+                anchors,
+                ..
+            } = convex_ring(&ring.points, &plane);
             let samples = resample_closed(&convex, &anchors, per_arc).unwrap();
             let convex_flat = convex.iter().map(|p| plane.project(*p)).collect();
             Prepared {

@@ -1,6 +1,6 @@
 //! Ring resampling on the real body's convexified rings: equal spacing per arc, extremes kept.
 
-use drape::garment::{convexify, extremes, resample_closed, resample_open};
+use drape::garment::{ConvexRing, convex_ring, resample_closed, resample_open};
 use drape::geom::Plane;
 use glam::DVec3;
 
@@ -11,17 +11,11 @@ fn body_rings_resample_to_equal_spacing_keeping_the_extremes() {
     let body = real_body();
     let per_arc = 8;
     for ring in &body.rings {
-        let plane = Plane::horizontal(ring.y);
-        let flat: Vec<_> = ring.points.iter().map(|p| plane.project(*p)).collect();
-        let (kept, _) = convexify(&flat);
-        let convex: Vec<DVec3> = kept.iter().map(|&i| ring.points[i]).collect();
-        // The extremes' positions within the convex ring, in ring order.
-        let mut anchors: Vec<usize> = extremes(&flat)
-            .iter()
-            .map(|e| kept.iter().position(|k| k == e).unwrap())
-            .collect();
-        anchors.sort_unstable();
-        anchors.dedup();
+        let ConvexRing {
+            points: convex,
+            anchors,
+            ..
+        } = convex_ring(&ring.points, &Plane::horizontal(ring.y));
         let samples = resample_closed(&convex, &anchors, per_arc).unwrap();
         assert_eq!(samples.len(), anchors.len() * per_arc, "{}", ring.name);
         for (k, &a) in anchors.iter().enumerate() {
