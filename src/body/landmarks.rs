@@ -204,6 +204,9 @@ pub enum LandmarkError {
     /// No arm beside the torso.
     #[error("cannot find the armpits: no arm section separate from the torso (arms must hang apart from the body)")]
     NoArms,
+    /// Crotch and armpit too close for a waist between them.
+    #[error("cannot find the waist: the crotch and the armpits are too close together")]
+    NoWaist,
     /// No narrowing above the shoulders.
     #[error("cannot find the neck: the torso girth above the armpits never narrows and widens again")]
     NoNeck,
@@ -529,7 +532,7 @@ pub fn detect_landmarks(
         index_of(crotch_y + 0.25 * span)..index_of(armpit_y - 0.25 * span),
         false,
     )
-    .ok_or(LandmarkError::NoArms)?;
+    .ok_or(LandmarkError::NoWaist)?;
     // Hip: the greatest buttock protrusion (the torso's rearmost point) below the waist.
     // The widest hull is not used: with the legs apart it sits just above the crotch.
     let back: Vec<(f64, f64)> = torso.iter().map(|(y, l)| (*y, -l.min.y)).collect();

@@ -100,15 +100,7 @@ impl BodyMesh {
 
     fn from_obj(name: String, parsed: obj::ObjMesh) -> Result<Self, BodyError> {
         let mut mesh = parsed.mesh;
-        let report = validate_and_repair(&mut mesh, &name, &parsed.triangle_lines)?;
-        // Validation succeeded, so every edge has at most two triangles.
-        let adjacency = Adjacency::try_new(&mesh).map_err(|e| MeshError::NonManifold {
-            place: format!("{name}: "),
-            a: e.vertices[0] + 1,
-            b: e.vertices[1] + 1,
-            count: e.triangles.len(),
-            lines: String::new(),
-        })?;
+        let (report, adjacency) = validate_and_repair(&mut mesh, &name, &parsed.triangle_lines)?;
         Ok(Self {
             name,
             mesh,

@@ -96,9 +96,14 @@ pub enum MeshError {
     },
 }
 
-/// Validates and repairs `mesh` in place. `name` and `triangle_lines` (source line of
-/// each triangle, may be empty) make error messages point into the file.
-pub fn validate_and_repair(mesh: &mut TriMesh, name: &str, triangle_lines: &[usize]) -> Result<MeshReport, MeshError> {
+/// Validates and repairs `mesh` in place and returns the report with the repaired mesh's
+/// adjacency. `name` and `triangle_lines` (source line of each triangle, may be empty)
+/// make error messages point into the file.
+pub fn validate_and_repair(
+    mesh: &mut TriMesh,
+    name: &str,
+    triangle_lines: &[usize],
+) -> Result<(MeshReport, Adjacency), MeshError> {
     let place = if name.is_empty() {
         String::new()
     } else {
@@ -149,7 +154,7 @@ pub fn validate_and_repair(mesh: &mut TriMesh, name: &str, triangle_lines: &[usi
         .unzip();
     mesh.triangles = triangles;
 
-    let adjacency = Adjacency::try_new(mesh).map_err(|e| {
+    let mut adjacency = Adjacency::try_new(mesh).map_err(|e| {
         let shown: Vec<String> = e
             .triangles
             .iter()
@@ -234,6 +239,13 @@ pub fn validate_and_repair(mesh: &mut TriMesh, name: &str, triangle_lines: &[usi
             }
         }
     }
+    // A flip swaps corners 1 and 2, so edges 0 (v0 v1) and 2 (v2 v0) trade places and
+    // edge 1 is reversed: the neighbour across each edge moves with it.
+    for (neighbours, &flip) in adjacency.neighbours.iter_mut().zip(&flipped) {
+        if flip {
+            neighbours.swap(0, 2);
+        }
+    }
     report.flipped = flipped.iter().filter(|f| **f).count();
     report.components = parts.len();
     report.triangles = n;
@@ -248,7 +260,7 @@ pub fn validate_and_repair(mesh: &mut TriMesh, name: &str, triangle_lines: &[usi
         }
     }
     report.unused_vertices = used.iter().filter(|u| !**u).count();
-    Ok(report)
+    Ok((report, adjacency))
 }
 
 /// Where the directed edge `a -> b` runs in `tri`, if it does.

@@ -102,8 +102,6 @@ pub struct RunReport {
     pub steps: Vec<StepMetrics>,
     /// The error that stopped the run.
     pub error: Option<RunError>,
-    /// The body, once set up.
-    pub body: Option<Body>,
 }
 
 struct Driver<'s, 'k> {
@@ -293,7 +291,6 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
             driver.emit(index, op, "failed", Stage::Failed(&error), &mut m);
             report.steps.push(m);
             report.error = Some(error);
-            report.body = Some(body);
             return report;
         }
         let done = m.clone();
@@ -303,6 +300,5 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     if !driver.sink_errors.is_empty() {
         report.error = Some(fail(0, 1, "log", driver.sink_errors.join("; ")));
     }
-    report.body = Some(body);
     report
 }

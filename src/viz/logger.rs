@@ -54,7 +54,6 @@ impl LogOptions {
 pub struct RerunLogger {
     rec: RecordingStream,
     options: LogOptions,
-    partition_of_vertex: Vec<Option<PartitionId>>,
 }
 
 fn to_sink(e: rerun::RecordingStreamError) -> SinkError {
@@ -97,11 +96,7 @@ impl RerunLogger {
                 .map_err(to_sink)?;
             }
         }
-        Ok(Self {
-            rec,
-            options,
-            partition_of_vertex: Vec::new(),
-        })
+        Ok(Self { rec, options })
     }
 
     /// The recording.
@@ -321,7 +316,7 @@ impl RerunLogger {
             }
             Stage::Partitions(body, partitions) => {
                 let mesh = &body.mesh;
-                self.partition_of_vertex = mesh
+                let partition_of_vertex: Vec<Option<PartitionId>> = mesh
                     .positions
                     .iter()
                     .map(|p| {
@@ -331,8 +326,7 @@ impl RerunLogger {
                             .map(|q| q.id)
                     })
                     .collect();
-                let colors: Vec<[u8; 3]> = self
-                    .partition_of_vertex
+                let colors: Vec<[u8; 3]> = partition_of_vertex
                     .iter()
                     .map(|id| id.map_or([200, 200, 200], partition_tint))
                     .collect();

@@ -1,7 +1,18 @@
 //! Mesh validation repairs, checked against meshes whose answer is known.
 
-use drape::mesh::{TriMesh, validate_and_repair};
+use drape::mesh::{Adjacency, TriMesh, validate_and_repair};
 use glam::DVec3;
+
+/// Validates and repairs; checks the returned adjacency against one rebuilt from scratch.
+fn repaired(mesh: &mut TriMesh) -> drape::mesh::MeshReport {
+    let (report, adjacency) = validate_and_repair(mesh, "cube", &[]).unwrap();
+    assert_eq!(
+        adjacency,
+        Adjacency::try_new(mesh).unwrap(),
+        "adjacency out of step with the repaired winding"
+    );
+    report
+}
 
 fn cube() -> TriMesh {
     let positions = (0..8)
@@ -28,7 +39,7 @@ fn cube() -> TriMesh {
 #[test]
 fn a_clean_cube_needs_no_repair() {
     let mut mesh = cube();
-    let report = validate_and_repair(&mut mesh, "cube", &[]).unwrap();
+    let report = repaired(&mut mesh);
     assert_eq!(report.flipped, 0);
     assert_eq!(report.boundary_edges, 0);
     assert_eq!(report.components, 1);
@@ -42,7 +53,7 @@ fn an_inside_out_cube_is_turned_outward() {
     for t in &mut mesh.triangles {
         t.swap(1, 2);
     }
-    let report = validate_and_repair(&mut mesh, "cube", &[]).unwrap();
+    let report = repaired(&mut mesh);
     assert_eq!(report.flipped, 12);
     assert!((mesh.signed_volume() - 1.0).abs() < 1e-15);
 }
@@ -51,7 +62,7 @@ fn an_inside_out_cube_is_turned_outward() {
 fn one_flipped_face_is_flipped_back() {
     let mut mesh = cube();
     mesh.triangles[5].swap(0, 1);
-    let report = validate_and_repair(&mut mesh, "cube", &[]).unwrap();
+    let report = repaired(&mut mesh);
     assert_eq!(report.flipped, 1);
     // Repaired to the original winding, up to a cyclic shift of its corners.
     let original = cube().triangles[5];
@@ -69,7 +80,7 @@ fn duplicates_and_repeated_vertices_are_dropped_and_open_edges_reported() {
     mesh.triangles.push([0, 2, 1]); // duplicate
     mesh.triangles.push([3, 3, 7]); // repeats a vertex
     mesh.triangles.remove(11); // opens the mesh
-    let report = validate_and_repair(&mut mesh, "cube", &[]).unwrap();
+    let report = repaired(&mut mesh);
     assert_eq!(report.dropped_duplicates, 1);
     assert_eq!(report.dropped_repeated_vertex, 1);
     assert_eq!(report.boundary_edges, 3);

@@ -3,7 +3,7 @@
 use drape::body::LandmarkKind;
 use drape::body::profile::outer_loops;
 use drape::geom::{Plane, section_mesh};
-use drape::mesh::{Adjacency, validate_and_repair};
+use drape::mesh::validate_and_repair;
 use glam::DVec3;
 
 use super::common::{angle, closed_grid, ellipse_perimeter, ellipse_point, real_body};
@@ -18,8 +18,7 @@ fn cylinder_girth_is_exact() {
         DVec3::ZERO,
         DVec3::new(0.0, 0.8, 0.0),
     );
-    validate_and_repair(&mut mesh, "cylinder", &[]).expect("valid");
-    let adjacency = Adjacency::try_new(&mesh).expect("manifold");
+    let (_, adjacency) = validate_and_repair(&mut mesh, "cylinder", &[]).expect("valid");
     for y in [0.05, 0.333, 0.71] {
         let loops = section_mesh(&mesh, &adjacency, &Plane::horizontal(y));
         assert_eq!(loops.len(), 1);
@@ -51,8 +50,7 @@ fn ellipsoid_girth_at_a_ring_is_the_ellipse() {
         DVec3::new(0.0, -b, 0.0),
         DVec3::new(0.0, b, 0.0),
     );
-    validate_and_repair(&mut mesh, "ellipsoid", &[]).expect("valid");
-    let adjacency = Adjacency::try_new(&mesh).expect("manifold");
+    let (_, adjacency) = validate_and_repair(&mut mesh, "ellipsoid", &[]).expect("valid");
     for i in [20, 49, 77] {
         let y = -b * lat(i).cos();
         let loops = section_mesh(&mesh, &adjacency, &Plane::horizontal(y));
