@@ -21,7 +21,7 @@ pub struct LogOptions {
     /// Default value: false.
     pub timings: bool,
     /// Where the mannequin surfaces stand, beside the body (x offset of the polar one; the
-    /// chord one is 0.6 m further). Default value: 0.9.
+    /// chord one is 0.6 m further), clear of the partition legend. Default value: 1.6.
     pub mannequin_offset_x: f64,
 }
 
@@ -29,7 +29,7 @@ impl Default for LogOptions {
     fn default() -> Self {
         Self {
             timings: false,
-            mannequin_offset_x: 0.9,
+            mannequin_offset_x: 1.6,
         }
     }
 }
@@ -335,7 +335,8 @@ impl RerunLogger {
                     .map_err(to_sink)?;
                 let mut lines = vec!["partitions (bounds m, triangles with margin, test, response):".to_string()];
                 // A legend column beside the body, one labelled dot per partition at mid-height.
-                let legend_x = mesh.bounds().map_or(-0.6, |(lo, _)| lo.x - 0.15) as f32;
+                // In the gap right of the body (its left hand is at +x), before the mannequins.
+                let legend_x = mesh.bounds().map_or(0.8, |(_, hi)| hi.x + 0.35) as f32;
                 let mut legend_points = Vec::new();
                 let mut legend_labels = Vec::new();
                 let mut legend_colors = Vec::new();
