@@ -139,3 +139,37 @@ pub fn convex_ring(points: &[glam::DVec3], plane: &crate::geom::Plane) -> Convex
         report,
     }
 }
+
+/// Convexifies an open arc (a strap over the shoulder, the crotch curve): the same
+/// turn-sign deletion, repeated until nothing changes, with both ends and the `apex` kept;
+/// the orientation is the turn at the apex seen from the ends. Returns the indices kept,
+/// in order, and the apex's position among them.
+pub fn convexify_open(points: &[DVec2], apex: usize) -> (Vec<usize>, usize) {
+    let n = points.len();
+    if n < 3 || apex == 0 || apex + 1 >= n {
+        return ((0..n).collect(), apex.min(n.saturating_sub(1)));
+    }
+    let orientation = turn(points[0], points[apex], points[n - 1]).signum();
+    let fixed = [0, apex, n - 1];
+    let mut kept: Vec<usize> = (0..n).collect();
+    loop {
+        let mut next: Vec<usize> = Vec::with_capacity(kept.len());
+        for k in 0..kept.len() {
+            let i = kept[k];
+            let keep = fixed.contains(&i) || {
+                let prev = *next.last().unwrap_or(&kept[0]);
+                turn(points[prev], points[i], points[kept[k + 1]]) * orientation > 0.0
+            };
+            if keep {
+                next.push(i);
+            }
+        }
+        let removed = kept.len() - next.len();
+        kept = next;
+        if removed == 0 {
+            break;
+        }
+    }
+    let at = kept.iter().position(|&i| i == apex).unwrap_or(0);
+    (kept, at)
+}

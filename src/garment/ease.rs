@@ -80,7 +80,8 @@ fn ray_exit(o: DVec2, dir: DVec2, ring: &[DVec2]) -> Option<f64> {
             }
             let t = (a - o).perp_dot(e) / denom;
             let s = (a - o).perp_dot(dir) / denom;
-            (t > 0.0 && (0.0..=1.0).contains(&s)).then_some(t)
+            // A ray through a vertex must hit one of its two edges despite rounding.
+            (t > 0.0 && (-1e-9..=1.0 + 1e-9).contains(&s)).then_some(t)
         })
         .max_by(f64::total_cmp)
 }

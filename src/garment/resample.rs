@@ -134,8 +134,25 @@ pub fn resample_open(curve: &[DVec3], per_half: usize) -> Result<Vec<DVec3>, Res
         }
         walked += len;
     }
-    let mut out = arc_samples(&first, per_half);
-    out.extend(arc_samples(&second, per_half));
-    out.push(curve[curve.len() - 1]);
-    Ok(out)
+    Ok(two_arcs(&first, &second, per_half))
+}
+
+fn two_arcs(first: &[DVec3], second: &[DVec3], per_half: usize) -> Vec<DVec3> {
+    let mut out = arc_samples(first, per_half);
+    out.extend(arc_samples(second, per_half));
+    out.extend(second.last().copied());
+    out
+}
+
+/// Resamples an open curve split at the given point (its apex: the crotch curve's lowest
+/// point, a strap's highest) rather than at half its length; `2 per_half + 1` points, the
+/// apex at position `per_half`.
+pub fn resample_open_at(curve: &[DVec3], apex: usize, per_half: usize) -> Result<Vec<DVec3>, ResampleError> {
+    if curve.len() < 3 || per_half == 0 {
+        return Err(ResampleError::TooSmall);
+    }
+    if apex == 0 || apex + 1 >= curve.len() {
+        return Err(ResampleError::BadAnchors(vec![apex]));
+    }
+    Ok(two_arcs(&curve[..=apex], &curve[apex..], per_half))
 }

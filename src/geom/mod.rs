@@ -2,6 +2,7 @@
 
 pub mod chord_spline;
 pub mod coons;
+pub mod inside;
 pub mod plane;
 pub mod polygon;
 pub mod section;

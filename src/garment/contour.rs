@@ -1,0 +1,70 @@
+//! Contour lines ([frame] sections 2.3-2.4): open cubic splines through the rings' anchor
+//! points (centre front, side, princess lines, the legs' front, outer, back and inner
+//! lines), from the lowest ring up. Patches take their sides from the spans between rings.
+
+use glam::DVec3;
+
+use super::probe::BodyProbe;
+use crate::geom::{ChordSpline3, CurveEnds, SplineError};
+
+/// A fitted contour.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Contour {
+    /// Name (`centre_front`, `left_leg_inner`, ...).
+    pub name: String,
+    /// The control points it passes through, lowest first, each named `ring.anchor`.
+    pub through: Vec<String>,
+    /// Their positions.
+    pub points: Vec<DVec3>,
+    /// The spline (natural ends).
+    pub spline: ChordSpline3,
+}
+
+impl Contour {
+    /// Fits the contour through `points` (lowest first).
+    pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>) -> Result<Self, SplineError> {
+        let spline = ChordSpline3::try_new(&points, CurveEnds::Open { start: None, end: None })?;
+        Ok(Self {
+            name: name.to_string(),
+            through,
+            points,
+            spline,
+        })
+    }
+
+    /// `n + 1` samples of the span from point `k` to point `k + 1`, ends exact. With a
+    /// probe, the inner samples are pushed out to stand `gap` off the body.
+    pub fn span(&self, k: usize, n: usize, clearance: Option<(&BodyProbe, f64)>) -> Vec<DVec3> {
+        let knots = self.spline.knots();
+        let (a, b) = (knots[k], knots[k + 1]);
+        let n = n.max(1);
+        (0..=n)
+            .map(|s| match s {
+                0 => self.points[k],
+                s if s == n => self.points[k + 1],
+                s => {
+                    let p = self.spline.sample(a + (b - a) * s as f64 / n as f64);
+                    clearance.map_or(p, |(probe, gap)| probe.clear(p, gap))
+                }
+            })
+            .collect()
+    }
+
+    /// Dense samples for display (16 per span).
+    pub fn polyline(&self) -> Vec<DVec3> {
+        self.spline.subdivide(16, false)
+    }
+}
+
+/// A short feature line between two control points that no section gives (a shoulder
+/// seam, the crotch junction): the straight line, its inner samples pushed out to `gap`.
+pub fn clear_line(a: DVec3, b: DVec3, n: usize, probe: &BodyProbe, gap: f64) -> Vec<DVec3> {
+    let n = n.max(1);
+    (0..=n)
+        .map(|s| match s {
+            0 => a,
+            s if s == n => b,
+            s => probe.clear(a.lerp(b, s as f64 / n as f64), gap),
+        })
+        .collect()
+}

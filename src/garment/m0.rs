@@ -1,0 +1,247 @@
+//! Surfaces and the stitched mesh M0 ([frame] section 4, [collide] section 3.1).
+//!
+//! Each region bounded by four curves is a bilinearly blended Coons patch, sampled on a
+//! fixed `(nu + 1) x (nv + 1)` grid; its boundary samples are the curves' own samples, so
+//! patches that share a curve share those points. The patches are stitched into one mesh:
+//! (1) merge the vertex lists, (2) weld vertices closer than a threshold, (3) renumber the
+//! faces, (4) drop degenerate and duplicate faces, (5) build the directed and undirected
+//! edge lists. Every quad is split along the same diagonal whatever the geometry, so M0's
+//! connectivity depends only on the template.
+
+use glam::DVec3;
+
+use crate::geom::{CoonsPatch, CornerMismatch};
+use crate::mesh::TriMesh;
+
+/// One patch sampled on its grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchGrid {
+    /// Patch name (`torso.waist_bust.front_left`, ...).
+    pub name: String,
+    /// Segments along `u` (the rings).
+    pub nu: usize,
+    /// Segments along `v` (the contours).
+    pub nv: usize,
+    /// `(nu + 1) (nv + 1)` points, row by row in `v`.
+    pub points: Vec<DVec3>,
+}
+
+/// Samples a curve given by `n + 1` samples at `t = k / n`; between samples, linear.
+struct Samples<'a>(&'a [DVec3]);
+
+impl crate::geom::ParametricCurve for Samples<'_> {
+    fn sample(&self, t: f64) -> DVec3 {
+        let n = self.0.len() - 1;
+        let x = t.clamp(0.0, 1.0) * n as f64;
+        let k = x.round();
+        if (x - k).abs() < 1e-9 {
+            return self.0[k as usize];
+        }
+        let i = (x.floor() as usize).min(n - 1);
+        self.0[i].lerp(self.0[i + 1], x - i as f64)
+    }
+}
+
+impl PatchGrid {
+    /// The Coons patch over four sampled boundaries: `bottom` and `top` with `nu + 1`
+    /// samples (u from 0 to 1), `left` and `right` with `nv + 1` (v from 0 to 1). Corners
+    /// must meet within `tolerance`. Boundary grid points are the samples themselves.
+    pub fn coons(name: &str, [bottom, top, left, right]: [&[DVec3]; 4], tolerance: f64) -> Result<Self, PatchError> {
+        let nu = bottom.len().saturating_sub(1);
+        let nv = left.len().saturating_sub(1);
+        if nu == 0 || nv == 0 || top.len() != nu + 1 || right.len() != nv + 1 {
+            return Err(PatchError::Counts {
+                patch: name.to_string(),
+                counts: [bottom.len(), top.len(), left.len(), right.len()],
+            });
+        }
+        let patch = CoonsPatch::try_new(Samples(bottom), Samples(top), Samples(left), Samples(right), tolerance)
+            .map_err(|e| PatchError::Corners(name.to_string(), e))?;
+        let mut points = patch.grid(nu, nv);
+        for i in 0..=nu {
+            points[i] = bottom[i];
+            points[nv * (nu + 1) + i] = top[i];
+        }
+        for j in 0..=nv {
+            points[j * (nu + 1)] = left[j];
+            points[j * (nu + 1) + nu] = right[j];
+        }
+        Ok(Self {
+            name: name.to_string(),
+            nu,
+            nv,
+            points,
+        })
+    }
+
+    /// The two triangles of every grid cell (same diagonal everywhere), indices local to
+    /// the patch, counter-clockwise about `du x dv`.
+    pub fn triangles(&self) -> Vec<[u32; 3]> {
+        let w = self.nu + 1;
+        let id = |i: usize, j: usize| (j * w + i) as u32;
+        let mut out = Vec::with_capacity(2 * self.nu * self.nv);
+        for j in 0..self.nv {
+            for i in 0..self.nu {
+                let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+                out.push([a, b, c]);
+                out.push([a, c, d]);
+            }
+        }
+        out
+    }
+}
+
+/// Why a patch cannot be built.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+pub enum PatchError {
+    /// Boundary sample counts do not pair up.
+    #[error("patch '{patch}': boundary sample counts {counts:?} (bottom, top, left, right) do not pair up")]
+    Counts {
+        /// Patch.
+        patch: String,
+        /// Counts.
+        counts: [usize; 4],
+    },
+    /// Corners do not meet.
+    #[error("patch '{0}': {1}")]
+    Corners(String, CornerMismatch),
+}
+
+/// What stitching did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct StitchReport {
+    /// Vertices of all patches together.
+    pub input_vertices: usize,
+    /// Vertices merged away by welding.
+    pub welded: usize,
+    /// Faces dropped for repeating a vertex after welding.
+    pub degenerate_faces: usize,
+    /// Faces dropped as duplicates of another.
+    pub duplicate_faces: usize,
+}
+
+/// The stitched mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct M0 {
+    /// Vertices and faces.
+    pub mesh: TriMesh,
+    /// The patch of each face.
+    pub face_patch: Vec<u32>,
+    /// Patch names, by index.
+    pub patch_names: Vec<String>,
+    /// Every face's edges, in face order (`3 x faces`).
+    pub directed_edges: Vec<[u32; 2]>,
+    /// Unique undirected edges, smaller index first, sorted.
+    pub edges: Vec<[u32; 2]>,
+    /// What stitching did.
+    pub report: StitchReport,
+}
+
+fn find(parent: &mut [u32], i: u32) -> u32 {
+    let mut r = i;
+    while parent[r as usize] != r {
+        r = parent[r as usize];
+    }
+    let mut i = i;
+    while parent[i as usize] != r {
+        let next = parent[i as usize];
+        parent[i as usize] = r;
+        i = next;
+    }
+    r
+}
+
+/// Welds points closer than `threshold` (distance `<= threshold`, transitively): returns
+/// the new index of every point and the number of distinct points. New indices follow the
+/// first appearance of each group, so the result is deterministic.
+pub fn weld(points: &[DVec3], threshold: f64) -> (Vec<u32>, usize) {
+    let n = points.len();
+    let mut parent: Vec<u32> = (0..n as u32).collect();
+    let mut order: Vec<u32> = (0..n as u32).collect();
+    order.sort_by(|&a, &b| points[a as usize].x.total_cmp(&points[b as usize].x).then(a.cmp(&b)));
+    for (k, &i) in order.iter().enumerate() {
+        let p = points[i as usize];
+        for &j in &order[k + 1..] {
+            let q = points[j as usize];
+            if q.x - p.x > threshold {
+                break;
+            }
+            if p.distance(q) <= threshold {
+                let (ri, rj) = (find(&mut parent, i), find(&mut parent, j));
+                // The smaller index is the root: groups are named by their first point.
+                let (lo, hi) = (ri.min(rj), ri.max(rj));
+                parent[hi as usize] = lo;
+            }
+        }
+    }
+    let mut new_id = vec![u32::MAX; n];
+    let mut map = vec![0u32; n];
+    let mut count = 0u32;
+    for i in 0..n as u32 {
+        let r = find(&mut parent, i) as usize;
+        if new_id[r] == u32::MAX {
+            new_id[r] = count;
+            count += 1;
+        }
+        map[i as usize] = new_id[r];
+    }
+    (map, count as usize)
+}
+
+/// Stitches patches into M0, welding within `threshold` (m).
+pub fn stitch(patches: &[PatchGrid], threshold: f64) -> M0 {
+    let mut points = Vec::new();
+    let mut faces: Vec<([u32; 3], u32)> = Vec::new();
+    for (p, patch) in patches.iter().enumerate() {
+        let base = points.len() as u32;
+        points.extend_from_slice(&patch.points);
+        faces.extend(patch.triangles().into_iter().map(|t| (t.map(|i| i + base), p as u32)));
+    }
+    let (map, count) = weld(&points, threshold);
+    let mut positions = vec![DVec3::ZERO; count];
+    for (i, &m) in map.iter().enumerate().rev() {
+        // The group's first point gives the position.
+        positions[m as usize] = points[i];
+    }
+    let mut report = StitchReport {
+        input_vertices: points.len(),
+        welded: points.len() - count,
+        ..StitchReport::default()
+    };
+    let mut seen = std::collections::BTreeSet::new();
+    let mut triangles = Vec::with_capacity(faces.len());
+    let mut face_patch = Vec::with_capacity(faces.len());
+    for (t, p) in faces {
+        let t = t.map(|i| map[i as usize]);
+        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
+            report.degenerate_faces += 1;
+            continue;
+        }
+        let mut key = t;
+        key.sort_unstable();
+        if !seen.insert(key) {
+            report.duplicate_faces += 1;
+            continue;
+        }
+        triangles.push(t);
+        face_patch.push(p);
+    }
+    let directed_edges: Vec<[u32; 2]> = triangles
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+        .collect();
+    let mut edges: Vec<[u32; 2]> = directed_edges
+        .iter()
+        .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    M0 {
+        mesh: TriMesh { positions, triangles },
+        face_patch,
+        patch_names: patches.iter().map(|p| p.name.clone()).collect(),
+        directed_edges,
+        edges,
+        report,
+    }
+}
