@@ -1,5 +1,5 @@
 //! `--export DIR`: the body and every mesh a step produced, as OBJ files named by step
-//! and mesh (`step00_body.obj`, `step01_mannequin_polar.obj`, ...).
+//! and mesh (`step00_body.obj`, `step01_mannequin_polar.obj`, `step03_jumpsuit_m0.obj`, ...).
 
 use std::path::PathBuf;
 
@@ -52,6 +52,9 @@ impl StageSink for ObjExporter {
                     self.write(info, name, &mesh)?;
                 }
                 Ok(())
+            }
+            Stage::Garment(fw, crate::session::runner::GarmentPart::Mesh) => {
+                self.write(info, &format!("{}_m0", fw.template.name()), &fw.m0.mesh)
             }
             _ => Ok(()),
         }

@@ -10,6 +10,8 @@
 //!
 //! mannequin layers=18 points=12 subdivisions=6   # steps, run in order
 //! section y=0.60 name=mid_thigh
+//! garment jumpsuit fit=tight resolution=6        # build a garment: jumpsuit | dress
+//! set waist_girth +0.04                          # change a dimension: +d / -d relative, or a value
 //! ```
 //!
 //! Scene statements (`drape`, `body`, `units`, `landmark`) come before the first step.
@@ -22,6 +24,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
+use crate::garment::{Fit, TemplateKind};
 use crate::mannequin::MannequinOptions;
 
 /// A parse or validation error at a place in the session text.
@@ -92,6 +95,41 @@ pub enum Op {
         /// Height, m.
         y: f64,
     },
+    /// Build a garment from a template: framework and M0.
+    Garment {
+        /// Template.
+        template: TemplateKind,
+        /// Contour fit.
+        fit: Fit,
+        /// Segments per anchor arc in M0.
+        resolution: usize,
+    },
+    /// Change a dimension of the current garment and solve again.
+    Set {
+        /// Dimension name.
+        name: String,
+        /// The change.
+        change: Change,
+    },
+}
+
+/// A dimension change.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Change {
+    /// Add to the current value (`+0.04`, `-0.02`).
+    By(f64),
+    /// Set the value (`0.74`).
+    To(f64),
+}
+
+impl Change {
+    /// The new value from the current one.
+    pub fn apply(self, current: f64) -> f64 {
+        match self {
+            Self::By(d) => current + d,
+            Self::To(v) => v,
+        }
+    }
 }
 
 impl Op {
@@ -100,6 +138,8 @@ impl Op {
         match self {
             Self::Mannequin(_) => "mannequin",
             Self::Section { .. } => "section",
+            Self::Garment { .. } => "garment",
+            Self::Set { .. } => "set",
         }
     }
 }
@@ -125,7 +165,7 @@ pub struct Session {
 }
 
 const SCENE_KEYWORDS: [&str; 4] = ["drape", "body", "units", "landmark"];
-const STEP_KEYWORDS: [&str; 2] = ["mannequin", "section"];
+const STEP_KEYWORDS: [&str; 4] = ["mannequin", "section", "garment", "set"];
 
 #[derive(Clone, Copy, Debug)]
 struct Token<'a> {
@@ -308,6 +348,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
     let mut landmarks: Vec<(LandmarkKind, LandmarkOverride)> = Vec::new();
     let mut landmark_lines: Vec<(LandmarkKind, usize)> = Vec::new();
     let mut steps = Vec::new();
+    let mut garment: Option<TemplateKind> = None;
     for (index, raw) in text.lines().enumerate() {
         let line = tokenize(name, index + 1, raw)?;
         let Some((head, rest)) = line.tokens.split_first() else {
@@ -469,6 +510,87 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 steps.push(Step {
                     line: line.number,
                     op: Op::Section { name, y },
+                });
+            }
+            "garment" => {
+                let Some((which, args)) = rest.split_first() else {
+                    return Err(line.error(
+                        line.end_column,
+                        "expected a template after 'garment' (jumpsuit or dress)",
+                    ));
+                };
+                let names: Vec<&str> = TemplateKind::ALL.iter().map(|t| t.name()).collect();
+                let template = TemplateKind::from_name(which.text).ok_or_else(|| {
+                    line.error(
+                        which.column,
+                        format!(
+                            "unknown template '{}': expected one of {}",
+                            which.text,
+                            names.join(", ")
+                        ),
+                    )
+                })?;
+                let a = Args::parse(&line, args, &["fit", "resolution"], "garment")?;
+                let fit = match a.get("fit") {
+                    None => Fit::Tight,
+                    Some(t) => Fit::from_name(t.text).ok_or_else(|| {
+                        line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text))
+                    })?,
+                };
+                let resolution = match a.get("resolution") {
+                    None => 6,
+                    Some(t) => integer_in(&line, t, "resolution", 2..=24)?,
+                };
+                garment = Some(template);
+                steps.push(Step {
+                    line: line.number,
+                    op: Op::Garment {
+                        template,
+                        fit,
+                        resolution,
+                    },
+                });
+            }
+            "set" => {
+                let Some(template) = garment else {
+                    return Err(line.error(head.column, "'set' needs a garment: put a 'garment' step before it"));
+                };
+                let (which, value) = match rest {
+                    [w, v] => (*w, *v),
+                    [] | [_] => {
+                        return Err(line.error(
+                            line.end_column,
+                            "expected a dimension and a value: set NAME +0.04 (or -0.04, or 0.74)",
+                        ));
+                    }
+                    [_, _, extra, ..] => {
+                        return Err(line.error(extra.column, format!("unexpected '{}' after the value", extra.text)));
+                    }
+                };
+                let known = template.dimension_names();
+                if !known.iter().any(|k| k == which.text) {
+                    return Err(line.error(
+                        which.column,
+                        format!(
+                            "unknown dimension '{}' for the {}: expected one of {}",
+                            which.text,
+                            template.name(),
+                            known.join(", ")
+                        ),
+                    ));
+                }
+                let v = number(&line, value, "the value")?;
+                let change = if value.text.starts_with(['+', '-']) {
+                    Change::By(v)
+                } else {
+                    Change::To(v)
+                };
+                steps.push(Step {
+                    line: line.number,
+                    op: Op::Set {
+                        name: which.text.to_string(),
+                        change,
+                    },
                 });
             }
             other => {

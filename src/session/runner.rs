@@ -13,6 +13,7 @@ use super::metrics::StepMetrics;
 use crate::body::{
     self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition, PartitionOptions,
 };
+use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind, build_framework};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
 
@@ -51,10 +52,92 @@ pub enum Stage<'a> {
         /// The loops.
         loops: &'a [SectionLoop],
     },
+    /// A garment stage: one part of the framework solve.
+    Garment(&'a Framework, GarmentPart),
+    /// A dimension edit: the framework before and after.
+    GarmentEdit {
+        /// The dimension changed.
+        name: &'a str,
+        /// Before.
+        before: &'a Framework,
+        /// After.
+        after: &'a Framework,
+    },
     /// A step failed; everything before it stands.
     Failed(&'a RunError),
     /// A step finished with these metrics.
     StepDone(&'a StepMetrics),
+}
+
+/// The parts of a garment solve, in the order they are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GarmentPart {
+    /// The section planes.
+    Planes,
+    /// Every ring at one sub-step.
+    Rings(RingStep),
+    /// Open curves, contours, seams (and the loose-fit straightening).
+    Curves,
+    /// The Coons patches.
+    Patches,
+    /// The stitched mesh M0.
+    Mesh,
+}
+
+/// A ring sub-step ([frame] section 2.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RingStep {
+    /// The body section.
+    Raw,
+    /// Convexified.
+    Convex,
+    /// Resampled at equal chords.
+    Resampled,
+    /// Eased.
+    Eased,
+    /// Spline fitted through the control points and resampled.
+    Fitted,
+}
+
+impl RingStep {
+    /// In order.
+    pub const ALL: [Self; 5] = [Self::Raw, Self::Convex, Self::Resampled, Self::Eased, Self::Fitted];
+
+    /// Short name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Raw => "raw",
+            Self::Convex => "convex",
+            Self::Resampled => "resampled",
+            Self::Eased => "eased",
+            Self::Fitted => "fitted",
+        }
+    }
+}
+
+impl GarmentPart {
+    /// Every part in emission order.
+    pub fn all() -> Vec<Self> {
+        let mut out = vec![Self::Planes];
+        out.extend(RingStep::ALL.map(Self::Rings));
+        out.extend([Self::Curves, Self::Patches, Self::Mesh]);
+        out
+    }
+
+    /// Stage name.
+    pub fn stage_name(self) -> &'static str {
+        match self {
+            Self::Planes => "garment.planes",
+            Self::Rings(RingStep::Raw) => "garment.rings.raw",
+            Self::Rings(RingStep::Convex) => "garment.rings.convex",
+            Self::Rings(RingStep::Resampled) => "garment.rings.resampled",
+            Self::Rings(RingStep::Eased) => "garment.rings.eased",
+            Self::Rings(RingStep::Fitted) => "garment.rings.fitted",
+            Self::Curves => "garment.curves",
+            Self::Patches => "garment.patches",
+            Self::Mesh => "garment.m0",
+        }
+    }
 }
 
 /// Error from a sink (logging or export).
@@ -227,6 +310,8 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     let done = m.clone();
     driver.emit(0, "scene", "done", Stage::StepDone(&done), &mut m);
     report.steps.push(m);
+    let mut probe: Option<BodyProbe> = None;
+    let mut garment: Option<GarmentState> = None;
 
     // --- The steps.
     for (i, step) in session.steps.iter().enumerate() {
@@ -284,6 +369,72 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                     Ok(())
                 }
             }
+            Op::Garment {
+                template,
+                fit,
+                resolution,
+            } => {
+                let options = FrameworkOptions::default().with_fit(*fit).with_resolution(*resolution);
+                let state = GarmentState {
+                    template: *template,
+                    options,
+                    dims: Dimensions::default(),
+                    framework: None,
+                };
+                solve_garment(&body, &mut probe, state, &mut m).map(|state| {
+                    if let Some(fw) = &state.framework {
+                        for part in GarmentPart::all() {
+                            driver.emit(index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
+                        }
+                    }
+                    garment = Some(state);
+                })
+            }
+            Op::Set { name, change } => match garment.as_ref().and_then(|g| g.framework.as_ref().map(|f| (g, f))) {
+                None => Err("no garment to change: a 'garment' step must come first".to_string()),
+                Some((state, before)) => {
+                    let current = before.dimension(name).unwrap_or(0.0);
+                    let value = change.apply(current);
+                    m.set("dimension", name.clone());
+                    m.set("before", current);
+                    m.set("value", value);
+                    let mut next = GarmentState {
+                        template: state.template,
+                        options: state.options,
+                        dims: state.dims.clone(),
+                        framework: None,
+                    };
+                    next.dims.values.insert(name.clone(), value);
+                    match solve_garment(&body, &mut probe, next, &mut m) {
+                        Ok(next) => {
+                            if let Some(after) = &next.framework {
+                                let moved = before
+                                    .m0
+                                    .mesh
+                                    .positions
+                                    .iter()
+                                    .zip(&after.m0.mesh.positions)
+                                    .map(|(a, b)| a.distance(*b))
+                                    .fold(0.0, f64::max);
+                                m.set("max_vertex_move_m", moved);
+                                driver.emit(
+                                    index,
+                                    op,
+                                    "garment.edit",
+                                    Stage::GarmentEdit { name, before, after },
+                                    &mut m,
+                                );
+                                for part in GarmentPart::all() {
+                                    driver.emit(index, op, part.stage_name(), Stage::Garment(after, part), &mut m);
+                                }
+                            }
+                            garment = Some(next);
+                            Ok(())
+                        }
+                        Err(e) => Err(e),
+                    }
+                }
+            },
         };
         if let Err(message) = outcome {
             let error = fail(index, step.line, op, message);
@@ -301,4 +452,57 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
         report.error = Some(fail(0, 1, "log", driver.sink_errors.join("; ")));
     }
     report
+}
+
+/// The current garment: its template, settings, the dimensions set so far and the solve.
+struct GarmentState {
+    template: TemplateKind,
+    options: FrameworkOptions,
+    dims: Dimensions,
+    framework: Option<Framework>,
+}
+
+/// Solves the framework, recording its figures in the step's metrics.
+fn solve_garment(
+    body: &Body,
+    probe: &mut Option<BodyProbe>,
+    mut state: GarmentState,
+    m: &mut StepMetrics,
+) -> Result<GarmentState, String> {
+    if probe.is_none() {
+        *probe = timed(m, "garment.probe", || BodyProbe::new(&body.mesh.mesh));
+    }
+    let probe = probe
+        .as_ref()
+        .ok_or_else(|| "the body mesh cannot be prepared for distance queries".to_string())?;
+    let fw = timed(m, "garment.solve", || {
+        build_framework(body, probe, state.template, &state.dims, &state.options)
+    })
+    .map_err(|e| e.to_string())?;
+    m.set("template", state.template.name());
+    m.set("fit", fw.fit.name());
+    m.set("resolution", state.options.resolution);
+    m.set("m0_vertices", fw.m0.mesh.positions.len());
+    m.set("m0_faces", fw.m0.mesh.triangles.len());
+    m.set("m0_edges", fw.m0.edges.len());
+    m.set("patches", fw.patches.len());
+    m.set("stitch", serde_json::to_value(fw.m0.report).unwrap_or_default());
+    m.set("surface_cleared", fw.cleared);
+    let girths: Vec<_> = fw
+        .rings
+        .iter()
+        .map(|r| {
+            json!({
+                "ring": r.name,
+                "girth_m": r.girth,
+                "target_m": r.target,
+                "body_tape_m": r.body_girth,
+                "relative_error": r.target.map(|t| (r.girth - t) / t),
+            })
+        })
+        .collect();
+    m.set("girths", girths);
+    m.set("dimensions", serde_json::to_value(&fw.dimensions).unwrap_or_default());
+    state.framework = Some(fw);
+    Ok(state)
 }

@@ -56,15 +56,15 @@ pub struct RerunLogger {
     options: LogOptions,
 }
 
-fn to_sink(e: rerun::RecordingStreamError) -> SinkError {
+pub(super) fn to_sink(e: rerun::RecordingStreamError) -> SinkError {
     SinkError(format!("rerun: {e}"))
 }
 
-fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
+pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
     points.iter().map(|p| p.as_vec3().to_array()).collect()
 }
 
-fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
+pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
     let mut v = f32s(points);
     if let Some(first) = v.first().copied() {
         v.push(first);
@@ -104,13 +104,13 @@ impl RerunLogger {
         &self.rec
     }
 
-    fn text(&self, level: &str, text: String) -> Result<(), SinkError> {
+    pub(super) fn text(&self, level: &str, text: String) -> Result<(), SinkError> {
         self.rec
             .log("log", &TextLog::new(text).with_level(level))
             .map_err(to_sink)
     }
 
-    fn scalar(&self, path: &str, value: f64) -> Result<(), SinkError> {
+    pub(super) fn scalar(&self, path: &str, value: f64) -> Result<(), SinkError> {
         self.rec.log(path, &Scalars::single(value)).map_err(to_sink)
     }
 
@@ -406,6 +406,8 @@ impl RerunLogger {
                     ),
                 )
             }
+            Stage::Garment(fw, part) => self.garment(fw, part),
+            Stage::GarmentEdit { name, before, after } => self.garment_edit(name, before, after),
             Stage::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
             Stage::StepDone(metrics) => {
                 if self.options.timings {

@@ -3,10 +3,16 @@
 //!
 //! Entity tree: `body/mesh`, `body/landmarks`, `body/rings/<name>`,
 //! `body/partitions/<A..G>`, `mannequin/{measured,polar,chord}`, `section/<name>`,
-//! `metrics/...` (scalars), `log` (text per stage). Timelines: `step` and `stage`.
+//! `garment/planes/<name>`, `garment/sections/<ring>` (body sections),
+//! `garment/curves/rings/<ring>` (the ring at its current sub-step, `/points` its samples),
+//! `garment/curves/contours/<name>`, `garment/curves/lines/<name>`,
+//! `garment/curves/straightened`, `garment/control_points` (labelled), `garment/patches`,
+//! `garment/m0` (+ `/edges`), `garment/edit/moves`, `metrics/...` (scalars), `log` (text
+//! per stage). Timelines: `step` and `stage`.
 
 pub mod blueprint;
 pub mod colors;
+mod garment;
 pub mod logger;
 pub mod target;
 

@@ -1,0 +1,371 @@
+//! Logging the garment framework: planes, rings through their sub-steps, open curves,
+//! contours, labelled control points, patches coloured by patch, M0, and edits.
+
+use glam::DVec3;
+use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
+
+use super::logger::{RerunLogger, closed, f32s, to_sink};
+use crate::garment::{Framework, GarmentRing, RingStages};
+use crate::session::runner::{GarmentPart, RingStep, SinkError};
+
+/// Colour of a ring sub-step.
+fn step_color(step: RingStep) -> [u8; 3] {
+    match step {
+        RingStep::Raw => [200, 200, 200],
+        RingStep::Convex => [250, 210, 40],
+        RingStep::Resampled => [30, 170, 230],
+        RingStep::Eased => [255, 130, 40],
+        RingStep::Fitted => [220, 40, 150],
+    }
+}
+
+/// A distinct colour per patch (golden-angle hues).
+pub fn patch_color(index: usize) -> [u8; 3] {
+    let h = (index as f64 * 137.508).rem_euclid(360.0) / 60.0;
+    let (s, v) = (0.55, 0.92);
+    let c = v * s;
+    let x = c * (1.0 - (h.rem_euclid(2.0) - 1.0).abs());
+    let (r, g, b) = match h as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let m = v - c;
+    [r, g, b].map(|t| ((t + m) * 255.0).round() as u8)
+}
+
+fn stage_points(stages: &RingStages, step: RingStep) -> Vec<Vec<DVec3>> {
+    match step {
+        RingStep::Raw => stages.raw.clone(),
+        RingStep::Convex => vec![stages.convex.clone()],
+        RingStep::Resampled => vec![stages.resampled.clone()],
+        RingStep::Eased => vec![stages.eased.clone()],
+        RingStep::Fitted => vec![stages.fitted.clone()],
+    }
+}
+
+fn girth_note(r: &GarmentRing) -> String {
+    match r.target {
+        Some(t) => format!(
+            "{} {:.4} m (target {:.4}, error {:+.2e})",
+            r.name,
+            r.girth,
+            t,
+            (r.girth - t) / t
+        ),
+        None => format!("{} {:.4} m (body tape {:.4})", r.name, r.girth, r.body_girth),
+    }
+}
+
+impl RerunLogger {
+    pub(super) fn garment(&self, fw: &Framework, part: GarmentPart) -> Result<(), SinkError> {
+        let rec = self.recording();
+        match part {
+            GarmentPart::Planes => {
+                for p in &fw.planes {
+                    let (u, v) = p.plane.frame();
+                    let c = p.centre - p.plane.normal * p.plane.signed_distance(p.centre);
+                    let e = p.extent;
+                    let corners = [c + (u + v) * e, c + (v - u) * e, c - (u + v) * e, c + (u - v) * e];
+                    rec.log(
+                        format!("garment/planes/{}", p.name),
+                        &LineStrips3D::new([closed(&corners)])
+                            .with_radii([0.0015])
+                            .with_colors([[120, 160, 255]])
+                            .with_labels([p.name.clone()])
+                            .with_show_labels(false),
+                    )
+                    .map_err(to_sink)?;
+                }
+                let names: Vec<&str> = fw.planes.iter().map(|p| p.name.as_str()).collect();
+                self.text(
+                    TextLogLevel::INFO,
+                    format!("{} planes: {}", fw.template.name(), names.join(", ")),
+                )
+            }
+            GarmentPart::Rings(step) => {
+                let color = step_color(step);
+                let mut counts = Vec::new();
+                for (name, stages, is_closed) in fw
+                    .rings
+                    .iter()
+                    .map(|r| (r.name.as_str(), &r.stages, true))
+                    .chain(fw.open_curves.iter().map(|c| (c.name.as_str(), &c.stages, false)))
+                {
+                    let loops = stage_points(stages, step);
+                    let strips: Vec<Vec<[f32; 3]>> = loops
+                        .iter()
+                        .map(|l| {
+                            if is_closed || step == RingStep::Raw && is_closed {
+                                closed(l)
+                            } else {
+                                f32s(l)
+                            }
+                        })
+                        .collect();
+                    let path = format!("garment/curves/rings/{name}");
+                    rec.log(
+                        path.as_str(),
+                        &LineStrips3D::new(strips)
+                            .with_radii([0.0018])
+                            .with_colors([color])
+                            .with_labels([format!("{name} ({})", step.name())])
+                            .with_show_labels(false),
+                    )
+                    .map_err(to_sink)?;
+                    let points: Vec<DVec3> = loops.iter().flatten().copied().collect();
+                    rec.log(
+                        format!("{path}/points"),
+                        &Points3D::new(f32s(&points)).with_radii([0.003]).with_colors([color]),
+                    )
+                    .map_err(to_sink)?;
+                    if step == RingStep::Raw {
+                        // The body section stays in view under the later sub-steps.
+                        let strips: Vec<Vec<[f32; 3]>> = loops
+                            .iter()
+                            .map(|l| if is_closed { closed(l) } else { f32s(l) })
+                            .collect();
+                        rec.log(
+                            format!("garment/sections/{name}"),
+                            &LineStrips3D::new(strips)
+                                .with_radii([0.0012])
+                                .with_colors([[150, 150, 150]]),
+                        )
+                        .map_err(to_sink)?;
+                    }
+                    counts.push(format!("{name} {}", points.len()));
+                }
+                let mut text = format!("rings {}: points {}", step.name(), counts.join(", "));
+                if step == RingStep::Convex {
+                    let removed: Vec<String> = fw
+                        .rings
+                        .iter()
+                        .map(|r| {
+                            format!(
+                                "{} {}",
+                                r.name,
+                                r.stages.raw.iter().map(Vec::len).sum::<usize>() - r.stages.convex.len()
+                            )
+                        })
+                        .collect();
+                    text.push_str(&format!("; points removed: {}", removed.join(", ")));
+                }
+                if step == RingStep::Fitted {
+                    let girths: Vec<String> = fw.rings.iter().map(girth_note).collect();
+                    text.push_str(&format!("; girths: {}", girths.join("; ")));
+                    for r in &fw.rings {
+                        self.scalar(&format!("metrics/garment/girth_m/{}", r.name), r.girth)?;
+                    }
+                    self.control_points(fw)?;
+                }
+                self.text(TextLogLevel::INFO, text)
+            }
+            GarmentPart::Curves => {
+                for c in &fw.contours {
+                    rec.log(
+                        format!("garment/curves/contours/{}", c.name),
+                        &LineStrips3D::new([f32s(&c.polyline())])
+                            .with_radii([0.0018])
+                            .with_colors([[40, 200, 120]])
+                            .with_labels([c.name.clone()])
+                            .with_show_labels(false),
+                    )
+                    .map_err(to_sink)?;
+                }
+                for l in &fw.lines {
+                    rec.log(
+                        format!("garment/curves/lines/{}", l.name),
+                        &LineStrips3D::new([f32s(&l.points)])
+                            .with_radii([0.0018])
+                            .with_colors([[40, 200, 120]]),
+                    )
+                    .map_err(to_sink)?;
+                }
+                let (mut origins, mut vectors) = (Vec::new(), Vec::new());
+                for s in &fw.straightened {
+                    for (a, b) in s.before.iter().zip(&s.after) {
+                        if a != b {
+                            origins.push(a.as_vec3().to_array());
+                            vectors.push((*b - *a).as_vec3().to_array());
+                        }
+                    }
+                }
+                if !vectors.is_empty() {
+                    rec.log(
+                        "garment/curves/straightened",
+                        &Arrows3D::from_vectors(vectors)
+                            .with_origins(origins)
+                            .with_radii([0.002])
+                            .with_colors([[255, 80, 80]]),
+                    )
+                    .map_err(to_sink)?;
+                }
+                let names: Vec<&str> = fw.contours.iter().map(|c| c.name.as_str()).collect();
+                self.text(
+                    TextLogLevel::INFO,
+                    format!(
+                        "{} contours ({}), {} open curves, {} seams/junctions; {} contours straightened ({} fit)",
+                        fw.contours.len(),
+                        names.join(", "),
+                        fw.open_curves.len(),
+                        fw.lines.len(),
+                        fw.straightened.len(),
+                        fw.fit.name()
+                    ),
+                )
+            }
+            GarmentPart::Patches => {
+                let mut positions = Vec::new();
+                let mut triangles = Vec::new();
+                let mut colors = Vec::new();
+                for (i, p) in fw.patches.iter().enumerate() {
+                    let base = positions.len() as u32;
+                    positions.extend(f32s(&p.points));
+                    colors.extend(std::iter::repeat_n(patch_color(i), p.points.len()));
+                    triangles.extend(p.triangles().into_iter().map(|t| t.map(|k| k + base)));
+                }
+                rec.log(
+                    "garment/patches",
+                    &Mesh3D::new(positions)
+                        .with_triangle_indices(triangles)
+                        .with_vertex_colors(colors),
+                )
+                .map_err(to_sink)?;
+                let sizes: Vec<String> = fw
+                    .patches
+                    .iter()
+                    .map(|p| format!("{} {}x{}", p.name, p.nu, p.nv))
+                    .collect();
+                self.text(
+                    TextLogLevel::INFO,
+                    format!(
+                        "{} Coons patches (segments u x v): {}; {} interior samples moved out to the surface clearance",
+                        fw.patches.len(),
+                        sizes.join(", "),
+                        fw.cleared
+                    ),
+                )
+            }
+            GarmentPart::Mesh => {
+                let m0 = &fw.m0;
+                rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
+                // Vertex colour: the patch of the first face that uses the vertex.
+                let mut colors = vec![[200u8, 200, 200]; m0.mesh.positions.len()];
+                let mut seen = vec![false; m0.mesh.positions.len()];
+                for (t, &p) in m0.mesh.triangles.iter().zip(&m0.face_patch) {
+                    for &v in t {
+                        if !seen[v as usize] {
+                            seen[v as usize] = true;
+                            colors[v as usize] = patch_color(p as usize);
+                        }
+                    }
+                }
+                let normals: Vec<[f32; 3]> = m0
+                    .mesh
+                    .vertex_normals()
+                    .iter()
+                    .map(|n| n.as_vec3().to_array())
+                    .collect();
+                rec.log(
+                    "garment/m0",
+                    &Mesh3D::new(m0.mesh.positions_f32())
+                        .with_triangle_indices(m0.mesh.triangles.iter().copied())
+                        .with_vertex_normals(normals)
+                        .with_vertex_colors(colors),
+                )
+                .map_err(to_sink)?;
+                let edges: Vec<Vec<[f32; 3]>> = m0
+                    .edges
+                    .iter()
+                    .map(|e| f32s(&[m0.mesh.positions[e[0] as usize], m0.mesh.positions[e[1] as usize]]))
+                    .collect();
+                rec.log(
+                    "garment/m0/edges",
+                    &LineStrips3D::new(edges)
+                        .with_radii([0.0004])
+                        .with_colors([[60, 60, 70]]),
+                )
+                .map_err(to_sink)?;
+                self.scalar("metrics/garment/m0_vertices", m0.mesh.positions.len() as f64)?;
+                self.scalar("metrics/garment/m0_faces", m0.mesh.triangles.len() as f64)?;
+                let worst = fw
+                    .rings
+                    .iter()
+                    .filter_map(|r| r.target.map(|t| ((r.girth - t) / t).abs()))
+                    .fold(0.0, f64::max);
+                self.text(
+                    TextLogLevel::INFO,
+                    format!(
+                        "M0 ({} {}, {} fit): {} vertices, {} faces, {} edges ({} directed); welded {} of {} patch vertices, {} degenerate and {} duplicate faces dropped; worst girth error {:.2e}",
+                        fw.template.name(),
+                        fw.patches.len(),
+                        fw.fit.name(),
+                        m0.mesh.positions.len(),
+                        m0.mesh.triangles.len(),
+                        m0.edges.len(),
+                        m0.directed_edges.len(),
+                        m0.report.welded,
+                        m0.report.input_vertices,
+                        m0.report.degenerate_faces,
+                        m0.report.duplicate_faces,
+                        worst
+                    ),
+                )
+            }
+        }
+    }
+
+    fn control_points(&self, fw: &Framework) -> Result<(), SinkError> {
+        let named = fw.control_points();
+        let points: Vec<DVec3> = named.iter().map(|(_, p)| *p).collect();
+        self.recording()
+            .log(
+                "garment/control_points",
+                &Points3D::new(f32s(&points))
+                    .with_labels(named.iter().map(|(n, _)| n.clone()))
+                    .with_radii([0.005])
+                    .with_colors([[20, 20, 20]])
+                    .with_show_labels(false),
+            )
+            .map_err(to_sink)
+    }
+
+    pub(super) fn garment_edit(&self, name: &str, before: &Framework, after: &Framework) -> Result<(), SinkError> {
+        let (a, b) = (&before.m0.mesh.positions, &after.m0.mesh.positions);
+        let (mut origins, mut vectors) = (Vec::new(), Vec::new());
+        let mut largest: f64 = 0.0;
+        for (p, q) in a.iter().zip(b) {
+            let d = *q - *p;
+            largest = largest.max(d.length());
+            if d.length() > 1e-6 {
+                origins.push(p.as_vec3().to_array());
+                vectors.push(d.as_vec3().to_array());
+            }
+        }
+        self.recording()
+            .log(
+                "garment/edit/moves",
+                &Arrows3D::from_vectors(vectors.clone())
+                    .with_origins(origins)
+                    .with_radii([0.0008])
+                    .with_colors([[255, 60, 60]]),
+            )
+            .map_err(to_sink)?;
+        let (old, new) = (before.dimension(name), after.dimension(name));
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "set {name}: {} -> {} m; {} of {} M0 vertices moved, the largest by {:.4} m; same topology: {}",
+                old.map_or("?".into(), |v| format!("{v:.4}")),
+                new.map_or("?".into(), |v| format!("{v:.4}")),
+                vectors.len(),
+                a.len(),
+                largest,
+                before.m0.mesh.triangles == after.m0.mesh.triangles
+            ),
+        )
+    }
+}
