@@ -872,7 +872,7 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         ends: [point(&rings, "hip", "front"), point(&rings, "hip", "back")],
         per_half,
         control_per_half: 4,
-        fitted_per_half: ctx.options.ring.fitted_per_arc,
+        fitted_per_half: ctx.options.ring.fitted_points / 4,
     })?;
     let mut open_curves = vec![crotch];
     for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
@@ -910,7 +910,7 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
             ],
             per_half,
             control_per_half: 4,
-            fitted_per_half: ctx.options.ring.fitted_per_arc,
+            fitted_per_half: ctx.options.ring.fitted_points / 4,
         })?;
         open_curves.push(strap);
     }

@@ -43,8 +43,9 @@ pub struct RingOptions {
     pub resample_per_arc: usize,
     /// Control points of the fitted spline, anchors included (default 12; 8 to 12).
     pub control_points: usize,
-    /// Points per anchor arc when the fitted spline is resampled (default 12).
-    pub fitted_per_arc: usize,
+    /// Points of the resampled fitted spline, spread evenly over the anchor arcs (default
+    /// 48; 20 to 60).
+    pub fitted_points: usize,
     /// Relative girth tolerance of the ease solve (default 1e-9).
     pub girth_tolerance: f64,
 }
@@ -54,9 +55,16 @@ impl Default for RingOptions {
         Self {
             resample_per_arc: 16,
             control_points: 12,
-            fitted_per_arc: 12,
+            fitted_points: 48,
             girth_tolerance: 1e-9,
         }
+    }
+}
+
+impl RingOptions {
+    /// Fitted points per arc for a ring with `anchors` anchors.
+    pub fn per_arc(&self, anchors: usize) -> usize {
+        (self.fitted_points / anchors.max(1)).max(1)
     }
 }
 
@@ -113,7 +121,7 @@ pub struct RingStages {
     pub eased: Vec<DVec3>,
     /// The spline's control points (the anchors among them).
     pub control: Vec<DVec3>,
-    /// The fitted spline resampled: `fitted_per_arc` points per anchor arc.
+    /// The fitted spline resampled: `fitted_points` spread evenly over the anchor arcs.
     pub fitted: Vec<DVec3>,
 }
 
@@ -410,7 +418,7 @@ impl GarmentRing {
             }
             let (control, at) = control_points(&eased, &located, options.control_points);
             let (spline, params, fitted) =
-                fit(&control, &at, options.fitted_per_arc).map_err(|e| RingBuildError::Fit(name.clone(), e))?;
+                fit(&control, &at, options.per_arc(at.len())).map_err(|e| RingBuildError::Fit(name.clone(), e))?;
             let girth = spline_length(&spline, true);
             Ok((eased, control, at, spline, params, fitted, girth))
         };
@@ -510,7 +518,7 @@ impl GarmentRing {
     pub fn refit(&mut self, control: Vec<DVec3>, options: &RingOptions) -> Result<(), RingBuildError> {
         let at: Vec<usize> = self.anchors.iter().map(|a| a.control).collect();
         let (spline, params, fitted) =
-            fit(&control, &at, options.fitted_per_arc).map_err(|e| RingBuildError::Fit(self.name.clone(), e))?;
+            fit(&control, &at, options.per_arc(at.len())).map_err(|e| RingBuildError::Fit(self.name.clone(), e))?;
         for (a, p) in self.anchors.iter_mut().zip(params) {
             a.param = p;
             a.point = control[a.control];

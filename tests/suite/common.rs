@@ -65,3 +65,24 @@ pub fn ellipse_perimeter(a: f64, b: f64) -> f64 {
     let h = ((a - b) / (a + b)).powi(2);
     std::f64::consts::PI * (a + b) * (1.0 + 3.0 * h / (10.0 + (4.0 - 3.0 * h).sqrt()))
 }
+
+/// The body probe of the shipped body, built once.
+pub fn real_probe() -> &'static drape::garment::BodyProbe {
+    static PROBE: OnceLock<drape::garment::BodyProbe> = OnceLock::new();
+    PROBE.get_or_init(|| drape::garment::BodyProbe::new(&real_body().mesh.mesh).expect("probe builds"))
+}
+
+/// The default jumpsuit on the shipped body, built once.
+pub fn real_jumpsuit() -> &'static drape::garment::Framework {
+    static FW: OnceLock<drape::garment::Framework> = OnceLock::new();
+    FW.get_or_init(|| {
+        drape::garment::build_framework(
+            real_body(),
+            real_probe(),
+            drape::garment::TemplateKind::Jumpsuit,
+            &drape::garment::Dimensions::default(),
+            &drape::garment::FrameworkOptions::default(),
+        )
+        .expect("the jumpsuit builds")
+    })
+}

@@ -2,6 +2,7 @@ mod common;
 mod convexify;
 mod coons;
 mod ease;
+mod garment;
 mod landmarks;
 mod mannequin;
 mod meshes;

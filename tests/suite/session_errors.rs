@@ -41,7 +41,7 @@ fn unsupported_version() {
 fn unknown_statement() {
     assert_eq!(
         error_of("drape 1\n  frobnicate y=1\n"),
-        "s.drape:2:3: unknown statement 'frobnicate': expected a scene statement (drape, body, units, landmark) or a step (mannequin, section)"
+        "s.drape:2:3: unknown statement 'frobnicate': expected a scene statement (drape, body, units, landmark) or a step (mannequin, section, garment, set)"
     );
 }
 
@@ -249,4 +249,56 @@ fn check_reports_a_parse_error_with_exit_code_2() {
         "{stderr}"
     );
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn set_needs_a_garment_first() {
+    assert_eq!(
+        error_of("drape 1\nset waist_girth +0.04\n"),
+        "s.drape:2:1: 'set' needs a garment: put a 'garment' step before it"
+    );
+}
+
+#[test]
+fn unknown_dimension_names_the_template_and_the_column() {
+    let e = error_of("drape 1\ngarment jumpsuit\nset wasit_girth +0.04\n");
+    assert!(
+        e.starts_with("s.drape:3:5: unknown dimension 'wasit_girth' for the jumpsuit: expected one of "),
+        "{e}"
+    );
+    assert!(e.contains("waist_girth") && e.contains("inseam"), "{e}");
+    assert_eq!(
+        error_of("drape 1\ngarment gown\n"),
+        "s.drape:2:9: unknown template 'gown': expected one of jumpsuit, dress"
+    );
+    assert_eq!(
+        error_of("drape 1\ngarment dress fit=baggy\n"),
+        "s.drape:2:19: unknown fit 'baggy': expected tight or loose"
+    );
+}
+
+#[test]
+fn set_reads_relative_and_absolute_values() {
+    let s = parse_session(
+        "drape 1\ngarment jumpsuit\nset waist_girth +0.04\nset hip_girth 1.05\n",
+        "s.drape",
+        Path::new("."),
+    )
+    .unwrap();
+    let changes: Vec<_> = s
+        .steps
+        .iter()
+        .filter_map(|st| match &st.op {
+            Op::Set { name, change } => Some((name.clone(), *change)),
+            _ => None,
+        })
+        .collect();
+    use drape::session::Change;
+    assert_eq!(
+        changes,
+        vec![
+            ("waist_girth".into(), Change::By(0.04)),
+            ("hip_girth".into(), Change::To(1.05))
+        ]
+    );
 }
