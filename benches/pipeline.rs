@@ -6,15 +6,21 @@
 //! * body: load (parse + validate), landmarks at several section densities (error: the
 //!   largest landmark height difference from a 1280-level reference), rings, partitions;
 //! * mannequin: polar and chord-length refinement for several grid densities (error: max
-//!   and RMS distance to the dress form's true surface over all regions).
+//!   and RMS distance to the dress form's true surface over all regions);
+//! * garment: the jumpsuit's framework solve plus M0 at several resolutions (size: M0's
+//!   vertices and faces; error: each ring's girth measured on M0's own vertices against
+//!   the ring's girth dimension, the waist set to +4 cm as in the demo).
 
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion};
+use drape::body::Body;
 use drape::body::{self, BUILTIN_BODY_OBJ, BodyMesh, LandmarkKind, LandmarkOptions, PartitionOptions};
+use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mannequin::{DressForm, ErrorStats, MannequinOptions, refine_chord, refine_polar, run_mannequin};
+use glam::DVec3;
 
 const LEVELS: [usize; 4] = [80, 160, 320, 640];
 const GRIDS: [(usize, usize); 4] = [(10, 8), (18, 12), (36, 24), (72, 48)];
@@ -61,6 +67,53 @@ fn bench_mannequin(c: &mut Criterion) {
         });
     }
     g.finish();
+}
+
+const RESOLUTIONS: [usize; 4] = [3, 6, 12, 24];
+
+fn garment_scene() -> (Body, BodyProbe, Dimensions) {
+    let body = Body::analyse(body_mesh(), &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");
+    let probe = BodyProbe::new(&body.mesh.mesh).expect("probe");
+    let base = build_framework(
+        &body,
+        &probe,
+        TemplateKind::Jumpsuit,
+        &Dimensions::default(),
+        &FrameworkOptions::default(),
+    )
+    .expect("jumpsuit");
+    let mut dims = Dimensions::default();
+    dims.values.insert(
+        "waist_girth".into(),
+        base.dimension("waist_girth").expect("waist") + 0.04,
+    );
+    (body, probe, dims)
+}
+
+fn bench_garment(c: &mut Criterion) {
+    let (body, probe, dims) = garment_scene();
+    let mut g = c.benchmark_group("garment");
+    for k in RESOLUTIONS {
+        let options = FrameworkOptions::default().with_resolution(k);
+        g.bench_with_input(BenchmarkId::new("jumpsuit", k), &options, |b, o| {
+            b.iter(|| build_framework(black_box(&body), &probe, TemplateKind::Jumpsuit, &dims, o))
+        });
+    }
+    g.finish();
+}
+
+/// Perimeter of M0's vertices lying in the horizontal plane `y` (on one side of x = 0 for
+/// leg rings), ordered by angle about their centroid.
+fn row_perimeter(positions: &[DVec3], y: f64, side: i32) -> f64 {
+    let mut row: Vec<DVec3> = positions
+        .iter()
+        .filter(|p| (p.y - y).abs() < 1e-12 && (side == 0 || (p.x > 0.0) == (side > 0)))
+        .copied()
+        .collect();
+    let c = row.iter().sum::<DVec3>() / row.len().max(1) as f64;
+    row.sort_by(|a, b| (a.x - c.x).atan2(a.z - c.z).total_cmp(&(b.x - c.x).atan2(b.z - c.z)));
+    let n = row.len();
+    (0..n).map(|i| row[i].distance(row[(i + 1) % n])).sum()
 }
 
 /// Criterion's median estimate for a benchmark id, in milliseconds.
@@ -133,6 +186,56 @@ fn report() {
     }
 }
 
+fn garment_report() {
+    let (body, probe, dims) = garment_scene();
+    println!("\n## Garment: jumpsuit framework + M0 (waist +4 cm); girth error = M0 ring polygon vs girth dimension\n");
+    println!(
+        "| resolution | median ms | M0 vertices | M0 faces | max girth error % | mean girth error % | waist error % |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    for k in RESOLUTIONS {
+        let fw = build_framework(
+            &body,
+            &probe,
+            TemplateKind::Jumpsuit,
+            &dims,
+            &FrameworkOptions::default().with_resolution(k),
+        )
+        .expect("jumpsuit");
+        let errors: Vec<(String, f64)> = fw
+            .rings
+            .iter()
+            .filter(|r| r.name != "neckline")
+            .map(|r| {
+                let side = if r.name.starts_with("left") {
+                    1
+                } else if r.name.starts_with("right") {
+                    -1
+                } else {
+                    0
+                };
+                let target = r.target.unwrap_or(r.girth);
+                (
+                    r.name.clone(),
+                    (row_perimeter(&fw.m0.mesh.positions, r.plane.offset, side) - target) / target,
+                )
+            })
+            .collect();
+        let max = errors.iter().map(|e| e.1.abs()).fold(0.0, f64::max);
+        let mean = errors.iter().map(|e| e.1.abs()).sum::<f64>() / errors.len() as f64;
+        let waist = errors.iter().find(|e| e.0 == "waist").map_or(0.0, |e| e.1);
+        println!(
+            "| {k} | {} | {} | {} | {:.3} | {:.3} | {:+.3} |",
+            fmt_ms(median_ms(&format!("garment/jumpsuit/{k}"))),
+            fw.m0.mesh.positions.len(),
+            fw.m0.mesh.triangles.len(),
+            max * 100.0,
+            mean * 100.0,
+            waist * 100.0
+        );
+    }
+}
+
 fn main() {
     let mut c = Criterion::default()
         .sample_size(20)
@@ -141,6 +244,8 @@ fn main() {
         .configure_from_args();
     bench_body(&mut c);
     bench_mannequin(&mut c);
+    bench_garment(&mut c);
     c.final_summary();
     report();
+    garment_report();
 }
