@@ -832,19 +832,18 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
             rings.push(r);
         }
     }
-    for (name, y, c) in [
-        ("chest", chest_y, 0),
-        ("bust", y_of(LandmarkKind::Bust), 0),
-        ("waist", y_of(LandmarkKind::Waist), 0),
-        ("hip", y_of(LandmarkKind::Hip), 0),
-        ("thigh", thigh_y, 1),
-        ("knee", knee_y, 1),
-        ("hem", hem_y, 1),
+    for (name, y) in [
+        ("chest", chest_y),
+        ("bust", y_of(LandmarkKind::Bust)),
+        ("waist", y_of(LandmarkKind::Waist)),
+        ("hip", y_of(LandmarkKind::Hip)),
+        ("thigh", thigh_y),
+        ("knee", knee_y),
+        ("hem", hem_y),
     ] {
         let centre = lm
             .torso_at(y)
             .map_or(DVec3::new(ctx.mid_x, y, 0.0), |t| DVec3::new(t.x, y, t.y));
-        let _ = c;
         planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
     }
 
@@ -963,12 +962,7 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
             let mine: Vec<ContourSpec> = leg_specs
                 .iter()
                 .filter(|(_, p)| p.first().is_some_and(|(r, _)| r.starts_with(s)))
-                .map(|(n, p)| {
-                    (
-                        n.clone(),
-                        p.iter().rev().cloned().collect::<Vec<_>>().into_iter().rev().collect(),
-                    )
-                })
+                .cloned()
                 .collect();
             // `loosen` reads points lowest first and straightens below the fixed ring.
             straightened.extend(loosen(&mut rings, &mine, &fixed, &ctx.options.ring)?);
