@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod body;
+pub mod collision;
 pub mod garment;
 pub mod geom;
 pub mod mannequin;

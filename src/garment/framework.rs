@@ -7,7 +7,7 @@ use thiserror::Error;
 use super::adjust::{combined_adjustment, straighten};
 use super::contour::{Contour, clear_line};
 use super::ease::Ease;
-use super::m0::{M0, PatchError, PatchGrid, stitch};
+use super::m0::{CurveRef, M0, PatchError, PatchGrid, stitch};
 use super::open_curve::{Apex, OpenCurve, OpenInput, section_part};
 use super::probe::BodyProbe;
 use super::ring::{AnchorRule, AnchorSpec, GarmentRing, RingBuildError, RingInput, RingOptions};
@@ -29,10 +29,6 @@ pub struct FrameworkOptions {
     pub weld_threshold: f64,
     /// Default ease as a fraction of the body's height (default 0.012: 1.9 cm on 1.59 m).
     pub ease_fraction: f64,
-    /// Patch-interior samples nearer the body than this fraction of the ease are moved out
-    /// to it along the surface normal (default 0.5). The Coons blend of eased boundaries
-    /// can dip into a body that bulges between rings (the seat below the hip ring).
-    pub surface_clearance: f64,
 }
 
 impl Default for FrameworkOptions {
@@ -43,7 +39,6 @@ impl Default for FrameworkOptions {
             ring: RingOptions::default(),
             weld_threshold: 1e-9,
             ease_fraction: 0.012,
-            surface_clearance: 0.5,
         }
     }
 }
@@ -164,8 +159,6 @@ pub struct Framework {
     pub patches: Vec<PatchGrid>,
     /// The stitched mesh.
     pub m0: M0,
-    /// Patch-interior samples moved out to the surface clearance.
-    pub cleared: usize,
     /// Dimensions reached.
     pub dimensions: Vec<DimensionValue>,
 }
@@ -193,6 +186,31 @@ impl Framework {
             out.push((format!("{}.{apex}", c.name), c.apex));
         }
         out
+    }
+
+    /// The control points of every feature curve by name: rings and open curves (their
+    /// spline control points), contours (the points they pass), seams and junction lines
+    /// (their samples).
+    pub fn curve_controls(&self) -> std::collections::BTreeMap<String, Vec<DVec3>> {
+        let mut out = std::collections::BTreeMap::new();
+        for r in &self.rings {
+            out.insert(r.name.clone(), r.stages.control.clone());
+        }
+        for c in &self.open_curves {
+            out.insert(c.name.clone(), c.stages.control.clone());
+        }
+        for c in &self.contours {
+            out.insert(c.name.clone(), c.points.clone());
+        }
+        for l in &self.lines {
+            out.insert(l.name.clone(), l.points.clone());
+        }
+        out
+    }
+
+    /// The ease (the `ease` dimension), m.
+    pub fn ease(&self) -> f64 {
+        self.dimension("ease").unwrap_or(0.0)
     }
 
     /// A dimension's value.
@@ -527,6 +545,22 @@ fn span(contours: &[Contour], name: &str, from: &str, n: usize, clearance: (&Bod
     c.span(k, n, Some(clearance))
 }
 
+/// The control points of contour `name` that shape its span from ring `from`: the span's
+/// two ends and one more either side (a cubic spline's influence decays fast beyond).
+fn span_ref(contours: &[Contour], name: &str, from: &str) -> CurveRef {
+    let c = contour(contours, name);
+    let k = c
+        .through
+        .iter()
+        .position(|t| t.split('.').next() == Some(from))
+        .unwrap_or_else(|| unreachable!("contour {name} passes ring {from}"));
+    CurveRef {
+        curve: name.to_string(),
+        first: k.saturating_sub(1),
+        last: k + 2,
+    }
+}
+
 /// Loose fit: straightens the contours below `fixed` and deforms the rings below it.
 fn loosen(
     rings: &mut [GarmentRing],
@@ -636,29 +670,10 @@ struct Parts {
     patches: Vec<PatchGrid>,
 }
 
-/// Moves patch-interior samples that come nearer the body than `gap` out to it (boundary
-/// samples belong to the feature curves and are left alone); returns how many moved.
-fn clear_interiors(patches: &mut [PatchGrid], probe: &BodyProbe, gap: f64) -> usize {
-    let mut moved = 0;
-    for patch in patches {
-        let w = patch.nu + 1;
-        for j in 1..patch.nv {
-            for i in 1..patch.nu {
-                let p = patch.points[j * w + i];
-                let q = probe.clear(p, gap);
-                if q != p {
-                    patch.points[j * w + i] = q;
-                    moved += 1;
-                }
-            }
-        }
-    }
-    moved
-}
-
-fn finish(ctx: &Ctx<'_>, template: TemplateKind, fit: Fit, mut parts: Parts) -> Framework {
-    let gap = ctx.options.surface_clearance * ctx.ease;
-    let cleared = clear_interiors(&mut parts.patches, ctx.probe, gap);
+/// Stitches the patches into M0. Patch interiors are left where the Coons blend puts them:
+/// where they dip into the body (the seat below the hip ring) the mesh-layer collision
+/// finds and moves them.
+fn finish(ctx: &Ctx<'_>, template: TemplateKind, fit: Fit, parts: Parts) -> Framework {
     let m0 = stitch(&parts.patches, ctx.options.weld_threshold * ctx.height);
     Framework {
         template,
@@ -671,7 +686,6 @@ fn finish(ctx: &Ctx<'_>, template: TemplateKind, fit: Fit, mut parts: Parts) -> 
         straightened: parts.straightened,
         patches: parts.patches,
         m0,
-        cleared,
         dimensions: Vec::new(),
     }
 }
@@ -1043,11 +1057,16 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
             let top = arc(&rings, hi, a, b, k);
             let left = span(&contours, torso_contours[i], lo, nv, clearance);
             let right = span(&contours, torso_contours[(i + 1) % 8], lo, nv, clearance);
-            patches.push(PatchGrid::coons(
-                &format!("torso.{lo}_{hi}.{a}"),
-                [&bottom, &top, &left, &right],
-                tol,
-            )?);
+            patches.push(
+                PatchGrid::coons(&format!("torso.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], tol)?.with_curves(
+                    vec![
+                        CurveRef::whole(lo),
+                        CurveRef::whole(hi),
+                        span_ref(&contours, torso_contours[i], lo),
+                        span_ref(&contours, torso_contours[(i + 1) % 8], lo),
+                    ],
+                ),
+            );
         }
     }
     let crotch_front = reversed(open_curves[0].half(true, n_crotch));
@@ -1137,12 +1156,20 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
                 ),
             ]
         };
+        let junction_curves = vec![
+            CurveRef::whole(&thigh),
+            CurveRef::whole("hip"),
+            span_ref(&contours, &c("front"), &thigh),
+            span_ref(&contours, &c("side"), &thigh),
+            span_ref(&contours, &c("back"), &thigh),
+            span_ref(&contours, &c("inner"), &thigh),
+            CurveRef::whole("crotch"),
+        ];
         for (name, [bottom, top, left, right]) in specs {
-            patches.push(PatchGrid::coons(
-                &format!("junction.{s}.{name}"),
-                [&bottom, &top, &left, &right],
-                tol,
-            )?);
+            patches.push(
+                PatchGrid::coons(&format!("junction.{s}.{name}"), [&bottom, &top, &left, &right], tol)?
+                    .with_curves(junction_curves.clone()),
+            );
         }
         let (order, cont) = if side == Side::Left {
             (LEFT_LEG, ["front", "side", "back", "inner"])
@@ -1164,11 +1191,19 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
                 let top = arc(&rings, &hi, a, b, k);
                 let left = span(&contours, &c(cont[i]), &lo, nv, clearance);
                 let right = span(&contours, &c(cont[(i + 1) % 4]), &lo, nv, clearance);
-                patches.push(PatchGrid::coons(
-                    &format!("leg.{s}.{}_{}.{a}", &lo[s.len() + 1..], &hi[s.len() + 1..]),
-                    [&bottom, &top, &left, &right],
-                    tol,
-                )?);
+                patches.push(
+                    PatchGrid::coons(
+                        &format!("leg.{s}.{}_{}.{a}", &lo[s.len() + 1..], &hi[s.len() + 1..]),
+                        [&bottom, &top, &left, &right],
+                        tol,
+                    )?
+                    .with_curves(vec![
+                        CurveRef::whole(&lo),
+                        CurveRef::whole(&hi),
+                        span_ref(&contours, &c(cont[i]), &lo),
+                        span_ref(&contours, &c(cont[(i + 1) % 4]), &lo),
+                    ]),
+                );
             }
         }
     }
@@ -1185,11 +1220,24 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         arc(&rings, "neckline", "front", "left", n_neck),
         seam_left.clone(),
     ]);
-    patches.push(PatchGrid::coons(
-        "panel.front",
-        [&front_bottom, &front_top, &strap(2, true), &strap(1, true)],
-        tol,
-    )?);
+    let panel_curves: Vec<CurveRef> = [
+        "chest",
+        "neckline",
+        "left_strap",
+        "right_strap",
+        "seam_left",
+        "seam_right",
+    ]
+    .map(CurveRef::whole)
+    .to_vec();
+    patches.push(
+        PatchGrid::coons(
+            "panel.front",
+            [&front_bottom, &front_top, &strap(2, true), &strap(1, true)],
+            tol,
+        )?
+        .with_curves(panel_curves.clone()),
+    );
     let back_bottom = join(&[
         arc(&rings, "chest", "back_left", "back", k),
         arc(&rings, "chest", "back", "back_right", k),
@@ -1200,16 +1248,19 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         arc(&rings, "neckline", "back", "right", n_neck),
         seam_right,
     ]);
-    patches.push(PatchGrid::coons(
-        "panel.back",
-        [
-            &back_bottom,
-            &back_top,
-            &reversed(strap(1, false)),
-            &reversed(strap(2, false)),
-        ],
-        tol,
-    )?);
+    patches.push(
+        PatchGrid::coons(
+            "panel.back",
+            [
+                &back_bottom,
+                &back_top,
+                &reversed(strap(1, false)),
+                &reversed(strap(2, false)),
+            ],
+            tol,
+        )?
+        .with_curves(panel_curves),
+    );
     Ok(finish(
         ctx,
         TemplateKind::Jumpsuit,
@@ -1294,11 +1345,16 @@ fn dress(ctx: &mut Ctx<'_>) -> Result<Framework, FrameworkError> {
             let top = arc(&rings, hi, a, b, 2 * k);
             let left = span(&contours, names[i], lo, nv, clearance);
             let right = span(&contours, names[(i + 1) % 4], lo, nv, clearance);
-            patches.push(PatchGrid::coons(
-                &format!("skirt.{lo}_{hi}.{a}"),
-                [&bottom, &top, &left, &right],
-                tol,
-            )?);
+            patches.push(
+                PatchGrid::coons(&format!("skirt.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], tol)?.with_curves(
+                    vec![
+                        CurveRef::whole(lo),
+                        CurveRef::whole(hi),
+                        span_ref(&contours, names[i], lo),
+                        span_ref(&contours, names[(i + 1) % 4], lo),
+                    ],
+                ),
+            );
         }
     }
     Ok(finish(

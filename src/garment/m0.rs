@@ -24,6 +24,32 @@ pub struct PatchGrid {
     pub nv: usize,
     /// `(nu + 1) (nv + 1)` points, row by row in `v`.
     pub points: Vec<DVec3>,
+    /// The feature curves (and the runs of their control points) its boundary comes from:
+    /// when none of those control points moves, the patch does not move much either.
+    pub curves: Vec<CurveRef>,
+}
+
+/// Control points `first..=last` of feature curve `curve` (a ring, contour, open curve or
+/// line); `last` is clamped to the curve's last control point.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CurveRef {
+    /// Curve name.
+    pub curve: String,
+    /// First control point.
+    pub first: usize,
+    /// Last control point.
+    pub last: usize,
+}
+
+impl CurveRef {
+    /// Every control point of `curve`.
+    pub fn whole(curve: &str) -> Self {
+        Self {
+            curve: curve.to_string(),
+            first: 0,
+            last: usize::MAX,
+        }
+    }
 }
 
 /// Samples a curve given by `n + 1` samples at `t = k / n`; between samples, linear.
@@ -71,7 +97,14 @@ impl PatchGrid {
             nu,
             nv,
             points,
+            curves: Vec::new(),
         })
+    }
+
+    /// Records the curves the boundary comes from.
+    pub fn with_curves(mut self, curves: Vec<CurveRef>) -> Self {
+        self.curves = curves;
+        self
     }
 
     /// The two triangles of every grid cell (same diagonal everywhere), indices local to

@@ -16,7 +16,7 @@ pub mod template;
 pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, convexify_open, extremes};
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};
 pub use framework::{Framework, FrameworkError, FrameworkOptions, build_framework};
-pub use m0::{M0, PatchGrid, StitchReport, stitch, weld};
+pub use m0::{CurveRef, M0, PatchGrid, StitchReport, stitch, weld};
 pub use probe::BodyProbe;
 pub use resample::{ResampleError, resample_closed, resample_open, resample_open_at};
 pub use ring::{GarmentRing, RingOptions, RingStages};

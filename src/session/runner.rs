@@ -487,7 +487,6 @@ fn solve_garment(
     m.set("m0_edges", fw.m0.edges.len());
     m.set("patches", fw.patches.len());
     m.set("stitch", serde_json::to_value(fw.m0.report).unwrap_or_default());
-    m.set("surface_cleared", fw.cleared);
     let girths: Vec<_> = fw
         .rings
         .iter()

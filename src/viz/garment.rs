@@ -242,10 +242,9 @@ impl RerunLogger {
                 self.text(
                     TextLogLevel::INFO,
                     format!(
-                        "{} Coons patches (segments u x v): {}; {} interior samples moved out to the surface clearance",
+                        "{} Coons patches (segments u x v): {}",
                         fw.patches.len(),
                         sizes.join(", "),
-                        fw.cleared
                     ),
                 )
             }

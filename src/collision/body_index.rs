@@ -1,0 +1,308 @@
+//! The body prepared for collision queries, built once per body: `f64` triangles with
+//! face, edge and vertex pseudo-normals (Bærentzen and Aanæs 2005: angle-weighted at
+//! vertices, the two faces' sum on edges), one parry3d BVH over all triangles (rays,
+//! exact checks) and one per partition A-G (detection), and the horizontal slice stack
+//! the line-line test and the ring-centre response read.
+
+use glam::{DVec3, Vec3};
+use parry3d::bounding_volume::Aabb;
+use parry3d::partitioning::{Bvh, BvhBuildStrategy, TraversalAction};
+
+use super::closest::{Feature, closest_on_triangle};
+use super::ray::ray_triangle;
+use super::slices::{SliceOptions, SliceStack};
+use crate::body::{Body, DetectionMethod, PartitionId, ResponseRule};
+use crate::mesh::topology::NO_NEIGHBOUR;
+use parry3d::query::{PointQuery, RayCast};
+
+/// The nearest point of the body (or of a partition) to a query point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Nearest {
+    /// Body triangle.
+    pub triangle: u32,
+    /// Nearest surface point.
+    pub foot: DVec3,
+    /// Which feature of the triangle it lies on.
+    pub feature: Feature,
+    /// Distance to it.
+    pub distance: f64,
+    /// Outward pseudo-normal of that feature (unit; zero on a fully degenerate feature).
+    pub normal: DVec3,
+}
+
+impl Nearest {
+    /// Signed distance: negative inside the body (the point lies behind the feature's
+    /// pseudo-normal), zero on the surface.
+    pub fn signed(&self, p: DVec3) -> f64 {
+        if (p - self.foot).dot(self.normal) < 0.0 {
+            -self.distance
+        } else {
+            self.distance
+        }
+    }
+}
+
+/// One partition's triangles and their BVH.
+#[derive(Debug)]
+pub struct PartitionIndex {
+    /// Which partition.
+    pub id: PartitionId,
+    /// Lower bound, m.
+    pub lower_y: f64,
+    /// Upper bound, m.
+    pub upper_y: f64,
+    /// Its detection method.
+    pub method: DetectionMethod,
+    /// Its response rule.
+    pub response: ResponseRule,
+    /// Body triangles (with the margin band), ascending.
+    pub triangles: Vec<u32>,
+    bvh: Bvh,
+}
+
+/// The body prepared for collision.
+pub struct BodyIndex {
+    /// Vertex positions.
+    pub positions: Vec<DVec3>,
+    /// Triangles.
+    pub triangles: Vec<[u32; 3]>,
+    /// Unit face normals (zero for zero-area triangles).
+    pub face_normals: Vec<DVec3>,
+    /// Per triangle and local edge `k` (corner `k` to `k + 1`): the edge pseudo-normal.
+    pub edge_normals: Vec<[DVec3; 3]>,
+    /// Angle-weighted vertex pseudo-normals.
+    pub vertex_normals: Vec<DVec3>,
+    /// Partitions, bottom to top.
+    pub partitions: Vec<PartitionIndex>,
+    /// Horizontal sections for the line-line test and ring centres.
+    pub slices: SliceStack,
+    /// Body height, m (scale of every tolerance).
+    pub height: f64,
+    whole: Bvh,
+    slack: f64,
+}
+
+impl std::fmt::Debug for BodyIndex {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BodyIndex")
+            .field("triangles", &self.triangles.len())
+            .field("partitions", &self.partitions.len())
+            .field("slices", &self.slices.len())
+            .finish()
+    }
+}
+
+fn aabb_of(corners: [DVec3; 3], slack: f64) -> Aabb {
+    let lo = corners[0].min(corners[1]).min(corners[2]) - DVec3::splat(slack);
+    let hi = corners[0].max(corners[1]).max(corners[2]) + DVec3::splat(slack);
+    Aabb::new(lo.as_vec3(), hi.as_vec3())
+}
+
+fn angle(a: DVec3, b: DVec3) -> f64 {
+    let (la, lb) = (a.length(), b.length());
+    if la == 0.0 || lb == 0.0 {
+        return 0.0;
+    }
+    (a.dot(b) / (la * lb)).clamp(-1.0, 1.0).acos()
+}
+
+impl BodyIndex {
+    /// Prepares `body` (its mesh, adjacency, partitions and landmarks).
+    pub fn new(body: &Body, slices: &SliceOptions) -> Self {
+        let mesh = &body.mesh.mesh;
+        let height = body.mesh.height().max(f64::MIN_POSITIVE);
+        let positions = mesh.positions.clone();
+        let triangles = mesh.triangles.clone();
+        let face_normals: Vec<DVec3> = (0..triangles.len())
+            .map(|t| mesh.scaled_normal(t).normalize_or_zero())
+            .collect();
+        let neighbours = &body.mesh.adjacency.neighbours;
+        let edge_normals: Vec<[DVec3; 3]> = (0..triangles.len())
+            .map(|t| {
+                std::array::from_fn(|k| {
+                    let other = neighbours.get(t).map_or(NO_NEIGHBOUR, |n| n[k]);
+                    let across = if other == NO_NEIGHBOUR {
+                        DVec3::ZERO
+                    } else {
+                        face_normals[other as usize]
+                    };
+                    (face_normals[t] + across).normalize_or_zero()
+                })
+            })
+            .collect();
+        let mut vertex_normals = vec![DVec3::ZERO; positions.len()];
+        for (t, tri) in triangles.iter().enumerate() {
+            let c = tri.map(|i| positions[i as usize]);
+            for k in 0..3 {
+                let (p, q, r) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
+                vertex_normals[tri[k] as usize] += face_normals[t] * angle(q - p, r - p);
+            }
+        }
+        for n in &mut vertex_normals {
+            *n = n.normalize_or_zero();
+        }
+        // f32 boxes widened so that rounding never drops a triangle.
+        let slack = 1e-6 * height;
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| aabb_of(t.map(|i| positions[i as usize]), slack))
+            .collect();
+        let whole = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
+        let partitions = body
+            .partitions
+            .iter()
+            .map(|p| {
+                let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
+                PartitionIndex {
+                    id: p.id,
+                    lower_y: p.lower_y,
+                    upper_y: p.upper_y,
+                    method: p.method,
+                    response: p.response,
+                    triangles: p.triangles.clone(),
+                    bvh: Bvh::from_leaves(BvhBuildStrategy::Binned, &local),
+                }
+            })
+            .collect();
+        let slices = SliceStack::new(body, slices);
+        Self {
+            positions,
+            triangles,
+            face_normals,
+            edge_normals,
+            vertex_normals,
+            partitions,
+            slices,
+            height,
+            whole,
+            slack: 1e-5 * height,
+        }
+    }
+
+    /// The corners of triangle `t`.
+    pub fn corners(&self, t: u32) -> [DVec3; 3] {
+        self.triangles[t as usize].map(|i| self.positions[i as usize])
+    }
+
+    /// The partition a height falls in (the nearest one outside them all).
+    pub fn partition_at(&self, y: f64) -> Option<usize> {
+        let inside = self.partitions.iter().position(|p| y >= p.lower_y && y < p.upper_y);
+        inside.or_else(|| {
+            (0..self.partitions.len()).min_by(|&a, &b| {
+                let d = |i: usize| {
+                    let p = &self.partitions[i];
+                    (p.lower_y - y).max(y - p.upper_y)
+                };
+                d(a).total_cmp(&d(b))
+            })
+        })
+    }
+
+    /// Distance from `p` to triangle `t`, with its foot, feature and pseudo-normal.
+    pub fn nearest_on(&self, p: DVec3, t: u32) -> Nearest {
+        let (foot, feature) = closest_on_triangle(p, self.corners(t));
+        let normal = match feature {
+            Feature::Face => self.face_normals[t as usize],
+            Feature::Edge(k) => self.edge_normals[t as usize][k as usize],
+            Feature::Vertex(k) => self.vertex_normals[self.triangles[t as usize][k as usize] as usize],
+        };
+        Nearest {
+            triangle: t,
+            foot,
+            feature,
+            distance: p.distance(foot),
+            normal,
+        }
+    }
+
+    /// The nearest point among `candidates` (ties: the lowest triangle index).
+    pub fn nearest_among(&self, p: DVec3, candidates: impl Iterator<Item = u32>) -> Option<Nearest> {
+        let mut best: Option<Nearest> = None;
+        for t in candidates {
+            let n = self.nearest_on(p, t);
+            if best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle)) {
+                best = Some(n);
+            }
+        }
+        best
+    }
+
+    /// The nearest point within `reach` of `p` in a BVH whose leaf `i` is triangle `map(i)`.
+    fn nearest_in(&self, bvh: &Bvh, map: impl Fn(u32) -> u32, p: DVec3, reach: f64) -> Option<Nearest> {
+        let q = p.as_vec3();
+        // Best-first in f32 finds the nearest distance to within rounding; the exact pass
+        // below then only visits boxes within that distance and picks in f64.
+        let first = bvh.find_best(
+            reach as f32 + self.slack as f32,
+            |node, _| node.aabb().distance_to_local_point(q, true),
+            |leaf, _| Some(self.nearest_on(p, map(leaf)).distance as f32),
+        );
+        let mut bound = first.map_or(reach, |(_, d)| (f64::from(d) * (1.0 + 1e-5) + self.slack).min(reach));
+        let mut best: Option<Nearest> = None;
+        bvh.traverse(|node| {
+            let d = f64::from(node.aabb().distance_to_local_point(q, true));
+            if d > bound + self.slack {
+                return TraversalAction::Prune;
+            }
+            if let Some(leaf) = node.leaf_data() {
+                let t = map(leaf);
+                let n = self.nearest_on(p, t);
+                let better = best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle));
+                if n.distance <= reach && better {
+                    bound = bound.min(n.distance);
+                    best = Some(n);
+                }
+            }
+            TraversalAction::Continue
+        });
+        best
+    }
+
+    /// The nearest body point within `reach`, over the whole body.
+    pub fn nearest(&self, p: DVec3, reach: f64) -> Option<Nearest> {
+        self.nearest_in(&self.whole, |i| i, p, reach)
+    }
+
+    /// The nearest point of partition `k`'s triangles within `reach`.
+    pub fn nearest_in_partition(&self, k: usize, p: DVec3, reach: f64) -> Option<Nearest> {
+        let part = &self.partitions[k];
+        self.nearest_in(&part.bvh, |i| part.triangles[i as usize], p, reach)
+    }
+
+    /// Signed distance to the body (negative inside), exact; `None` beyond `reach`.
+    pub fn signed_distance(&self, p: DVec3, reach: f64) -> Option<f64> {
+        self.nearest(p, reach).map(|n| n.signed(p))
+    }
+
+    /// The first body triangle the ray `origin + t dir` meets with `t` in `(t_min, t_max]`:
+    /// `(t, triangle)`, ties to the lowest index.
+    pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
+        let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
+        let len = dir.length().max(f64::MIN_POSITIVE);
+        let mut best: Option<(f64, u32)> = None;
+        self.whole.traverse(|node| {
+            let limit = best.map_or(t_max, |b| b.0);
+            let aabb = node.aabb();
+            let grown = Aabb::new(
+                aabb.mins - Vec3::splat(self.slack as f32),
+                aabb.maxs + Vec3::splat(self.slack as f32),
+            );
+            if grown.cast_local_ray(&ray, (limit + self.slack / len) as f32, true).is_none() {
+                return TraversalAction::Prune;
+            }
+            if let Some(t) = node.leaf_data()
+                && let Some(hit) = ray_triangle(origin, dir, self.corners(t), t_min, limit)
+                && best.is_none_or(|b| hit < b.0 || (hit == b.0 && t < b.1))
+            {
+                best = Some((hit, t));
+            }
+            TraversalAction::Continue
+        });
+        best
+    }
+
+    /// Whether the segment `a..b` meets the body surface.
+    pub fn segment_hits(&self, a: DVec3, b: DVec3) -> bool {
+        self.cast_ray(a, b - a, 0.0, 1.0).is_some()
+    }
+}

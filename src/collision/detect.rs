@@ -1,0 +1,343 @@
+//! Mesh-layer detection ([collide] 4): every garment vertex is given the body partition
+//! its height falls in and tested against that partition's triangles only (plus the
+//! margin band), with the partition's own test: point-face, or line-line for legs and
+//! abdomen. Which test a partition uses is data ([`crate::body::Partition::method`]).
+//!
+//! Two accelerations skip vertices between steps ([collide] 4.3):
+//! - **patch skipping**: a patch none of whose boundary curves' control points moved more
+//!   than a threshold is not re-tested;
+//! - **inert points**: a vertex that moved less than a threshold since it was last tested
+//!   is not re-tested.
+//!
+//! Both are guarded so that they never change a result: a vertex is skipped only if it was
+//! outside when last tested and has moved less than its clearance then (and, for the
+//! line-line test, still reads the same slice), so its verdict cannot have changed.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+use super::body_index::BodyIndex;
+use super::line_line::line_line;
+use super::point_face::{Reach, Search, point_face};
+use crate::body::DetectionMethod;
+use crate::garment::CurveRef;
+
+/// Which triangles each vertex is tested against.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Acceleration {
+    /// Every body triangle (no partitions, no BVH): the reference.
+    BruteForce,
+    /// The partition's triangles, one by one.
+    Partitioned,
+    /// The partition's triangles through its BVH.
+    PartitionedBvh,
+}
+
+/// Detection settings. Lengths are fractions of the body's height or of the garment's
+/// mean edge, so that they carry over to other bodies and garments.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct DetectOptions {
+    /// Default value: partitions with their BVHs.
+    pub acceleration: Acceleration,
+    /// Use this test everywhere instead of each partition's own (benchmarks, checks).
+    /// Default value: `None` (each partition's).
+    pub method_override: Option<DetectionMethod>,
+    /// `w1`, the depth below the skin still detected, over the body height. Default value:
+    /// 0.1 (16 cm on 1.6 m: deeper than any point of a human torso lies).
+    pub inside_reach: f64,
+    /// `w2`, over the body height. Default value: 0.02.
+    pub outside_reach: f64,
+    /// Skip inert vertices. Default value: true.
+    pub inert: bool,
+    /// A vertex that moved less than this fraction of the garment's mean edge since its last
+    /// test is inert. Default value: 0.1.
+    pub inert_threshold: f64,
+    /// Skip patches whose curves did not move. Default value: true.
+    pub patch_skipping: bool,
+    /// A patch whose boundary curves' control points all moved less than this fraction of
+    /// the garment's mean edge is not re-tested. Default value: 0.1.
+    pub patch_threshold: f64,
+}
+
+impl Default for DetectOptions {
+    fn default() -> Self {
+        Self {
+            acceleration: Acceleration::PartitionedBvh,
+            method_override: None,
+            inside_reach: 0.1,
+            outside_reach: 0.02,
+            inert: true,
+            inert_threshold: 0.1,
+            patch_skipping: true,
+            patch_threshold: 0.1,
+        }
+    }
+}
+
+impl DetectOptions {
+    /// The reach in metres for a body of height `height`.
+    pub fn reach(&self, height: f64) -> Reach {
+        Reach {
+            inside: self.inside_reach * height,
+            outside: self.outside_reach * height,
+            surface: 1e-12 * height,
+        }
+    }
+}
+
+/// The garment mesh as detection sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct GarmentInput<'a> {
+    /// Vertex positions.
+    pub positions: &'a [DVec3],
+    /// Vertex normals (outward).
+    pub normals: &'a [DVec3],
+    /// Edges (for the mean edge length).
+    pub edges: &'a [[u32; 2]],
+    /// For each vertex, the patches it belongs to (empty: no patch skipping for it).
+    pub vertex_patches: &'a [Vec<u32>],
+    /// For each patch, the curves its boundary comes from.
+    pub patch_curves: &'a [Vec<CurveRef>],
+    /// The control points of every curve by name.
+    pub controls: &'a BTreeMap<String, Vec<DVec3>>,
+}
+
+/// A penetrating vertex.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Garment vertex.
+    pub vertex: u32,
+    /// Index of its partition in [`BodyIndex::partitions`].
+    pub partition: usize,
+    /// The test that found it.
+    pub method: DetectionMethod,
+    /// Depth below the skin, m.
+    pub depth: f64,
+    /// Nearest body point (point-face) or the crossing in the section (line-line).
+    pub foot: DVec3,
+    /// Outward body normal there.
+    pub normal: DVec3,
+    /// Body triangle (point-face only).
+    pub triangle: Option<u32>,
+}
+
+/// Why a vertex was not tested this step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Skip {
+    /// Tested.
+    Tested,
+    /// Inert.
+    Inert,
+    /// Its patches' curves did not move.
+    Patch,
+}
+
+/// What a vertex's last test left to decide whether it can be skipped.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Memo {
+    position: DVec3,
+    partition: usize,
+    method: DetectionMethod,
+    clearance: f64,
+    slice: Option<usize>,
+}
+
+/// What detection remembers between steps (same garment topology).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DetectState {
+    memo: Vec<Memo>,
+    controls: BTreeMap<String, Vec<DVec3>>,
+}
+
+/// One step's detection.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Detection {
+    /// Penetrating vertices, by vertex.
+    pub hits: Vec<Hit>,
+    /// Partition of every vertex (index into [`BodyIndex::partitions`]).
+    pub partition: Vec<usize>,
+    /// What happened to every vertex.
+    pub skip: Vec<Skip>,
+    /// Vertices tested.
+    pub tested: usize,
+    /// Vertices skipped as inert.
+    pub skipped_inert: usize,
+    /// Vertices skipped with their patch.
+    pub skipped_patch: usize,
+    /// Patches not re-tested.
+    pub patches_skipped: usize,
+    /// Vertices tested point-face and line-line.
+    pub by_method: [usize; 2],
+}
+
+fn mean_edge(positions: &[DVec3], edges: &[[u32; 2]]) -> f64 {
+    if edges.is_empty() {
+        return 0.0;
+    }
+    edges
+        .iter()
+        .map(|[a, b]| positions[*a as usize].distance(positions[*b as usize]))
+        .sum::<f64>()
+        / edges.len() as f64
+}
+
+fn max_move(before: Option<&Vec<DVec3>>, after: Option<&Vec<DVec3>>, r: &CurveRef) -> f64 {
+    match (before, after) {
+        (Some(b), Some(a)) if a.len() == b.len() && !a.is_empty() => {
+            let last = r.last.min(a.len() - 1);
+            (r.first..=last).map(|i| a[i].distance(b[i])).fold(0.0, f64::max)
+        }
+        _ => f64::INFINITY,
+    }
+}
+
+/// The test of one vertex: its hit (if inside) and its memo.
+fn test_vertex(
+    index: &BodyIndex,
+    options: &DetectOptions,
+    reach: &Reach,
+    v: usize,
+    p: DVec3,
+    normal: DVec3,
+    partition: usize,
+) -> (Option<Hit>, Memo) {
+    let method = options.method_override.unwrap_or(index.partitions[partition].method);
+    let slice = match method {
+        DetectionMethod::LineLine => {
+            let k = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
+            index.slices.at(p.y).map(|s| (k.max(0.0) as usize, s))
+        }
+        DetectionMethod::PointFace => None,
+    };
+    let memo = |clearance: f64, slice: Option<usize>| Memo {
+        position: p,
+        partition,
+        method,
+        clearance,
+        slice,
+    };
+    if let Some((k, s)) = slice {
+        let r = line_line(s, k, p, normal, reach);
+        let hit = r.inside.then_some(Hit {
+            vertex: v as u32,
+            partition,
+            method,
+            depth: r.depth,
+            foot: r.foot,
+            normal: r.normal,
+            triangle: None,
+        });
+        return (hit, memo(r.clearance, Some(k)));
+    }
+    // Point-face (also where a line-line partition lies outside the slice stack).
+    let search = match options.acceleration {
+        Acceleration::BruteForce => Search::Brute,
+        Acceleration::Partitioned => Search::Partition(partition),
+        Acceleration::PartitionedBvh => Search::PartitionBvh(partition),
+    };
+    let r = point_face(index, search, p, reach);
+    let hit = match (r.inside, r.nearest) {
+        (true, Some(n)) => Some(Hit {
+            vertex: v as u32,
+            partition,
+            method: DetectionMethod::PointFace,
+            depth: n.distance,
+            foot: n.foot,
+            normal: n.normal,
+            triangle: Some(n.triangle),
+        }),
+        _ => None,
+    };
+    let mut m = memo(r.clearance(reach), None);
+    m.method = DetectionMethod::PointFace;
+    (hit, m)
+}
+
+/// Detects the penetrating vertices of `garment`, skipping what `state` allows, and
+/// updates `state` (reset it when the garment's topology changes).
+pub fn detect(
+    index: &BodyIndex,
+    garment: &GarmentInput<'_>,
+    options: &DetectOptions,
+    state: &mut DetectState,
+) -> Detection {
+    let n = garment.positions.len();
+    let reach = options.reach(index.height);
+    let edge = mean_edge(garment.positions, garment.edges);
+    if state.memo.len() != n {
+        state.memo.clear();
+        state.controls.clear();
+    }
+    // Patches whose curves did not move.
+    let patch_still: Vec<bool> = garment
+        .patch_curves
+        .iter()
+        .map(|curves| {
+            options.patch_skipping
+                && !state.memo.is_empty()
+                && !curves.is_empty()
+                && curves.iter().all(|r| {
+                    max_move(state.controls.get(&r.curve), garment.controls.get(&r.curve), r)
+                        < options.patch_threshold * edge
+                })
+        })
+        .collect();
+    let mut out = Detection {
+        hits: Vec::new(),
+        partition: Vec::with_capacity(n),
+        skip: Vec::with_capacity(n),
+        tested: 0,
+        skipped_inert: 0,
+        skipped_patch: 0,
+        patches_skipped: patch_still.iter().filter(|s| **s).count(),
+        by_method: [0, 0],
+    };
+    let fresh = state.memo.is_empty();
+    for v in 0..n {
+        let p = garment.positions[v];
+        let partition = index.partition_at(p.y).unwrap_or(0);
+        out.partition.push(partition);
+        let method = options.method_override.unwrap_or(index.partitions[partition].method);
+        if !fresh {
+            let m = &state.memo[v];
+            let moved = p.distance(m.position);
+            let same_slice = match m.slice {
+                Some(k) => {
+                    let now = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
+                    now >= 0.0 && now as usize == k
+                }
+                None => true,
+            };
+            let safe = moved < m.clearance && m.partition == partition && same_slice && m.method == method;
+            let patch = garment.vertex_patches.get(v).is_some_and(|ps| {
+                !ps.is_empty() && ps.iter().all(|&k| patch_still.get(k as usize).copied().unwrap_or(false))
+            });
+            if safe && patch {
+                out.skip.push(Skip::Patch);
+                out.skipped_patch += 1;
+                continue;
+            }
+            if safe && options.inert && moved < options.inert_threshold * edge {
+                out.skip.push(Skip::Inert);
+                out.skipped_inert += 1;
+                continue;
+            }
+        }
+        let normal = garment.normals.get(v).copied().unwrap_or(DVec3::ZERO);
+        let (hit, memo) = test_vertex(index, options, &reach, v, p, normal, partition);
+        out.by_method[usize::from(memo.method == DetectionMethod::LineLine)] += 1;
+        out.tested += 1;
+        out.skip.push(Skip::Tested);
+        out.hits.extend(hit);
+        if fresh {
+            state.memo.push(memo);
+        } else {
+            state.memo[v] = memo;
+        }
+    }
+    state.controls = garment.controls.clone();
+    out
+}

@@ -1,0 +1,208 @@
+//! Mesh-layer collision of the garment with the body ([collide] sections 4 and 5):
+//! partitioned detection (point-face or line-line by partition, BVH, inert points, patch
+//! skipping), the response along each partition's constrained direction, the quality
+//! measured afterwards, and the brute-force ground truth.
+//!
+//! Data flow of one step: [`GarmentMesh::from_framework`] (M0 with the roles the rules
+//! read) -> [`detect()`] (hits, with [`DetectState`] carried between steps) -> [`respond()`]
+//! (moved vertices and the rule of each) -> [`quality()`] (what is left inside, crossing
+//! edges, ease error). The body side is built once: [`BodyIndex::new`].
+
+pub mod body_index;
+pub mod closest;
+pub mod detect;
+pub mod line_line;
+pub mod point_face;
+pub mod quality;
+pub mod ray;
+pub mod response;
+pub mod slices;
+pub mod verify;
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+pub use body_index::{BodyIndex, Nearest, PartitionIndex};
+pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
+pub use point_face::{Reach, Search};
+pub use quality::{Quality, quality};
+pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, respond_edges, response_ease};
+pub use slices::{CentreChoice, Centres, SliceOptions, SliceStack};
+pub use verify::{GroundTruth, ground_truth};
+
+use crate::garment::{CurveRef, Framework};
+use crate::mesh::TriMesh;
+
+/// All collision settings.
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct CollisionOptions {
+    /// Detection.
+    pub detect: DetectOptions,
+    /// Response.
+    pub response: ResponseOptions,
+    /// Body slices.
+    pub slices: SliceOptions,
+}
+
+/// M0 with what detection and response need to know about each vertex.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GarmentMesh {
+    /// The mesh.
+    pub mesh: TriMesh,
+    /// Undirected edges.
+    pub edges: Vec<[u32; 2]>,
+    /// Vertex normals.
+    pub normals: Vec<DVec3>,
+    /// Vertices on an opening.
+    pub boundary: Vec<bool>,
+    /// For vertices on a garment ring, the ring plane's normal.
+    pub ring_normal: Vec<Option<DVec3>>,
+    /// Patches of each vertex.
+    pub vertex_patches: Vec<Vec<u32>>,
+    /// Curves of each patch.
+    pub patch_curves: Vec<Vec<CurveRef>>,
+    /// Control points of every curve.
+    pub controls: BTreeMap<String, Vec<DVec3>>,
+}
+
+impl GarmentMesh {
+    /// From M0 of a framework on a body of height `height`.
+    pub fn from_framework(fw: &Framework, height: f64) -> Self {
+        let m0 = &fw.m0;
+        let n = m0.mesh.positions.len();
+        let mut uses: BTreeMap<[u32; 2], u32> = BTreeMap::new();
+        for [a, b] in &m0.directed_edges {
+            *uses.entry([(*a).min(*b), (*a).max(*b)]).or_default() += 1;
+        }
+        let mut boundary = vec![false; n];
+        for ([a, b], count) in uses {
+            if count == 1 {
+                boundary[a as usize] = true;
+                boundary[b as usize] = true;
+            }
+        }
+        let tol = 1e-9 * height;
+        let ring_normal = m0
+            .mesh
+            .positions
+            .iter()
+            .map(|p| {
+                fw.rings
+                    .iter()
+                    .find(|r| r.plane.signed_distance(*p).abs() <= tol)
+                    .map(|r| r.plane.normal)
+            })
+            .collect();
+        let mut vertex_patches = vec![Vec::new(); n];
+        for (f, tri) in m0.mesh.triangles.iter().enumerate() {
+            let patch = m0.face_patch[f];
+            for &v in tri {
+                let list: &mut Vec<u32> = &mut vertex_patches[v as usize];
+                if !list.contains(&patch) {
+                    list.push(patch);
+                }
+            }
+        }
+        for list in &mut vertex_patches {
+            list.sort_unstable();
+        }
+        let patch_curves = m0
+            .patch_names
+            .iter()
+            .map(|name| {
+                fw.patches
+                    .iter()
+                    .find(|p| &p.name == name)
+                    .map_or_else(Vec::new, |p| p.curves.clone())
+            })
+            .collect();
+        Self {
+            normals: m0.mesh.vertex_normals(),
+            mesh: m0.mesh.clone(),
+            edges: m0.edges.clone(),
+            boundary,
+            ring_normal,
+            vertex_patches,
+            patch_curves,
+            controls: fw.curve_controls(),
+        }
+    }
+
+    /// The view detection reads.
+    pub fn input(&self) -> GarmentInput<'_> {
+        GarmentInput {
+            positions: &self.mesh.positions,
+            normals: &self.normals,
+            edges: &self.edges,
+            vertex_patches: &self.vertex_patches,
+            patch_curves: &self.patch_curves,
+            controls: &self.controls,
+        }
+    }
+
+    /// The roles response reads.
+    pub fn roles(&self) -> VertexRoles<'_> {
+        VertexRoles {
+            normals: &self.normals,
+            boundary: &self.boundary,
+            ring_normal: &self.ring_normal,
+        }
+    }
+}
+
+/// One step's collision of a garment mesh.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Collision {
+    /// What detection found.
+    pub detection: Detection,
+    /// The ease responses stand off at, m.
+    pub ease: f64,
+    /// What response did, by vertex.
+    pub responses: Vec<Response>,
+    /// The mesh after response.
+    pub mesh: TriMesh,
+    /// Quality after response.
+    pub quality: Quality,
+}
+
+/// Detects, responds and measures in one call (the runner times the phases itself).
+pub fn collide(
+    index: &BodyIndex,
+    garment: &GarmentMesh,
+    garment_ease: f64,
+    options: &CollisionOptions,
+    state: &mut DetectState,
+) -> Collision {
+    let detection = detect(index, &garment.input(), &options.detect, state);
+    let ease = response_ease(index, garment_ease, &options.response);
+    let (mut positions, mut responses) = respond(
+        index,
+        &garment.mesh.positions,
+        &detection.hits,
+        &garment.roles(),
+        ease,
+        &options.response,
+    );
+    responses.extend(respond_edges(
+        index,
+        &mut positions,
+        &garment.edges,
+        &detection.partition,
+        &garment.roles(),
+        ease,
+        &options.response,
+    ));
+    let quality = quality(index, &positions, &garment.edges, &responses);
+    Collision {
+        detection,
+        ease,
+        responses,
+        mesh: TriMesh {
+            positions,
+            triangles: garment.mesh.triangles.clone(),
+        },
+        quality,
+    }
+}

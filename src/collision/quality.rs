@@ -1,0 +1,65 @@
+//! Quality after response, measured rather than assumed ([collide] 6, figure 14): garment
+//! vertices still inside the body and how deep, edges that cross the body although both
+//! their ends are outside, and how far the moved vertices stand from the ease.
+
+use glam::DVec3;
+
+use super::body_index::BodyIndex;
+use super::response::Response;
+
+/// Quality figures of a garment mesh against the body.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Quality {
+    /// Vertices inside the body (exact test over the whole body).
+    pub penetrating_vertices: usize,
+    /// Deepest of them, m.
+    pub max_depth_m: f64,
+    /// Their mean depth, m.
+    pub mean_depth_m: f64,
+    /// Edges that meet the body surface.
+    pub crossing_edges: usize,
+    /// Largest `|distance - ease|` over the moved vertices, m.
+    pub max_ease_error_m: f64,
+    /// Mean of it, m.
+    pub mean_ease_error_m: f64,
+    /// The penetrating vertices.
+    #[serde(skip)]
+    pub inside: Vec<u32>,
+    /// The crossing edges (indices into the edge list).
+    #[serde(skip)]
+    pub crossing: Vec<u32>,
+}
+
+/// Measures `positions` (with `edges`) against the body; `responses` give the ease error.
+pub fn quality(index: &BodyIndex, positions: &[DVec3], edges: &[[u32; 2]], responses: &[Response]) -> Quality {
+    let reach = 0.2 * index.height;
+    let surface = 1e-12 * index.height;
+    let mut q = Quality::default();
+    let mut depth_sum = 0.0;
+    for (v, p) in positions.iter().enumerate() {
+        if let Some(n) = index.nearest(*p, reach) {
+            let s = n.signed(*p);
+            if s < -surface {
+                q.penetrating_vertices += 1;
+                q.max_depth_m = q.max_depth_m.max(-s);
+                depth_sum += -s;
+                q.inside.push(v as u32);
+            }
+        }
+    }
+    if q.penetrating_vertices > 0 {
+        q.mean_depth_m = depth_sum / q.penetrating_vertices as f64;
+    }
+    for (e, [a, b]) in edges.iter().enumerate() {
+        if index.segment_hits(positions[*a as usize], positions[*b as usize]) {
+            q.crossing_edges += 1;
+            q.crossing.push(e as u32);
+        }
+    }
+    if !responses.is_empty() {
+        let errs = responses.iter().map(|r| r.ease_error.abs());
+        q.max_ease_error_m = errs.clone().fold(0.0, f64::max);
+        q.mean_ease_error_m = errs.sum::<f64>() / responses.len() as f64;
+    }
+    q
+}
