@@ -68,6 +68,17 @@ struct RunArgs {
     /// Also log compute timings to the recording (makes recordings differ run to run).
     #[arg(long)]
     log_timings: bool,
+    /// Check every collision against the brute-force ground truth (every garment vertex
+    /// and edge against every body triangle; a few seconds per step). The figures go to
+    /// the log, the metrics and the progress lines.
+    #[arg(long)]
+    verify: bool,
+    /// Test every vertex against every body triangle (no partitions, no BVH), to compare.
+    #[arg(long)]
+    brute_force: bool,
+    /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
+    #[arg(long)]
+    no_skipping: bool,
 }
 
 #[derive(Args, Debug)]
@@ -164,6 +175,35 @@ impl StageSink for Progress {
                 );
             }
             Stage::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message),
+            Stage::Collision(outcome, _, drape::session::CollisionPart::Respond) => {
+                let c = &outcome.collision;
+                let d = &c.detection;
+                eprintln!(
+                    "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges",
+                    info.step,
+                    d.tested,
+                    d.skipped_inert,
+                    d.skipped_patch,
+                    d.hits.len(),
+                    c.responses.len(),
+                    c.quality.penetrating_vertices,
+                    c.quality.crossing_edges
+                );
+                if let Some(v) = &outcome.verify {
+                    eprintln!(
+                        "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",
+                        info.step,
+                        v.inside_before,
+                        v.missed,
+                        v.missed_line_line,
+                        v.false_hits,
+                        v.false_line_line,
+                        v.inside_after,
+                        v.crossing_after,
+                        v.quality_agrees
+                    );
+                }
+            }
             _ => {}
         }
         Ok(())
@@ -238,10 +278,18 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     let mut logger = RerunLogger::new(rec, LogOptions::default().with_timings(args.log_timings))?;
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose()?;
     let mut progress = Progress;
-    let options = RunOptions {
+    let mut options = RunOptions {
         body_override: args.body.clone(),
+        verify: args.verify,
         ..RunOptions::default()
     };
+    if args.brute_force {
+        options.collision.detect.acceleration = drape::collision::Acceleration::BruteForce;
+    }
+    if args.no_skipping {
+        options.collision.detect.inert = false;
+        options.collision.detect.patch_skipping = false;
+    }
     let report = {
         let mut sinks: Vec<&mut dyn StageSink> = vec![&mut progress, &mut logger];
         if let Some(e) = exporter.as_mut() {

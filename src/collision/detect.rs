@@ -161,6 +161,8 @@ pub struct Detection {
     pub partition: Vec<usize>,
     /// What happened to every vertex.
     pub skip: Vec<Skip>,
+    /// The test each vertex had (`None`: skipped).
+    pub methods: Vec<Option<DetectionMethod>>,
     /// Vertices tested.
     pub tested: usize,
     /// Vertices skipped as inert.
@@ -289,6 +291,7 @@ pub fn detect(
         hits: Vec::new(),
         partition: Vec::with_capacity(n),
         skip: Vec::with_capacity(n),
+        methods: Vec::with_capacity(n),
         tested: 0,
         skipped_inert: 0,
         skipped_patch: 0,
@@ -317,11 +320,13 @@ pub fn detect(
             });
             if safe && patch {
                 out.skip.push(Skip::Patch);
+                out.methods.push(None);
                 out.skipped_patch += 1;
                 continue;
             }
             if safe && options.inert && moved < options.inert_threshold * edge {
                 out.skip.push(Skip::Inert);
+                out.methods.push(None);
                 out.skipped_inert += 1;
                 continue;
             }
@@ -331,6 +336,7 @@ pub fn detect(
         out.by_method[usize::from(memo.method == DetectionMethod::LineLine)] += 1;
         out.tested += 1;
         out.skip.push(Skip::Tested);
+        out.methods.push(Some(memo.method));
         out.hits.extend(hit);
         if fresh {
             state.memo.push(memo);

@@ -29,7 +29,7 @@ pub use point_face::{Reach, Search};
 pub use quality::{Quality, quality};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, respond_edges, response_ease};
 pub use slices::{CentreChoice, Centres, SliceOptions, SliceStack};
-pub use verify::{GroundTruth, ground_truth};
+pub use verify::{GroundTruth, VerifyReport, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};
 use crate::mesh::TriMesh;
@@ -51,6 +51,8 @@ pub struct CollisionOptions {
 pub struct GarmentMesh {
     /// The mesh.
     pub mesh: TriMesh,
+    /// The patch of each face.
+    pub face_patch: Vec<u32>,
     /// Undirected edges.
     pub edges: Vec<[u32; 2]>,
     /// Vertex normals.
@@ -121,6 +123,7 @@ impl GarmentMesh {
         Self {
             normals: m0.mesh.vertex_normals(),
             mesh: m0.mesh.clone(),
+            face_patch: m0.face_patch.clone(),
             edges: m0.edges.clone(),
             boundary,
             ring_normal,
@@ -159,8 +162,11 @@ pub struct Collision {
     pub detection: Detection,
     /// The ease responses stand off at, m.
     pub ease: f64,
-    /// What response did, by vertex.
+    /// What response did: penetrating vertices by vertex, then the edge rounds.
     pub responses: Vec<Response>,
+    /// Edges crossing the body at the start of each edge round (the first: after the
+    /// vertex response).
+    pub edge_rounds: Vec<usize>,
     /// The mesh after response.
     pub mesh: TriMesh,
     /// Quality after response.
@@ -185,7 +191,7 @@ pub fn collide(
         ease,
         &options.response,
     );
-    responses.extend(respond_edges(
+    let (edge_responses, edge_rounds) = respond_edges(
         index,
         &mut positions,
         &garment.edges,
@@ -193,12 +199,14 @@ pub fn collide(
         &garment.roles(),
         ease,
         &options.response,
-    ));
+    );
+    responses.extend(edge_responses);
     let quality = quality(index, &positions, &garment.edges, &responses);
     Collision {
         detection,
         ease,
         responses,
+        edge_rounds,
         mesh: TriMesh {
             positions,
             triangles: garment.mesh.triangles.clone(),

@@ -17,6 +17,16 @@
 //!
 //! The vertex then travels along the direction to where it leaves the body, and on until
 //! its distance to the body is the ease (a few secant steps on the exact distance).
+//!
+//! Two checks keep a rule from doing harm, and are recorded as `fallback` when they act:
+//! a direction more than 75 degrees off the vertex's shortest way out of the body (a
+//! horizontal ring ray under the crotch, where the skin faces down) is replaced by that
+//! way out, and so is a push that would travel more than three times the depth plus the
+//! ease (the ray would cross the body to its far side).
+//!
+//! Edges can still cross the body with both ends outside ([collide] figure 14). Edge
+//! rounds move the ends of such edges out by the depth the edge reaches inside, by the
+//! same rules, until none crosses or the rounds run out.
 
 use glam::{DVec2, DVec3};
 
@@ -38,8 +48,8 @@ pub struct ResponseOptions {
     /// View direction for shoulder boundary vertices. Default value: `+z` (front view).
     pub view: DVec3,
     /// Rounds of edge response: the ends of edges that still cross the body after the
-    /// vertex response are moved out by their own rules, each round a quarter of the ease
-    /// farther than they stand. Default value: 3.
+    /// vertex response are moved out by their own rules, by the depth the edge reaches
+    /// inside plus a quarter of the ease (at least to the ease). Default value: 3.
     pub edge_rounds: usize,
 }
 
@@ -70,7 +80,8 @@ pub enum AppliedRule {
     LocalCentre,
     /// The self-collision guard replaced the direction.
     Guard,
-    /// No ray left the body: out along the body normal at the hit.
+    /// The rule's direction was more than 75 degrees off the shortest way out, or its push
+    /// too long: out along the shortest way instead.
     Fallback,
 }
 
@@ -139,6 +150,9 @@ pub struct Response {
     pub edge_round: usize,
 }
 
+/// Least cosine between a response direction and the shortest way out (75 degrees).
+pub const MIN_COSINE: f64 = 0.2588;
+
 fn horizontal(v: DVec3) -> DVec3 {
     DVec3::new(v.x, 0.0, v.z)
 }
@@ -190,6 +204,16 @@ fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, 
         // From outside (an edge's end), straight to the secant steps.
         let outside = round == 0 && index.signed_distance(p, reach).is_none_or(|s| s >= 0.0);
         let mut s = if outside {
+            // From outside the direction must lead away from the body.
+            let near = index.nearest(p, reach)?;
+            let away = if near.distance > 0.0 {
+                (p - near.foot) / near.distance
+            } else {
+                near.normal
+            };
+            if d.dot(away) < 0.2 {
+                return None;
+            }
             p
         } else {
             let (t, _) = index.cast_ray(q, d, 0.0, far)?;
@@ -243,7 +267,8 @@ pub fn respond(
 
 /// Edge rounds: the ends of edges of `positions` that still meet the body are moved out
 /// by their rules to a quarter of the ease beyond where they stand (at least the ease).
-/// Returns the responses of all rounds; `positions` is updated.
+/// Returns the responses of all rounds and the number of crossing edges each round
+/// found; `positions` is updated.
 pub fn respond_edges(
     index: &BodyIndex,
     positions: &mut [DVec3],
@@ -252,22 +277,34 @@ pub fn respond_edges(
     roles: &VertexRoles<'_>,
     ease: f64,
     options: &ResponseOptions,
-) -> Vec<Response> {
+) -> (Vec<Response>, Vec<usize>) {
     let reach = 0.2 * index.height;
     let mut all = Vec::new();
+    let mut found = Vec::new();
     for round in 1..=options.edge_rounds {
-        let mut ends: Vec<u32> = edges
-            .iter()
-            .filter(|[a, b]| index.segment_hits(positions[*a as usize], positions[*b as usize]))
-            .flat_map(|e| *e)
-            .collect();
-        if ends.is_empty() {
+        // How deep each crossing edge goes: the middle of its part inside the body.
+        let mut need: std::collections::BTreeMap<u32, f64> = std::collections::BTreeMap::new();
+        let mut count = 0;
+        for &[a, b] in edges {
+            let (pa, pb) = (positions[a as usize], positions[b as usize]);
+            let Some((t_in, _)) = index.cast_ray(pa, pb - pa, 0.0, 1.0) else {
+                continue;
+            };
+            count += 1;
+            let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
+            let mid = pa.lerp(pb, 0.5 * (t_in + t_out.max(t_in)));
+            let depth = index.signed_distance(mid, reach).map_or(0.0, |s| (-s).max(0.0));
+            for v in [a, b] {
+                let e = need.entry(v).or_insert(0.0);
+                *e = e.max(depth);
+            }
+        }
+        found.push(count);
+        if need.is_empty() {
             break;
         }
-        ends.sort_unstable();
-        ends.dedup();
-        let hits: Vec<Hit> = ends
-            .iter()
+        let hits: Vec<Hit> = need
+            .keys()
             .filter_map(|&v| {
                 let p = positions[v as usize];
                 let near = index.nearest(p, reach)?;
@@ -282,10 +319,12 @@ pub fn respond_edges(
                 })
             })
             .collect();
-        let target = |h: &Hit| ease.max(-h.depth + 0.25 * ease);
+        // Each end goes out by the edge's depth and a quarter of the ease beyond where it
+        // stands, at least to the ease.
+        let target = |h: &Hit| ease.max(-h.depth + need.get(&h.vertex).copied().unwrap_or(0.0) + 0.25 * ease);
         all.extend(respond_round(index, positions, &hits, roles, &target, round, options));
     }
-    all
+    (all, found)
 }
 
 fn respond_round(
@@ -298,14 +337,32 @@ fn respond_round(
     options: &ResponseOptions,
 ) -> Vec<Response> {
     let positions = out.to_vec();
+    let reach = 0.2 * index.height;
     let mut responses = Vec::with_capacity(hits.len());
     for hit in hits {
         let ease = target(hit);
         let v = hit.vertex as usize;
         let p = positions[v];
         let n = roles.normals.get(v).copied().unwrap_or(DVec3::ZERO);
-        let (mut d, mut rule, mut centre) = rule_direction(index, hit, p, roles, options);
         let iso = roles.ring_normal.get(v).copied().flatten();
+        // The shortest way out of (or away from) the body, exact.
+        let near = index.nearest(p, reach);
+        let (way_out, depth) = match near {
+            Some(near) if near.distance > 0.0 => {
+                let s = near.signed(p);
+                ((p - near.foot) * s.signum() / near.distance, (-s).max(0.0))
+            }
+            Some(near) => (near.normal, 0.0),
+            None => (hit.normal, hit.depth.max(0.0)),
+        };
+        let keep_plane = |d: DVec3| match iso {
+            Some(pn) => {
+                let along = d - pn * d.dot(pn);
+                if along.length() > 0.5 * d.length() { along } else { d }
+            }
+            None => d,
+        };
+        let (mut d, mut rule, mut centre) = rule_direction(index, hit, p, roles, options);
         if let Some(pn) = iso {
             let along = d - pn * d.dot(pn);
             d = if along.length() > 1e-3 * d.length().max(1e-300) {
@@ -315,26 +372,32 @@ fn respond_round(
             };
         }
         d = d.normalize_or_zero();
-        if d == DVec3::ZERO {
-            d = if hit.normal != DVec3::ZERO { hit.normal } else { n };
-            rule = AppliedRule::Fallback;
-        }
         let proposed = d;
         // Self-collision guard where the body has ring centres.
         if let Some(c) = index.slices.at(p.y).and_then(|s| s.centres) {
             let local = c.local_of(flat(p));
             let g = flat(p) - local;
-            if g.length() > 0.0 && horizontal(d).dot(DVec3::new(g.x, 0.0, g.y)) <= 0.0 {
+            if d != DVec3::ZERO && g.length() > 0.0 && horizontal(d).dot(DVec3::new(g.x, 0.0, g.y)) <= 0.0 {
                 d = DVec3::new(g.x, 0.0, g.y).normalize();
                 rule = AppliedRule::Guard;
                 centre = Some(local);
             }
         }
-        let (to, ease_error, rule) = match push_out(index, p, d, ease) {
+        // A direction more than 75 degrees off the way out would drag the vertex through
+        // the body (a horizontal ring ray under the crotch): take the way out instead.
+        if d.dot(way_out) < MIN_COSINE {
+            d = keep_plane(way_out).normalize_or_zero();
+            rule = AppliedRule::Fallback;
+            centre = None;
+        }
+        let limit = 3.0 * (depth + ease);
+        let pushed = push_out(index, p, d, ease).filter(|(q, _)| q.distance(p) <= limit);
+        let (to, ease_error, rule) = match pushed {
             Some((q, e)) => (q, e, rule),
             None => {
-                let q = hit.foot + hit.normal * ease;
-                let e = index.signed_distance(q, 0.2 * index.height).unwrap_or(0.0) - ease;
+                let foot = near.map_or(hit.foot, |n| n.foot);
+                let q = foot + way_out * ease;
+                let e = index.signed_distance(q, reach).unwrap_or(0.0) - ease;
                 (q, e, AppliedRule::Fallback)
             }
         };

@@ -6,7 +6,10 @@
 
 use glam::DVec3;
 
+use super::detect::Detection;
+use super::quality::Quality;
 use super::ray::ray_triangle;
+use crate::body::DetectionMethod;
 use crate::geom::inside::winding_number;
 use crate::mesh::TriMesh;
 
@@ -53,10 +56,82 @@ fn parallel<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
 /// The ground truth of `positions` and `edges` against the closed `body`.
 pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> GroundTruth {
     let inside = parallel(positions.len(), |v| winding_number(body, positions[v]) > 0.5);
+    // Every edge against every triangle; a box overlap test first only saves time.
+    let boxes: Vec<(DVec3, DVec3)> = (0..body.triangles.len())
+        .map(|t| {
+            let [a, b, c] = body.corners(t);
+            (a.min(b).min(c), a.max(b).max(c))
+        })
+        .collect();
     let crossing = parallel(edges.len(), |e| {
         let [a, b] = edges[e];
         let (a, b) = (positions[a as usize], positions[b as usize]);
-        (0..body.triangles.len()).any(|t| ray_triangle(a, b - a, body.corners(t), 0.0, 1.0).is_some())
+        let (lo, hi) = (a.min(b), a.max(b));
+        boxes.iter().enumerate().any(|(t, (tlo, thi))| {
+            tlo.cmple(hi).all() && thi.cmpge(lo).all() && ray_triangle(a, b - a, body.corners(t), 0.0, 1.0).is_some()
+        })
     });
     GroundTruth { inside, crossing }
+}
+
+/// Detection and quality checked against the ground truth.
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct VerifyReport {
+    /// Vertices inside before response (truth).
+    pub inside_before: usize,
+    /// Edges crossing before response (truth).
+    pub crossing_before: usize,
+    /// Inside vertices detection did not report.
+    pub missed: usize,
+    /// Reported vertices that are not inside.
+    pub false_hits: usize,
+    /// Of the missed, those tested line-line.
+    pub missed_line_line: usize,
+    /// Of the false hits, those tested line-line.
+    pub false_line_line: usize,
+    /// Vertices inside after response (truth).
+    pub inside_after: usize,
+    /// Edges crossing after response (truth).
+    pub crossing_after: usize,
+    /// The quality figures after response equal the truth's.
+    pub quality_agrees: bool,
+}
+
+/// Compares detection (on the mesh of `before`) and quality (on the mesh of `after`) with
+/// the ground truth of both.
+pub fn compare(before: &GroundTruth, detection: &Detection, after: &GroundTruth, quality: &Quality) -> VerifyReport {
+    let mut reported = vec![false; before.inside.len()];
+    for h in &detection.hits {
+        if let Some(r) = reported.get_mut(h.vertex as usize) {
+            *r = true;
+        }
+    }
+    let line = |v: usize| detection.methods.get(v).copied().flatten() == Some(DetectionMethod::LineLine);
+    let mut report = VerifyReport {
+        inside_before: before.inside_count(),
+        crossing_before: before.crossing_count(),
+        inside_after: after.inside_count(),
+        crossing_after: after.crossing_count(),
+        ..VerifyReport::default()
+    };
+    for (v, (&truth, &said)) in before.inside.iter().zip(&reported).enumerate() {
+        if truth && !said {
+            report.missed += 1;
+            report.missed_line_line += usize::from(line(v));
+        }
+        if said && !truth {
+            report.false_hits += 1;
+            report.false_line_line += usize::from(line(v));
+        }
+    }
+    let inside_after: Vec<u32> = (0..after.inside.len())
+        .filter(|&v| after.inside[v])
+        .map(|v| v as u32)
+        .collect();
+    let crossing_after: Vec<u32> = (0..after.crossing.len())
+        .filter(|&e| after.crossing[e])
+        .map(|e| e as u32)
+        .collect();
+    report.quality_agrees = inside_after == quality.inside && crossing_after == quality.crossing;
+    report
 }

@@ -1,5 +1,6 @@
 //! `--export DIR`: the body and every mesh a step produced, as OBJ files named by step
 //! and mesh (`step00_body.obj`, `step01_mannequin_polar.obj`, `step03_jumpsuit_m0.obj`, ...).
+//! A garment's M0 is written after the collision response.
 
 use std::path::PathBuf;
 
@@ -53,8 +54,8 @@ impl StageSink for ObjExporter {
                 }
                 Ok(())
             }
-            Stage::Garment(fw, crate::session::runner::GarmentPart::Mesh) => {
-                self.write(info, &format!("{}_m0", fw.template.name()), &fw.m0.mesh)
+            Stage::Collision(outcome, _, crate::session::runner::CollisionPart::Respond) => {
+                self.write(info, &format!("{}_m0", outcome.template), &outcome.collision.mesh)
             }
             _ => Ok(()),
         }

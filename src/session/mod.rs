@@ -7,7 +7,10 @@ pub mod runner;
 
 pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
-pub use runner::{GarmentPart, RingStep, RunError, RunOptions, RunReport, Stage, StageInfo, StageSink, run_session};
+pub use runner::{
+    CollisionOutcome, CollisionPart, GarmentPart, RingStep, RunError, RunOptions, RunReport, Stage, StageInfo, StageSink,
+    run_session,
+};
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).
 pub const DEMO_SESSION: &str = include_str!("../../assets/sessions/demo.drape");

@@ -13,6 +13,10 @@ use super::metrics::StepMetrics;
 use crate::body::{
     self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition, PartitionOptions,
 };
+use crate::collision::{
+    self, BodyIndex, Collision, CollisionOptions, DetectState, GarmentMesh, VerifyReport, detect, quality, respond,
+    respond_edges, response_ease,
+};
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind, build_framework};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
@@ -63,10 +67,44 @@ pub enum Stage<'a> {
         /// After.
         after: &'a Framework,
     },
+    /// Mesh-layer collision of a step's M0.
+    Collision(&'a CollisionOutcome, &'a BodyIndex, CollisionPart),
     /// A step failed; everything before it stands.
     Failed(&'a RunError),
     /// A step finished with these metrics.
     StepDone(&'a StepMetrics),
+}
+
+/// The parts of a collision, in the order they are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CollisionPart {
+    /// Detection: the penetrating vertices by partition.
+    Detect,
+    /// Response: the moved vertices and M0 after it.
+    Respond,
+}
+
+impl CollisionPart {
+    /// Stage name.
+    pub fn stage_name(self) -> &'static str {
+        match self {
+            Self::Detect => "collision.detect",
+            Self::Respond => "collision.response",
+        }
+    }
+}
+
+/// A step's collision: M0 as collided, the result, and the ground-truth check.
+#[derive(Clone, Debug)]
+pub struct CollisionOutcome {
+    /// The garment mesh before response, with its roles.
+    pub garment: GarmentMesh,
+    /// Detection, response, quality.
+    pub collision: Collision,
+    /// With `--verify`: the brute-force check.
+    pub verify: Option<VerifyReport>,
+    /// Template name (for file names).
+    pub template: &'static str,
 }
 
 /// The parts of a garment solve, in the order they are emitted.
@@ -176,6 +214,10 @@ pub struct RunOptions {
     pub landmarks: LandmarkOptions,
     /// Partition settings.
     pub partitions: PartitionOptions,
+    /// Collision settings.
+    pub collision: CollisionOptions,
+    /// Check every collision against the brute-force ground truth (`--verify`; slow).
+    pub verify: bool,
 }
 
 /// What a run produced.
@@ -311,14 +353,15 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     driver.emit(0, "scene", "done", Stage::StepDone(&done), &mut m);
     report.steps.push(m);
     let mut probe: Option<BodyProbe> = None;
+    let mut index: Option<BodyIndex> = None;
     let mut garment: Option<GarmentState> = None;
 
     // --- The steps.
     for (i, step) in session.steps.iter().enumerate() {
-        let index = i + 1;
+        let step_index = i + 1;
         let op = step.op.keyword();
         let mut m = StepMetrics {
-            step: index,
+            step: step_index,
             op: op.into(),
             ..StepMetrics::default()
         };
@@ -337,7 +380,7 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                             .map(|e| json!({"region": e.region, "polar": e.polar, "chord": e.chord}))
                             .collect();
                         m.set("regions", regions);
-                        driver.emit(index, op, "mannequin.refine", Stage::Mannequin(&result), &mut m);
+                        driver.emit(step_index, op, "mannequin.refine", Stage::Mannequin(&result), &mut m);
                         Ok(())
                     }
                     Err(e) => Err(e.to_string()),
@@ -356,7 +399,7 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                     m.set("loops", loops.len());
                     m.set("lengths_m", loops.iter().map(SectionLoop::length).collect::<Vec<_>>());
                     driver.emit(
-                        index,
+                        step_index,
                         op,
                         "section.cut",
                         Stage::Section {
@@ -374,19 +417,23 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                 fit,
                 resolution,
             } => {
-                let options = FrameworkOptions::default().with_fit(*fit).with_resolution(*resolution);
+                let fw_options = FrameworkOptions::default().with_fit(*fit).with_resolution(*resolution);
                 let state = GarmentState {
                     template: *template,
-                    options,
+                    options: fw_options,
                     dims: Dimensions::default(),
                     framework: None,
+                    detect: DetectState::default(),
+                    collision: None,
                 };
-                solve_garment(&body, &mut probe, state, &mut m).map(|state| {
+                solve_garment(&body, &mut probe, state, &mut m).map(|mut state| {
                     if let Some(fw) = &state.framework {
                         for part in GarmentPart::all() {
-                            driver.emit(index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
+                            driver.emit(step_index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
                         }
                     }
+                    collide_garment(&body, &mut index, &mut state, options, &mut m);
+                    emit_collision(&mut driver, step_index, op, &state, index.as_ref(), &mut m);
                     garment = Some(state);
                 })
             }
@@ -403,10 +450,12 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                         options: state.options,
                         dims: state.dims.clone(),
                         framework: None,
+                        detect: state.detect.clone(),
+                        collision: None,
                     };
                     next.dims.values.insert(name.clone(), value);
                     match solve_garment(&body, &mut probe, next, &mut m) {
-                        Ok(next) => {
+                        Ok(mut next) => {
                             if let Some(after) = &next.framework {
                                 let moved = before
                                     .m0
@@ -418,16 +467,18 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                                     .fold(0.0, f64::max);
                                 m.set("max_vertex_move_m", moved);
                                 driver.emit(
-                                    index,
+                                    step_index,
                                     op,
                                     "garment.edit",
                                     Stage::GarmentEdit { name, before, after },
                                     &mut m,
                                 );
                                 for part in GarmentPart::all() {
-                                    driver.emit(index, op, part.stage_name(), Stage::Garment(after, part), &mut m);
+                                    driver.emit(step_index, op, part.stage_name(), Stage::Garment(after, part), &mut m);
                                 }
                             }
+                            collide_garment(&body, &mut index, &mut next, options, &mut m);
+                            emit_collision(&mut driver, step_index, op, &next, index.as_ref(), &mut m);
                             garment = Some(next);
                             Ok(())
                         }
@@ -437,15 +488,15 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
             },
         };
         if let Err(message) = outcome {
-            let error = fail(index, step.line, op, message);
+            let error = fail(step_index, step.line, op, message);
             m.error = Some(error.message.clone());
-            driver.emit(index, op, "failed", Stage::Failed(&error), &mut m);
+            driver.emit(step_index, op, "failed", Stage::Failed(&error), &mut m);
             report.steps.push(m);
             report.error = Some(error);
             return report;
         }
         let done = m.clone();
-        driver.emit(index, op, "done", Stage::StepDone(&done), &mut m);
+        driver.emit(step_index, op, "done", Stage::StepDone(&done), &mut m);
         report.steps.push(m);
     }
     if !driver.sink_errors.is_empty() {
@@ -454,12 +505,150 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     report
 }
 
-/// The current garment: its template, settings, the dimensions set so far and the solve.
+/// The current garment: its template, settings, the dimensions set so far, the solve, and
+/// what collision remembers between steps.
 struct GarmentState {
     template: TemplateKind,
     options: FrameworkOptions,
     dims: Dimensions,
     framework: Option<Framework>,
+    detect: DetectState,
+    collision: Option<CollisionOutcome>,
+}
+
+fn emit_collision(
+    driver: &mut Driver<'_, '_>,
+    step: usize,
+    op: &'static str,
+    state: &GarmentState,
+    index: Option<&BodyIndex>,
+    m: &mut StepMetrics,
+) {
+    if let (Some(outcome), Some(index)) = (&state.collision, index) {
+        for part in [CollisionPart::Detect, CollisionPart::Respond] {
+            driver.emit(step, op, part.stage_name(), Stage::Collision(outcome, index, part), m);
+        }
+    }
+}
+
+/// Collides the state's M0 with the body (building the body index once), recording the
+/// figures in the step's metrics.
+fn collide_garment(
+    body: &Body,
+    index: &mut Option<BodyIndex>,
+    state: &mut GarmentState,
+    options: &RunOptions,
+    m: &mut StepMetrics,
+) {
+    let Some(fw) = &state.framework else {
+        return;
+    };
+    if index.is_none() {
+        *index = Some(timed(m, "collision.index", || {
+            BodyIndex::new(body, &options.collision.slices)
+        }));
+    }
+    let Some(index) = index.as_ref() else {
+        return;
+    };
+    let co = &options.collision;
+    let garment = GarmentMesh::from_framework(fw, index.height);
+    let detection = timed(m, "collision.detect", || {
+        detect(index, &garment.input(), &co.detect, &mut state.detect)
+    });
+    let ease = response_ease(index, fw.ease(), &co.response);
+    let (mut positions, mut responses) = timed(m, "collision.respond", || {
+        respond(
+            index,
+            &garment.mesh.positions,
+            &detection.hits,
+            &garment.roles(),
+            ease,
+            &co.response,
+        )
+    });
+    let (edge_responses, edge_rounds) = timed(m, "collision.respond_edges", || {
+        respond_edges(
+            index,
+            &mut positions,
+            &garment.edges,
+            &detection.partition,
+            &garment.roles(),
+            ease,
+            &co.response,
+        )
+    });
+    responses.extend(edge_responses);
+    let q = timed(m, "collision.quality", || {
+        quality(index, &positions, &garment.edges, &responses)
+    });
+    let collision = Collision {
+        detection,
+        ease,
+        responses,
+        edge_rounds,
+        mesh: crate::mesh::TriMesh {
+            positions,
+            triangles: garment.mesh.triangles.clone(),
+        },
+        quality: q,
+    };
+    let verify = options.verify.then(|| {
+        timed(m, "collision.verify", || {
+            let before = collision::ground_truth(&body.mesh.mesh, &garment.mesh.positions, &garment.edges);
+            let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges);
+            collision::compare(&before, &collision.detection, &after, &collision.quality)
+        })
+    });
+    record_collision(m, index, &collision, verify.as_ref());
+    state.collision = Some(CollisionOutcome {
+        garment,
+        collision,
+        verify,
+        template: state.template.name(),
+    });
+}
+
+fn record_collision(m: &mut StepMetrics, index: &BodyIndex, c: &Collision, verify: Option<&VerifyReport>) {
+    let d = &c.detection;
+    let q = &c.quality;
+    m.set("penetrating_vertices", q.penetrating_vertices);
+    m.set("crossing_edges", q.crossing_edges);
+    m.set("max_depth_m", q.max_depth_m);
+    m.set("mean_depth_m", q.mean_depth_m);
+    m.set("tested_vertices", d.tested);
+    m.set("skipped_inert", d.skipped_inert);
+    m.set("skipped_patch", d.skipped_patch);
+    m.set("patches_skipped", d.patches_skipped);
+    m.set("hits", d.hits.len());
+    m.set("depth_before_max_m", d.hits.iter().map(|h| h.depth).fold(0.0, f64::max));
+    let mut by_partition = serde_json::Map::new();
+    for (k, p) in index.partitions.iter().enumerate() {
+        let n = d.hits.iter().filter(|h| h.partition == k).count();
+        by_partition.insert(p.id.letter().to_string(), json!(n));
+    }
+    m.set("hits_by_partition", by_partition);
+    m.set(
+        "tested_by_method",
+        json!({"point_face": d.by_method[0], "line_line": d.by_method[1]}),
+    );
+    let mut by_rule = serde_json::Map::new();
+    for rule in collision::AppliedRule::ALL {
+        let n = c.responses.iter().filter(|r| r.rule == rule).count();
+        if n > 0 {
+            by_rule.insert(rule.name().to_string(), json!(n));
+        }
+    }
+    m.set("responses", c.responses.iter().filter(|r| r.edge_round == 0).count());
+    m.set("edge_responses", c.responses.iter().filter(|r| r.edge_round > 0).count());
+    m.set("responses_by_rule", by_rule);
+    m.set("crossing_edges_by_round", c.edge_rounds.clone());
+    m.set("response_ease_m", c.ease);
+    m.set("max_ease_error_m", q.max_ease_error_m);
+    m.set("mean_ease_error_m", q.mean_ease_error_m);
+    if let Some(v) = verify {
+        m.set("verify", serde_json::to_value(v).unwrap_or_default());
+    }
 }
 
 /// Solves the framework, recording its figures in the step's metrics.

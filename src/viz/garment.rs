@@ -6,6 +6,7 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
 use super::logger::{RerunLogger, closed, f32s, to_sink};
 use crate::garment::{Framework, GarmentRing, RingStages};
+use crate::mesh::TriMesh;
 use crate::session::runner::{GarmentPart, RingStep, SinkError};
 
 /// Colour of a ring sub-step.
@@ -65,6 +66,7 @@ impl RerunLogger {
         let rec = self.recording();
         match part {
             GarmentPart::Planes => {
+                rec.log("collision", &Clear::recursive()).map_err(to_sink)?;
                 for p in &fw.planes {
                     let (u, v) = p.plane.frame();
                     let c = p.centre - p.plane.normal * p.plane.signed_distance(p.centre);
@@ -251,43 +253,7 @@ impl RerunLogger {
             GarmentPart::Mesh => {
                 let m0 = &fw.m0;
                 rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
-                // Vertex colour: the patch of the first face that uses the vertex.
-                let mut colors = vec![[200u8, 200, 200]; m0.mesh.positions.len()];
-                let mut seen = vec![false; m0.mesh.positions.len()];
-                for (t, &p) in m0.mesh.triangles.iter().zip(&m0.face_patch) {
-                    for &v in t {
-                        if !seen[v as usize] {
-                            seen[v as usize] = true;
-                            colors[v as usize] = patch_color(p as usize);
-                        }
-                    }
-                }
-                let normals: Vec<[f32; 3]> = m0
-                    .mesh
-                    .vertex_normals()
-                    .iter()
-                    .map(|n| n.as_vec3().to_array())
-                    .collect();
-                rec.log(
-                    "garment/m0",
-                    &Mesh3D::new(m0.mesh.positions_f32())
-                        .with_triangle_indices(m0.mesh.triangles.iter().copied())
-                        .with_vertex_normals(normals)
-                        .with_vertex_colors(colors),
-                )
-                .map_err(to_sink)?;
-                let edges: Vec<Vec<[f32; 3]>> = m0
-                    .edges
-                    .iter()
-                    .map(|e| f32s(&[m0.mesh.positions[e[0] as usize], m0.mesh.positions[e[1] as usize]]))
-                    .collect();
-                rec.log(
-                    "garment/m0/edges",
-                    &LineStrips3D::new(edges)
-                        .with_radii([0.0004])
-                        .with_colors([[60, 60, 70]]),
-                )
-                .map_err(to_sink)?;
+                self.m0(&m0.mesh, &m0.face_patch, &m0.edges)?;
                 self.scalar("metrics/garment/m0_vertices", m0.mesh.positions.len() as f64)?;
                 self.scalar("metrics/garment/m0_faces", m0.mesh.triangles.len() as f64)?;
                 let worst = fw
@@ -315,6 +281,40 @@ impl RerunLogger {
                 )
             }
         }
+    }
+
+    /// Logs a garment mesh as `garment/m0` (vertices coloured by patch) with its edges.
+    pub(super) fn m0(&self, mesh: &TriMesh, face_patch: &[u32], edges: &[[u32; 2]]) -> Result<(), SinkError> {
+        let rec = self.recording();
+        // Vertex colour: the patch of the first face that uses the vertex.
+        let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
+        let mut seen = vec![false; mesh.positions.len()];
+        for (t, &p) in mesh.triangles.iter().zip(face_patch) {
+            for &v in t {
+                if !seen[v as usize] {
+                    seen[v as usize] = true;
+                    colors[v as usize] = patch_color(p as usize);
+                }
+            }
+        }
+        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
+        rec.log(
+            "garment/m0",
+            &Mesh3D::new(mesh.positions_f32())
+                .with_triangle_indices(mesh.triangles.iter().copied())
+                .with_vertex_normals(normals)
+                .with_vertex_colors(colors),
+        )
+        .map_err(to_sink)?;
+        let lines: Vec<Vec<[f32; 3]>> = edges
+            .iter()
+            .map(|e| f32s(&[mesh.positions[e[0] as usize], mesh.positions[e[1] as usize]]))
+            .collect();
+        rec.log(
+            "garment/m0/edges",
+            &LineStrips3D::new(lines).with_radii([0.0004]).with_colors([[60, 60, 70]]),
+        )
+        .map_err(to_sink)
     }
 
     fn control_points(&self, fw: &Framework) -> Result<(), SinkError> {

@@ -408,6 +408,7 @@ impl RerunLogger {
             }
             Stage::Garment(fw, part) => self.garment(fw, part),
             Stage::GarmentEdit { name, before, after } => self.garment_edit(name, before, after),
+            Stage::Collision(outcome, index, part) => self.collision(outcome, index, part),
             Stage::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
             Stage::StepDone(metrics) => {
                 if self.options.timings {

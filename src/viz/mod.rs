@@ -7,11 +7,15 @@
 //! `garment/curves/rings/<ring>` (the ring at its current sub-step, `/points` its samples),
 //! `garment/curves/contours/<name>`, `garment/curves/lines/<name>`,
 //! `garment/curves/straightened`, `garment/control_points` (labelled), `garment/patches`,
-//! `garment/m0` (+ `/edges`), `garment/edit/moves`, `metrics/...` (scalars), `log` (text
-//! per stage). Timelines: `step` and `stage`.
+//! `garment/m0` (+ `/edges`; after response at the `collision.response` stage),
+//! `garment/edit/moves`, `collision/mesh/hits/<A..G>` (+ `/depth`),
+//! `collision/response/<rule>` (arrows), `collision/mesh/remaining`,
+//! `collision/mesh/crossing_edges`, `metrics/...` (scalars), `log` (text per stage).
+//! Timelines: `step` and `stage`.
 
 pub mod blueprint;
 pub mod colors;
+mod collision;
 mod garment;
 pub mod logger;
 pub mod target;

@@ -1,0 +1,190 @@
+//! Logging the mesh-layer collision: hits per partition (points coloured by partition,
+//! with their depth as a line to the skin), response arrows coloured by rule, M0 after
+//! response, what is left inside or crossing, and the collision scalars.
+
+use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
+
+use super::colors::partition_color;
+use super::logger::{RerunLogger, f32s, to_sink};
+use crate::collision::{AppliedRule, BodyIndex};
+use crate::session::runner::{CollisionOutcome, CollisionPart, SinkError};
+
+/// Colour of a response rule.
+pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
+    match rule {
+        AppliedRule::VertexNormal => [90, 90, 255],
+        AppliedRule::ViewDirection => [0, 200, 200],
+        AppliedRule::BodyNormal => [255, 170, 0],
+        AppliedRule::GlobalCentre => [30, 160, 60],
+        AppliedRule::LocalCentre => [150, 220, 60],
+        AppliedRule::Guard => [230, 30, 200],
+        AppliedRule::Fallback => [140, 140, 140],
+    }
+}
+
+impl RerunLogger {
+    pub(super) fn collision(
+        &self,
+        outcome: &CollisionOutcome,
+        index: &BodyIndex,
+        part: CollisionPart,
+    ) -> Result<(), SinkError> {
+        match part {
+            CollisionPart::Detect => self.collision_detect(outcome, index),
+            CollisionPart::Respond => self.collision_respond(outcome),
+        }
+    }
+
+    fn collision_detect(&self, outcome: &CollisionOutcome, index: &BodyIndex) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let d = &outcome.collision.detection;
+        let positions = &outcome.garment.mesh.positions;
+        let mut summary = Vec::new();
+        for (k, p) in index.partitions.iter().enumerate() {
+            let path = format!("collision/mesh/hits/{}", p.id.letter());
+            let hits: Vec<_> = d.hits.iter().filter(|h| h.partition == k).collect();
+            if hits.is_empty() {
+                rec.log(path.as_str(), &Clear::recursive()).map_err(to_sink)?;
+                continue;
+            }
+            let points: Vec<_> = hits.iter().map(|h| positions[h.vertex as usize]).collect();
+            let color = partition_color(p.id);
+            rec.log(
+                path.as_str(),
+                &Points3D::new(f32s(&points))
+                    .with_radii([0.004])
+                    .with_colors([color])
+                    .with_labels(hits.iter().map(|h| format!("v{} {:.1} mm", h.vertex, h.depth * 1e3)))
+                    .with_show_labels(false),
+            )
+            .map_err(to_sink)?;
+            let depth: Vec<Vec<[f32; 3]>> = hits
+                .iter()
+                .map(|h| f32s(&[positions[h.vertex as usize], h.foot]))
+                .collect();
+            rec.log(
+                format!("{path}/depth"),
+                &LineStrips3D::new(depth).with_radii([0.0012]).with_colors([color]),
+            )
+            .map_err(to_sink)?;
+            let deepest = hits.iter().map(|h| h.depth).fold(0.0, f64::max);
+            summary.push(format!(
+                "{} {} ({}, deepest {:.1} mm)",
+                p.id.letter(),
+                hits.len(),
+                if hits[0].method == crate::body::DetectionMethod::LineLine {
+                    "line-line"
+                } else {
+                    "point-face"
+                },
+                deepest * 1e3
+            ));
+        }
+        self.scalar("metrics/collision/hits", d.hits.len() as f64)?;
+        self.scalar("metrics/collision/tested_vertices", d.tested as f64)?;
+        self.scalar("metrics/collision/skipped_inert", d.skipped_inert as f64)?;
+        self.scalar("metrics/collision/skipped_patch", d.skipped_patch as f64)?;
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "detection: {} vertices tested ({} point-face, {} line-line), {} skipped as inert, {} with {} unchanged patches; {} inside{}{}",
+                d.tested,
+                d.by_method[0],
+                d.by_method[1],
+                d.skipped_inert,
+                d.skipped_patch,
+                d.patches_skipped,
+                d.hits.len(),
+                if summary.is_empty() { "" } else { ": " },
+                summary.join(", ")
+            ),
+        )
+    }
+
+    fn collision_respond(&self, outcome: &CollisionOutcome) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let c = &outcome.collision;
+        let g = &outcome.garment;
+        let mut counts = Vec::new();
+        for rule in AppliedRule::ALL {
+            let path = format!("collision/response/{}", rule.name());
+            let moved: Vec<_> = c.responses.iter().filter(|r| r.rule == rule).collect();
+            if moved.is_empty() {
+                rec.log(path.as_str(), &Clear::flat()).map_err(to_sink)?;
+                continue;
+            }
+            counts.push(format!("{} {}", rule.name(), moved.len()));
+            rec.log(
+                path.as_str(),
+                &Arrows3D::from_vectors(moved.iter().map(|r| (r.to - r.from).as_vec3().to_array()))
+                    .with_origins(moved.iter().map(|r| r.from.as_vec3().to_array()))
+                    .with_radii([0.0009])
+                    .with_colors([rule_color(rule)]),
+            )
+            .map_err(to_sink)?;
+        }
+        self.m0(&c.mesh, &g.face_patch, &g.edges)?;
+        let q = &c.quality;
+        if q.inside.is_empty() {
+            rec.log("collision/mesh/remaining", &Clear::flat()).map_err(to_sink)?;
+        } else {
+            let pts: Vec<_> = q.inside.iter().map(|&v| c.mesh.positions[v as usize]).collect();
+            rec.log(
+                "collision/mesh/remaining",
+                &Points3D::new(f32s(&pts)).with_radii([0.006]).with_colors([[255, 0, 0]]),
+            )
+            .map_err(to_sink)?;
+        }
+        if q.crossing.is_empty() {
+            rec.log("collision/mesh/crossing_edges", &Clear::flat()).map_err(to_sink)?;
+        } else {
+            let lines: Vec<Vec<[f32; 3]>> = q
+                .crossing
+                .iter()
+                .map(|&e| {
+                    let [a, b] = g.edges[e as usize];
+                    f32s(&[c.mesh.positions[a as usize], c.mesh.positions[b as usize]])
+                })
+                .collect();
+            rec.log(
+                "collision/mesh/crossing_edges",
+                &LineStrips3D::new(lines).with_radii([0.002]).with_colors([[255, 0, 0]]),
+            )
+            .map_err(to_sink)?;
+        }
+        self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
+        self.scalar("metrics/collision/crossing_edges", q.crossing_edges as f64)?;
+        self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
+        self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
+        self.scalar("metrics/collision/max_ease_error_m", q.max_ease_error_m)?;
+        let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
+            format!(
+                "; verified by brute force: {} inside before ({} missed, {} false hits; line-line {} and {}), {} inside and {} crossing after, quality agrees: {}",
+                v.inside_before,
+                v.missed,
+                v.false_hits,
+                v.missed_line_line,
+                v.false_line_line,
+                v.inside_after,
+                v.crossing_after,
+                v.quality_agrees
+            )
+        });
+        let rounds: Vec<String> = c.edge_rounds.iter().map(ToString::to_string).collect();
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, ease error max {:.3} mm{}",
+                c.ease * 1e3,
+                c.responses.len(),
+                if counts.is_empty() { "none".to_string() } else { counts.join(", ") },
+                if rounds.is_empty() { "-".to_string() } else { rounds.join(" -> ") },
+                q.penetrating_vertices,
+                q.max_depth_m * 1e3,
+                q.crossing_edges,
+                q.max_ease_error_m * 1e3,
+                verify
+            ),
+        )
+    }
+}
