@@ -109,14 +109,65 @@ fn angle(a: DVec3, b: DVec3) -> f64 {
 impl BodyIndex {
     /// Prepares `body` (its mesh, adjacency, partitions and landmarks).
     pub fn new(body: &Body, slices: &SliceOptions) -> Self {
-        let mesh = &body.mesh.mesh;
-        let height = body.mesh.height().max(f64::MIN_POSITIVE);
+        let parts: Vec<PartitionIndex> = body
+            .partitions
+            .iter()
+            .map(|p| PartitionIndex {
+                id: p.id,
+                lower_y: p.lower_y,
+                upper_y: p.upper_y,
+                method: p.method,
+                response: p.response,
+                triangles: p.triangles.clone(),
+                bvh: Bvh::new(),
+            })
+            .collect();
+        Self::build(
+            &body.mesh.mesh,
+            &body.mesh.adjacency.neighbours,
+            body.mesh.height(),
+            parts,
+            SliceStack::new(body, slices),
+        )
+    }
+
+    /// Prepares a closed mesh with no landmarks: one partition over all of it, tested
+    /// point-face and responded along vertex normals; no slices. For tests and for
+    /// bodies that are not human.
+    pub fn from_mesh(mesh: &crate::mesh::TriMesh) -> Result<Self, crate::mesh::topology::NonManifoldEdge> {
+        let adjacency = crate::mesh::Adjacency::try_new(mesh)?;
+        let height = mesh.bounds().map_or(1.0, |(lo, hi)| (hi - lo).max_element());
+        let part = PartitionIndex {
+            id: PartitionId::A,
+            lower_y: f64::NEG_INFINITY,
+            upper_y: f64::INFINITY,
+            method: DetectionMethod::PointFace,
+            response: ResponseRule::VertexNormal,
+            triangles: (0..mesh.triangles.len() as u32).collect(),
+            bvh: Bvh::new(),
+        };
+        Ok(Self::build(
+            mesh,
+            &adjacency.neighbours,
+            height,
+            vec![part],
+            SliceStack::default(),
+        ))
+    }
+
+    fn build(
+        mesh: &crate::mesh::TriMesh,
+        neighbours: &[[u32; 3]],
+        height: f64,
+        mut partitions: Vec<PartitionIndex>,
+        slices: SliceStack,
+    ) -> Self {
+        let height = height.max(f64::MIN_POSITIVE);
         let positions = mesh.positions.clone();
         let triangles = mesh.triangles.clone();
         let face_normals: Vec<DVec3> = (0..triangles.len())
             .map(|t| mesh.scaled_normal(t).normalize_or_zero())
             .collect();
-        let neighbours = &body.mesh.adjacency.neighbours;
         let edge_normals: Vec<[DVec3; 3]> = (0..triangles.len())
             .map(|t| {
                 std::array::from_fn(|k| {
@@ -148,23 +199,10 @@ impl BodyIndex {
             .map(|t| aabb_of(t.map(|i| positions[i as usize]), slack))
             .collect();
         let whole = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
-        let partitions = body
-            .partitions
-            .iter()
-            .map(|p| {
-                let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
-                PartitionIndex {
-                    id: p.id,
-                    lower_y: p.lower_y,
-                    upper_y: p.upper_y,
-                    method: p.method,
-                    response: p.response,
-                    triangles: p.triangles.clone(),
-                    bvh: Bvh::from_leaves(BvhBuildStrategy::Binned, &local),
-                }
-            })
-            .collect();
-        let slices = SliceStack::new(body, slices);
+        for p in &mut partitions {
+            let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
+            p.bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &local);
+        }
         Self {
             positions,
             triangles,

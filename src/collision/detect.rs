@@ -78,6 +78,28 @@ impl Default for DetectOptions {
 }
 
 impl DetectOptions {
+    /// Sets [`Self::acceleration`].
+    #[must_use]
+    pub fn with_acceleration(mut self, acceleration: Acceleration) -> Self {
+        self.acceleration = acceleration;
+        self
+    }
+
+    /// Sets [`Self::method_override`].
+    #[must_use]
+    pub fn with_method(mut self, method: Option<DetectionMethod>) -> Self {
+        self.method_override = method;
+        self
+    }
+
+    /// Sets [`Self::inert`] and [`Self::patch_skipping`].
+    #[must_use]
+    pub fn with_skipping(mut self, skipping: bool) -> Self {
+        self.inert = skipping;
+        self.patch_skipping = skipping;
+        self
+    }
+
     /// The reach in metres for a body of height `height`.
     pub fn reach(&self, height: f64) -> Reach {
         Reach {

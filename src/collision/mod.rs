@@ -25,7 +25,7 @@ use glam::DVec3;
 
 pub use body_index::{BodyIndex, Nearest, PartitionIndex};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
-pub use point_face::{Reach, Search};
+pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, respond_edges, response_ease};
 pub use slices::{CentreChoice, Centres, SliceOptions, SliceStack};

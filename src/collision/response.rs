@@ -139,7 +139,8 @@ pub struct Response {
     pub rule: AppliedRule,
     /// The direction before the guard (equal to `direction` unless guarded).
     pub proposed: DVec3,
-    /// The iso-height constraint removed the component along this ring normal.
+    /// The iso-height constraint removed the component along this ring normal (`None` if
+    /// the vertex is on no ring, or a fallback had to leave the ring's plane).
     pub iso: Option<DVec3>,
     /// The centre the rule or the guard read, `(x, z)`.
     pub centre: Option<DVec2>,
@@ -407,6 +408,8 @@ fn respond_round(
             d
         };
         out[v] = to;
+        // A fallback may have had to leave the ring's plane.
+        let iso = iso.filter(|n| direction.dot(*n).abs() <= 1e-9);
         responses.push(Response {
             vertex: hit.vertex,
             partition: hit.partition,

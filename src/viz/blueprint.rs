@@ -2,21 +2,30 @@
 
 use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical};
 
-/// 3D view of everything spatial on the left; metrics and the per-stage log on the right;
-/// the time panel on the `stage` timeline.
+/// 3D view of everything spatial on the left, above a close view of the collision (hits,
+/// response arrows, what is left; it frames itself on them); metrics and the per-stage log
+/// on the right; the time panel on the `stage` timeline.
 pub fn default_blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
-            Spatial3DView::new("Scene")
-                .with_origin("/")
-                .with_contents([
-                    "+ /body/**",
-                    "+ /mannequin/**",
-                    "+ /section/**",
-                    "+ /garment/**",
-                    "+ /collision/**",
-                ])
-                .into(),
+            Vertical::new([
+                Spatial3DView::new("Scene")
+                    .with_origin("/")
+                    .with_contents([
+                        "+ /body/**",
+                        "+ /mannequin/**",
+                        "+ /section/**",
+                        "+ /garment/**",
+                        "+ /collision/**",
+                    ])
+                    .into(),
+                Spatial3DView::new("Collision")
+                    .with_origin("/")
+                    .with_contents(["+ /collision/**"])
+                    .into(),
+            ])
+            .with_row_shares([3.0, 2.0])
+            .into(),
             Vertical::new([
                 TimeSeriesView::new("Metrics").with_origin("/metrics").into(),
                 TextLogView::new("Log").with_origin("/log").into(),

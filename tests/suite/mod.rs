@@ -1,5 +1,6 @@
 mod common;
 mod convexify;
+mod collision;
 mod coons;
 mod ease;
 mod garment;

@@ -1,0 +1,374 @@
+//! Mesh-layer collision on the real body: detection against the brute-force ground truth,
+//! response directions by rule, zero penetrations after response, skipping that changes
+//! nothing, and degenerate input.
+
+use std::collections::BTreeSet;
+use std::sync::OnceLock;
+
+use drape::body::DetectionMethod;
+use drape::collision::{
+    Acceleration, AppliedRule, BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, Reach, Search,
+    SliceOptions, collide, detect, ground_truth, point_face,
+};
+use drape::garment::{Dimensions, FrameworkOptions, TemplateKind, build_framework};
+use drape::mesh::TriMesh;
+use drape::session::{CollisionPart, RunOptions, Stage, StageInfo, StageSink, parse_session, run_session};
+use glam::DVec3;
+
+use super::common::{real_body, real_jumpsuit, real_probe};
+
+fn index() -> &'static BodyIndex {
+    static INDEX: OnceLock<BodyIndex> = OnceLock::new();
+    INDEX.get_or_init(|| BodyIndex::new(real_body(), &SliceOptions::default()))
+}
+
+/// A small deterministic generator (no dependency on a crate's stream across versions).
+struct Lcg(u64);
+
+impl Lcg {
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The default jumpsuit's M0 with every vertex pushed along its normal by a random amount
+/// in `[-in_m, out_m]` (negative: into the body).
+fn perturbed(seed: u64, in_m: f64, out_m: f64) -> GarmentMesh {
+    let mut g = GarmentMesh::from_framework(real_jumpsuit(), index().height);
+    let mut rng = Lcg(seed);
+    for (p, n) in g.mesh.positions.iter_mut().zip(&g.normals) {
+        *p += *n * (rng.unit() * (in_m + out_m) - in_m);
+    }
+    g.normals = g.mesh.vertex_normals();
+    g
+}
+
+fn hit_set(d: &drape::collision::Detection) -> BTreeSet<u32> {
+    d.hits.iter().map(|h| h.vertex).collect()
+}
+
+#[test]
+fn point_face_detection_matches_the_brute_force_truth_on_perturbed_garments() {
+    let g = perturbed(11, 0.04, 0.02);
+    let truth = ground_truth(&real_body().mesh.mesh, &g.mesh.positions, &[]);
+    let inside: BTreeSet<u32> = (0..truth.inside.len() as u32)
+        .filter(|&v| truth.inside[v as usize])
+        .collect();
+    assert!(inside.len() > 300, "the perturbation must push many vertices in: {}", inside.len());
+    let mut results = Vec::new();
+    for acceleration in [
+        Acceleration::BruteForce,
+        Acceleration::Partitioned,
+        Acceleration::PartitionedBvh,
+    ] {
+        let options = DetectOptions::default()
+            .with_acceleration(acceleration)
+            .with_method(Some(DetectionMethod::PointFace));
+        let d = detect(index(), &g.input(), &options, &mut DetectState::default());
+        let found = hit_set(&d);
+        let missed = inside.difference(&found).count();
+        let false_hits = found.difference(&inside).count();
+        assert_eq!((missed, false_hits), (0, 0), "{acceleration:?}");
+        results.push(d.hits);
+    }
+    // The three searches find the same nearest points, bit for bit.
+    assert_eq!(results[0], results[1]);
+    assert_eq!(results[1], results[2]);
+}
+
+#[test]
+fn line_line_misses_are_reported_and_bounded() {
+    let g = perturbed(12, 0.03, 0.02);
+    let truth = ground_truth(&real_body().mesh.mesh, &g.mesh.positions, &[]);
+    let d = detect(index(), &g.input(), &DetectOptions::default(), &mut DetectState::default());
+    let found = hit_set(&d);
+    let exact = detect(
+        index(),
+        &g.input(),
+        &DetectOptions::default().with_method(Some(DetectionMethod::PointFace)),
+        &mut DetectState::default(),
+    );
+    let line: Vec<usize> = (0..g.mesh.positions.len())
+        .filter(|&v| d.methods[v] == Some(DetectionMethod::LineLine))
+        .collect();
+    assert!(line.len() > 1000, "legs and abdomen are tested line-line: {}", line.len());
+    let inside_line = line.iter().filter(|&&v| truth.inside[v]).count();
+    let missed: Vec<usize> = line
+        .iter()
+        .copied()
+        .filter(|&v| truth.inside[v] && !found.contains(&(v as u32)))
+        .collect();
+    let false_hits = line
+        .iter()
+        .filter(|&&v| !truth.inside[v] && found.contains(&(v as u32)))
+        .count();
+    // Every miss and false hit lies near the skin: its exact depth is at most the slice
+    // spacing's worth of surface change plus a little (the paper's bound is a quarter of
+    // a ring edge).
+    let depth_of = |v: usize| exact.hits.iter().find(|h| h.vertex as usize == v).map_or(0.0, |h| h.depth);
+    let worst_missed = missed.iter().map(|&v| depth_of(v)).fold(0.0, f64::max);
+    eprintln!(
+        "line-line: {} vertices, {} inside, {} missed (deepest {:.2} mm), {} false hits",
+        line.len(),
+        inside_line,
+        missed.len(),
+        worst_missed * 1e3,
+        false_hits
+    );
+    assert!(missed.len() * 50 <= inside_line, "line-line misses more than 2%");
+    assert!(false_hits * 50 <= inside_line, "line-line false hits more than 2%");
+    assert!(worst_missed < 0.005, "a line-line miss 5 mm deep");
+    // Point-face partitions stay exact under the default (mixed) methods.
+    let pf_wrong = (0..g.mesh.positions.len())
+        .filter(|&v| d.methods[v] == Some(DetectionMethod::PointFace))
+        .filter(|&v| truth.inside[v] != found.contains(&(v as u32)))
+        .count();
+    assert_eq!(pf_wrong, 0);
+}
+
+/// The demo's edits: the jumpsuit, 4 cm more at the waist, then the ease down to 4 mm.
+fn tight_jumpsuit() -> GarmentMesh {
+    let mut dims = Dimensions::default();
+    dims.values.insert("waist_girth".into(), 0.8096);
+    dims.values.insert("ease".into(), 0.004);
+    let fw = build_framework(
+        real_body(),
+        real_probe(),
+        TemplateKind::Jumpsuit,
+        &dims,
+        &FrameworkOptions::default(),
+    )
+    .expect("the tight jumpsuit builds");
+    GarmentMesh::from_framework(&fw, index().height)
+}
+
+fn parallel(a: DVec3, b: DVec3) -> bool {
+    let (a, b) = (a.normalize_or_zero(), b.normalize_or_zero());
+    a != DVec3::ZERO && a.dot(b) > 1.0 - 1e-9
+}
+
+fn check_rules(g: &GarmentMesh, c: &drape::collision::Collision) -> BTreeSet<AppliedRule> {
+    let mut seen = BTreeSet::new();
+    for r in &c.responses {
+        seen.insert(r.rule);
+        let v = r.vertex as usize;
+        let plane = |d: DVec3| r.iso.map_or(d, |n| d - n * d.dot(n));
+        if let Some(n) = r.iso {
+            assert!(r.direction.dot(n).abs() < 1e-9, "v{v}: iso-height broken ({:?})", r.rule);
+        }
+        assert!((r.direction.length() - 1.0).abs() < 1e-9 || r.rule == AppliedRule::Fallback);
+        match r.rule {
+            AppliedRule::VertexNormal => assert!(parallel(r.direction, plane(g.normals[v])), "v{v} vertex normal"),
+            AppliedRule::ViewDirection => {
+                assert!(g.boundary[v], "v{v}: view direction off the boundary");
+                assert!(parallel(r.direction, plane(DVec3::Z)) || parallel(r.direction, plane(-DVec3::Z)));
+            }
+            AppliedRule::BodyNormal => {
+                let hit = c.detection.hits.iter().find(|h| h.vertex == r.vertex);
+                if let Some(h) = hit.filter(|_| r.edge_round == 0) {
+                    assert!(parallel(r.direction, plane(h.normal)), "v{v} body normal");
+                }
+            }
+            AppliedRule::GlobalCentre | AppliedRule::LocalCentre | AppliedRule::Guard => {
+                let centre = r.centre.expect("a centre rule records its centre");
+                let radial = DVec3::new(r.from.x - centre.x, 0.0, r.from.z - centre.y);
+                assert!(r.direction.y.abs() < 1e-12, "v{v}: centre ray not horizontal");
+                assert!(parallel(r.direction, radial), "v{v}: not along the centre ray");
+                if r.rule == AppliedRule::Guard {
+                    assert!(r.proposed.dot(radial) <= 0.0, "v{v}: guard acted on a good direction");
+                }
+            }
+            AppliedRule::Fallback => {
+                // Out along the shortest way: the new point stands off the body.
+                let s = index().signed_distance(r.to, 1.0).expect("near the body");
+                assert!(s > 0.0, "v{v}: fallback left it inside");
+            }
+        }
+        // The guard: within 90 degrees of the ray from the local centre (legs to abdomen).
+        if r.rule != AppliedRule::Fallback
+            && let Some(cs) = index().slices.at(r.from.y).and_then(|s| s.centres)
+        {
+            let p = glam::DVec2::new(r.from.x, r.from.z);
+            let g2 = p - cs.local_of(p);
+            assert!(
+                r.direction.x * g2.x + r.direction.z * g2.y > 0.0,
+                "v{v}: response folds back over its centre"
+            );
+        }
+    }
+    seen
+}
+
+#[test]
+fn after_response_the_demo_m0_has_no_vertex_inside_and_no_crossing_edge() {
+    let g = tight_jumpsuit();
+    let mut state = DetectState::default();
+    let c = collide(index(), &g, 0.004, &CollisionOptions::default(), &mut state);
+    assert!(c.detection.hits.len() > 100, "the tight ease pushes M0 in: {}", c.detection.hits.len());
+    let before = ground_truth(&real_body().mesh.mesh, &g.mesh.positions, &[]);
+    assert!(before.inside_count() > 100);
+    let after = ground_truth(&real_body().mesh.mesh, &c.mesh.positions, &g.edges);
+    assert_eq!(after.inside_count(), 0, "vertices left inside");
+    assert_eq!(after.crossing_count(), 0, "edges left crossing");
+    assert_eq!(c.quality.penetrating_vertices, 0);
+    assert_eq!(c.quality.crossing_edges, 0);
+    let seen = check_rules(&g, &c);
+    for rule in [AppliedRule::LocalCentre, AppliedRule::VertexNormal] {
+        assert!(seen.contains(&rule), "{rule:?} not exercised");
+    }
+    // The ease is met: moved vertices stand the ease off within 1 mm (most exactly).
+    let within = c.responses.iter().filter(|r| r.ease_error.abs() < 1e-6).count();
+    assert!(within * 10 >= c.responses.len() * 9, "{within} of {}", c.responses.len());
+}
+
+#[test]
+fn every_response_rule_keeps_its_direction_on_a_garment_pushed_in_everywhere() {
+    let g = perturbed(13, 0.03, 0.0);
+    let c = collide(index(), &g, 0.019, &CollisionOptions::default(), &mut DetectState::default());
+    let seen = check_rules(&g, &c);
+    for rule in [
+        AppliedRule::VertexNormal,
+        AppliedRule::ViewDirection,
+        AppliedRule::BodyNormal,
+        AppliedRule::LocalCentre,
+        AppliedRule::GlobalCentre,
+    ] {
+        assert!(seen.contains(&rule), "{rule:?} not exercised: {seen:?}");
+    }
+    let after = ground_truth(&real_body().mesh.mesh, &c.mesh.positions, &[]);
+    assert_eq!(after.inside_count(), 0);
+}
+
+/// Keeps each step's M0 after response.
+#[derive(Default)]
+struct Meshes(Vec<(TriMesh, usize, usize, usize)>);
+
+impl StageSink for Meshes {
+    fn stage(&mut self, _: &StageInfo, stage: Stage<'_>) -> Result<(), drape::session::runner::SinkError> {
+        if let Stage::Collision(o, _, CollisionPart::Respond) = stage {
+            let d = &o.collision.detection;
+            self.0
+                .push((o.collision.mesh.clone(), d.tested, d.skipped_inert, d.skipped_patch));
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn inert_points_and_patch_skipping_change_no_result() {
+    let text = "drape 1\nbody builtin\ngarment jumpsuit\nset waist_girth +0.04\nset ease 0.004\n\
+                set waist_girth +0.002\nset left_knee_girth +0.01\n";
+    let session = parse_session(text, "skip.drape", std::path::Path::new(".")).expect("parses");
+    let run = |skip: bool| {
+        let mut options = RunOptions::default();
+        options.collision.detect.inert = skip;
+        options.collision.detect.patch_skipping = skip;
+        let mut sink = Meshes::default();
+        let report = run_session(&session, &options, &mut [&mut sink]);
+        assert!(report.error.is_none(), "{:?}", report.error);
+        sink.0
+    };
+    let (on, off) = (run(true), run(false));
+    assert_eq!(on.len(), 5);
+    for (k, (a, b)) in on.iter().zip(&off).enumerate() {
+        assert_eq!(a.0, b.0, "step {k}: meshes differ");
+        assert_eq!((b.2, b.3), (0, 0), "nothing skipped with skipping off");
+    }
+    let skipped: usize = on.iter().map(|s| s.2 + s.3).sum();
+    let inert: usize = on.iter().map(|s| s.2).sum();
+    let patch: usize = on.iter().map(|s| s.3).sum();
+    assert!(inert > 0 && patch > 0, "both skips must act: inert {inert}, patch {patch}");
+    eprintln!("skipped {skipped} vertex tests over the session (inert {inert}, patch {patch})");
+}
+
+/// A closed unit cube with a zero-area triangle: the top face's front edge is split at its
+/// midpoint, the front face's is not, and a sliver of three collinear corners closes the
+/// seam between them.
+fn cube_with_sliver() -> TriMesh {
+    let mut positions: Vec<DVec3> = (0..8)
+        .map(|i| DVec3::new((i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64))
+        .collect();
+    // Midpoint of the top front edge (y = 1, z = 1), from corner 6 (0,1,1) to 7 (1,1,1).
+    positions.push(DVec3::new(0.5, 1.0, 1.0));
+    let triangles = vec![
+        // bottom y = 0 (normal -y)
+        [0, 1, 5],
+        [0, 5, 4],
+        // top y = 1 (normal +y): 2 (0,1,0), 3 (1,1,0), 7 (1,1,1), 6 (0,1,1), 8 mid of 6-7
+        [2, 6, 8],
+        [2, 8, 3],
+        [3, 8, 7],
+        [6, 7, 8], // zero area (6, 7, 8 collinear): closes the top's split edge
+        // front z = 1 (normal +z): 4 5 7 6, its edge 6-7 not split
+        [4, 5, 7],
+        [4, 7, 6],
+        // back z = 0 (normal -z)
+        [0, 2, 3],
+        [0, 3, 1],
+        // left x = 0 (normal -x)
+        [0, 4, 6],
+        [0, 6, 2],
+        // right x = 1 (normal +x)
+        [1, 3, 7],
+        [1, 7, 5],
+    ];
+    TriMesh { positions, triangles }
+}
+
+#[test]
+fn degenerate_triangles_and_points_on_edges_vertices_and_faces_do_not_break_detection() {
+    let mesh = cube_with_sliver();
+    assert!(mesh.signed_volume() > 0.99 && mesh.signed_volume() < 1.01, "closed and outward");
+    let index = BodyIndex::from_mesh(&mesh).expect("manifold");
+    let reach = Reach {
+        inside: 1.0,
+        outside: 1.0,
+        surface: 1e-12,
+    };
+    let on_surface = [
+        DVec3::new(0.5, 1.0, 1.0),  // the sliver's middle corner
+        DVec3::new(0.25, 1.0, 1.0), // on the sliver (and on a cube edge)
+        DVec3::new(1.0, 1.0, 1.0),  // a cube corner
+        DVec3::new(1.0, 0.5, 0.0),  // on a cube edge
+        DVec3::new(0.3, 0.0, 0.6),  // on a face
+        DVec3::new(0.5, 0.5, 1.0),  // on a face, on an inner diagonal
+    ];
+    for search in [Search::Brute, Search::PartitionBvh(0)] {
+        for p in on_surface {
+            let r = point_face(&index, search, p, &reach);
+            let n = r.nearest.expect("on the surface");
+            assert!(n.distance <= 1e-15 && !r.inside, "{p}: on the surface is not inside");
+            assert!(n.foot.is_finite() && n.normal.is_finite());
+        }
+        // Just inside and just outside each of them, along the way into the cube's centre.
+        for p in on_surface {
+            let into = (DVec3::splat(0.5) - p).normalize();
+            for (eps, want) in [(1e-6, true), (-1e-6, false)] {
+                let q = p + into * eps;
+                let r = point_face(&index, search, q, &reach);
+                assert_eq!(r.inside, want, "{q} ({search:?})");
+                let wn = drape::geom::inside::winding_number(&mesh, q);
+                assert_eq!(wn > 0.5, want, "truth at {q}");
+            }
+        }
+    }
+    // No NaN anywhere when a whole garment sits on the surface.
+    let garment = GarmentMesh {
+        mesh: TriMesh {
+            positions: on_surface.to_vec(),
+            triangles: vec![],
+        },
+        face_patch: vec![],
+        edges: vec![[0, 1], [1, 2], [4, 5]],
+        normals: vec![DVec3::Y; 6],
+        boundary: vec![false; 6],
+        ring_normal: vec![None; 6],
+        vertex_patches: vec![vec![]; 6],
+        patch_curves: vec![],
+        controls: Default::default(),
+    };
+    let c = collide(&index, &garment, 0.01, &CollisionOptions::default(), &mut DetectState::default());
+    assert!(c.detection.hits.is_empty());
+    assert!(c.mesh.positions.iter().all(|p| p.is_finite()));
+}
