@@ -103,7 +103,8 @@ mod tests {
     #[test]
     fn regions_of_a_right_triangle() {
         let (q, f) = closest_on_triangle(DVec3::new(0.2, 0.2, 1.0), T);
-        assert_eq!((q, f), (DVec3::new(0.2, 0.2, 0.0), Feature::Face));
+        assert!(q.distance(DVec3::new(0.2, 0.2, 0.0)) < 1e-15);
+        assert_eq!(f, Feature::Face);
         let (q, f) = closest_on_triangle(DVec3::new(-1.0, -1.0, 0.5), T);
         assert_eq!((q, f), (DVec3::ZERO, Feature::Vertex(0)));
         let (q, f) = closest_on_triangle(DVec3::new(0.5, -1.0, 0.0), T);
