@@ -219,7 +219,9 @@ fn methods_table(body: &Body, probe: &BodyProbe) {
         let index = BodyIndex::new(body, &options);
         let ll = DetectOptions::default().with_method(Some(DetectionMethod::LineLine));
         let mut d = None;
-        let ms = median_ms(20, || d = Some(detect(&index, &input, &ll, &mut DetectState::default())));
+        let ms = median_ms(20, || {
+            d = Some(detect(&index, &input, &ll, &mut DetectState::default()))
+        });
         let d = d.expect("ran");
         let (_, missed, false_hits) = score(&d, &truth);
         let errors: Vec<f64> = d

@@ -4,7 +4,7 @@
 //! exact checks) and one per partition A-G (detection), and the horizontal slice stack
 //! the line-line test and the ring-centre response read.
 
-use glam::{DVec3, Vec3};
+use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, TraversalAction};
 
@@ -13,7 +13,7 @@ use super::ray::ray_triangle;
 use super::slices::{SliceOptions, SliceStack};
 use crate::body::{Body, DetectionMethod, PartitionId, ResponseRule};
 use crate::mesh::topology::NO_NEIGHBOUR;
-use parry3d::query::{PointQuery, RayCast};
+use parry3d::query::PointQuery;
 
 /// The nearest point of the body (or of a partition) to a query point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -285,7 +285,8 @@ impl BodyIndex {
             if let Some(leaf) = node.leaf_data() {
                 let t = map(leaf);
                 let n = self.nearest_on(p, t);
-                let better = best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle));
+                let better =
+                    best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle));
                 if n.distance <= reach && better {
                     bound = bound.min(n.distance);
                     best = Some(n);
@@ -313,30 +314,16 @@ impl BodyIndex {
     }
 
     /// The first body triangle the ray `origin + t dir` meets with `t` in `(t_min, t_max]`:
-    /// `(t, triangle)`, ties to the lowest index.
+    /// `(t, triangle)`. Best-first over the BVH (parry's ray traversal); each triangle is
+    /// intersected in `f64`.
     pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
         let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
         let len = dir.length().max(f64::MIN_POSITIVE);
-        let mut best: Option<(f64, u32)> = None;
-        self.whole.traverse(|node| {
-            let limit = best.map_or(t_max, |b| b.0);
-            let aabb = node.aabb();
-            let grown = Aabb::new(
-                aabb.mins - Vec3::splat(self.slack as f32),
-                aabb.maxs + Vec3::splat(self.slack as f32),
-            );
-            if grown.cast_local_ray(&ray, (limit + self.slack / len) as f32, true).is_none() {
-                return TraversalAction::Prune;
-            }
-            if let Some(t) = node.leaf_data()
-                && let Some(hit) = ray_triangle(origin, dir, self.corners(t), t_min, limit)
-                && best.is_none_or(|b| hit < b.0 || (hit == b.0 && t < b.1))
-            {
-                best = Some((hit, t));
-            }
-            TraversalAction::Continue
-        });
-        best
+        let pad = self.slack / len;
+        let (triangle, _) = self.whole.cast_ray(&ray, (t_max + pad) as f32, |leaf, _| {
+            ray_triangle(origin, dir, self.corners(leaf), t_min, t_max).map(|t| t as f32)
+        })?;
+        ray_triangle(origin, dir, self.corners(triangle), t_min, t_max).map(|hit| (hit, triangle))
     }
 
     /// Whether the segment `a..b` meets the body surface.

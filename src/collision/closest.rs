@@ -119,7 +119,11 @@ mod tests {
     #[test]
     fn brute_force_agrees_on_random_points() {
         // Dense barycentric sampling as an independent nearest point.
-        let tri = [DVec3::new(0.1, -0.3, 0.2), DVec3::new(1.2, 0.4, -0.1), DVec3::new(-0.2, 0.9, 0.5)];
+        let tri = [
+            DVec3::new(0.1, -0.3, 0.2),
+            DVec3::new(1.2, 0.4, -0.1),
+            DVec3::new(-0.2, 0.9, 0.5),
+        ];
         let mut seed = 7u64;
         let mut rnd = || {
             seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);

@@ -338,7 +338,10 @@ pub fn detect(
             };
             let safe = moved < m.clearance && m.partition == partition && same_slice && m.method == method;
             let patch = garment.vertex_patches.get(v).is_some_and(|ps| {
-                !ps.is_empty() && ps.iter().all(|&k| patch_still.get(k as usize).copied().unwrap_or(false))
+                !ps.is_empty()
+                    && ps
+                        .iter()
+                        .all(|&k| patch_still.get(k as usize).copied().unwrap_or(false))
             });
             if safe && patch {
                 out.skip.push(Skip::Patch);

@@ -49,7 +49,11 @@ fn cross_segment(p: DVec2, d: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
 fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let e = b - a;
     let len2 = e.length_squared();
-    let t = if len2 > 0.0 { ((p - a).dot(e) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    let t = if len2 > 0.0 {
+        ((p - a).dot(e) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
     p.distance(a + e * t)
 }
 

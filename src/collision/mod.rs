@@ -12,6 +12,7 @@ pub mod body_index;
 pub mod closest;
 pub mod detect;
 pub mod line_line;
+pub mod par;
 pub mod point_face;
 pub mod quality;
 pub mod ray;

@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::body_index::BodyIndex;
+use super::par::par_map;
 use super::response::Response;
 
 /// Quality figures of a garment mesh against the body.
@@ -36,22 +37,32 @@ pub fn quality(index: &BodyIndex, positions: &[DVec3], edges: &[[u32; 2]], respo
     let surface = 1e-12 * index.height;
     let mut q = Quality::default();
     let mut depth_sum = 0.0;
-    for (v, p) in positions.iter().enumerate() {
-        if let Some(n) = index.nearest(*p, reach) {
-            let s = n.signed(*p);
-            if s < -surface {
-                q.penetrating_vertices += 1;
-                q.max_depth_m = q.max_depth_m.max(-s);
-                depth_sum += -s;
-                q.inside.push(v as u32);
-            }
+    // Distance to the body of every vertex (`reach` where nothing is nearer).
+    let signed = par_map(positions.len(), |v| {
+        index
+            .nearest(positions[v], reach)
+            .map_or(reach, |n| n.signed(positions[v]))
+    });
+    for (v, &s) in signed.iter().enumerate() {
+        if s < -surface {
+            q.penetrating_vertices += 1;
+            q.max_depth_m = q.max_depth_m.max(-s);
+            depth_sum += -s;
+            q.inside.push(v as u32);
         }
     }
     if q.penetrating_vertices > 0 {
         q.mean_depth_m = depth_sum / q.penetrating_vertices as f64;
     }
-    for (e, [a, b]) in edges.iter().enumerate() {
-        if index.segment_hits(positions[*a as usize], positions[*b as usize]) {
+    // An edge can meet the surface only if the balls free of it around its ends do not
+    // cover it: |d(a)| + |d(b)| <= |ab|.
+    let hits = par_map(edges.len(), |e| {
+        let [a, b] = edges[e];
+        let (pa, pb) = (positions[a as usize], positions[b as usize]);
+        signed[a as usize].abs() + signed[b as usize].abs() <= pa.distance(pb) && index.segment_hits(pa, pb)
+    });
+    for (e, hit) in hits.into_iter().enumerate() {
+        if hit {
             q.crossing_edges += 1;
             q.crossing.push(e as u32);
         }

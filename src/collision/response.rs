@@ -32,6 +32,7 @@ use glam::{DVec2, DVec3};
 
 use super::body_index::BodyIndex;
 use super::detect::Hit;
+use super::par::par_map;
 use super::slices::flat;
 use crate::body::ResponseRule;
 
@@ -234,7 +235,11 @@ fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, 
             if err <= 1e-3 * ease {
                 return Some((s, signed - ease));
             }
-            let slope = if signed > 0.0 { d.dot(s - near.foot) / signed } else { 1.0 };
+            let slope = if signed > 0.0 {
+                d.dot(s - near.foot) / signed
+            } else {
+                1.0
+            };
             s += d * (err / slope.max(0.2));
         }
         if !inside {
@@ -282,19 +287,31 @@ pub fn respond_edges(
     let reach = 0.2 * index.height;
     let mut all = Vec::new();
     let mut found = Vec::new();
+    // Edges to check: all at first, then those with an end moved in the round before (the
+    // others kept their ends, and none of them crossed).
+    let mut check: Vec<usize> = (0..edges.len()).collect();
     for round in 1..=options.edge_rounds {
         // How deep each crossing edge goes: the middle of its part inside the body.
         let mut need: std::collections::BTreeMap<u32, f64> = std::collections::BTreeMap::new();
+        let depths = {
+            let positions = &*positions;
+            let check = &check;
+            par_map(check.len(), |k| {
+                let [a, b] = edges[check[k]];
+                let (pa, pb) = (positions[a as usize], positions[b as usize]);
+                let (t_in, _) = index.cast_ray(pa, pb - pa, 0.0, 1.0)?;
+                let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
+                let mid = pa.lerp(pb, 0.5 * (t_in + t_out.max(t_in)));
+                Some(index.signed_distance(mid, reach).map_or(0.0, |s| (-s).max(0.0)))
+            })
+        };
         let mut count = 0;
-        for &[a, b] in edges {
-            let (pa, pb) = (positions[a as usize], positions[b as usize]);
-            let Some((t_in, _)) = index.cast_ray(pa, pb - pa, 0.0, 1.0) else {
+        for (&e, depth) in check.iter().zip(depths) {
+            let [a, b] = edges[e];
+            let Some(depth) = depth else {
                 continue;
             };
             count += 1;
-            let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
-            let mid = pa.lerp(pb, 0.5 * (t_in + t_out.max(t_in)));
-            let depth = index.signed_distance(mid, reach).map_or(0.0, |s| (-s).max(0.0));
             for v in [a, b] {
                 let e = need.entry(v).or_insert(0.0);
                 *e = e.max(depth);
@@ -323,7 +340,12 @@ pub fn respond_edges(
         // Each end goes out by the edge's depth and a quarter of the ease beyond where it
         // stands, at least to the ease.
         let target = |h: &Hit| ease.max(-h.depth + need.get(&h.vertex).copied().unwrap_or(0.0) + 0.25 * ease);
-        all.extend(respond_round(index, positions, &hits, roles, &target, round, options));
+        let moved = respond_round(index, positions, &hits, roles, &target, round, options);
+        let ends: std::collections::BTreeSet<u32> = moved.iter().map(|r| r.vertex).collect();
+        check = (0..edges.len())
+            .filter(|&e| ends.contains(&edges[e][0]) || ends.contains(&edges[e][1]))
+            .collect();
+        all.extend(moved);
     }
     (all, found)
 }
@@ -333,14 +355,15 @@ fn respond_round(
     out: &mut [DVec3],
     hits: &[Hit],
     roles: &VertexRoles<'_>,
-    target: &dyn Fn(&Hit) -> f64,
+    target: &(dyn Fn(&Hit) -> f64 + Sync),
     edge_round: usize,
     options: &ResponseOptions,
 ) -> Vec<Response> {
     let positions = out.to_vec();
     let reach = 0.2 * index.height;
-    let mut responses = Vec::with_capacity(hits.len());
-    for hit in hits {
+    // Each vertex reads the positions before the round and moves alone: in parallel.
+    let responses: Vec<Response> = par_map(hits.len(), |k| {
+        let hit = &hits[k];
         let ease = target(hit);
         let v = hit.vertex as usize;
         let p = positions[v];
@@ -407,10 +430,9 @@ fn respond_round(
         } else {
             d
         };
-        out[v] = to;
         // A fallback may have had to leave the ring's plane.
         let iso = iso.filter(|n| direction.dot(*n).abs() <= 1e-9);
-        responses.push(Response {
+        Response {
             vertex: hit.vertex,
             partition: hit.partition,
             from: p,
@@ -422,7 +444,10 @@ fn respond_round(
             centre,
             ease_error,
             edge_round,
-        });
+        }
+    });
+    for r in &responses {
+        out[r.vertex as usize] = r.to;
     }
     responses
 }

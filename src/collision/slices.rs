@@ -68,7 +68,11 @@ pub struct Centres {
 impl Centres {
     /// The local centre of the half `p` lies in.
     pub fn local_of(&self, p: DVec2) -> DVec2 {
-        if p.x < self.global.x { self.local[0] } else { self.local[1] }
+        if p.x < self.global.x {
+            self.local[0]
+        } else {
+            self.local[1]
+        }
     }
 
     /// The centre whose ray a vertex at `p` is pushed along: the kept centre nearest to it

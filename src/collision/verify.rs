@@ -7,6 +7,7 @@
 use glam::DVec3;
 
 use super::detect::Detection;
+use super::par::par_map as parallel;
 use super::quality::Quality;
 use super::ray::ray_triangle;
 use crate::body::DetectionMethod;
@@ -32,25 +33,6 @@ impl GroundTruth {
     pub fn crossing_count(&self) -> usize {
         self.crossing.iter().filter(|c| **c).count()
     }
-}
-
-/// Runs `f` over `0..n` on all cores, results in order.
-fn parallel<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
-    let threads = std::thread::available_parallelism().map_or(1, |t| t.get()).min(16);
-    let chunk = n.div_ceil(threads.max(1)).max(1);
-    std::thread::scope(|s| {
-        let handles: Vec<_> = (0..n)
-            .step_by(chunk)
-            .map(|start| {
-                let f = &f;
-                s.spawn(move || (start..(start + chunk).min(n)).map(f).collect::<Vec<T>>())
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
-    })
 }
 
 /// The ground truth of `positions` and `edges` against the closed `body`.

@@ -898,7 +898,7 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         let reference = landmark(body, LandmarkKind::Shoulder, side)?;
         let reference = DVec3::new(x, shoulder_y, reference.z);
         planes.push(ctx.plane_for(
-            &format!("{name}"),
+            name,
             plane,
             DVec3::new(x, shoulder_y - 0.04 * h, reference.z),
         ));

@@ -8,8 +8,8 @@ pub mod runner;
 pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
 pub use runner::{
-    CollisionOutcome, CollisionPart, GarmentPart, RingStep, RunError, RunOptions, RunReport, Stage, StageInfo, StageSink,
-    run_session,
+    CollisionOutcome, CollisionPart, GarmentPart, RingStep, RunError, RunOptions, RunReport, Stage, StageInfo,
+    StageSink, run_session,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

@@ -640,7 +640,10 @@ fn record_collision(m: &mut StepMetrics, index: &BodyIndex, c: &Collision, verif
         }
     }
     m.set("responses", c.responses.iter().filter(|r| r.edge_round == 0).count());
-    m.set("edge_responses", c.responses.iter().filter(|r| r.edge_round > 0).count());
+    m.set(
+        "edge_responses",
+        c.responses.iter().filter(|r| r.edge_round > 0).count(),
+    );
     m.set("responses_by_rule", by_rule);
     m.set("crossing_edges_by_round", c.edge_rounds.clone());
     m.set("response_ease_m", c.ease);

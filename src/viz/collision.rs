@@ -52,7 +52,7 @@ impl RerunLogger {
             rec.log(
                 path.as_str(),
                 &Points3D::new(f32s(&points))
-                    .with_radii([0.004])
+                    .with_radii([0.006])
                     .with_colors([color])
                     .with_labels(hits.iter().map(|h| format!("v{} {:.1} mm", h.vertex, h.depth * 1e3)))
                     .with_show_labels(false),
@@ -118,7 +118,7 @@ impl RerunLogger {
                 path.as_str(),
                 &Arrows3D::from_vectors(moved.iter().map(|r| (r.to - r.from).as_vec3().to_array()))
                     .with_origins(moved.iter().map(|r| r.from.as_vec3().to_array()))
-                    .with_radii([0.0009])
+                    .with_radii([0.002])
                     .with_colors([rule_color(rule)]),
             )
             .map_err(to_sink)?;
@@ -136,7 +136,8 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         if q.crossing.is_empty() {
-            rec.log("collision/mesh/crossing_edges", &Clear::flat()).map_err(to_sink)?;
+            rec.log("collision/mesh/crossing_edges", &Clear::flat())
+                .map_err(to_sink)?;
         } else {
             let lines: Vec<Vec<[f32; 3]>> = q
                 .crossing

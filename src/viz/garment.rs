@@ -101,7 +101,7 @@ impl RerunLogger {
                     let strips: Vec<Vec<[f32; 3]>> = loops
                         .iter()
                         .map(|l| {
-                            if is_closed || step == RingStep::Raw && is_closed {
+                            if is_closed {
                                 closed(l)
                             } else {
                                 f32s(l)
@@ -312,7 +312,9 @@ impl RerunLogger {
             .collect();
         rec.log(
             "garment/m0/edges",
-            &LineStrips3D::new(lines).with_radii([0.0004]).with_colors([[60, 60, 70]]),
+            &LineStrips3D::new(lines)
+                .with_radii([0.0004])
+                .with_colors([[60, 60, 70]]),
         )
         .map_err(to_sink)
     }

@@ -14,8 +14,8 @@
 //! Timelines: `step` and `stage`.
 
 pub mod blueprint;
-pub mod colors;
 mod collision;
+pub mod colors;
 mod garment;
 pub mod logger;
 pub mod target;

@@ -27,7 +27,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn unit(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
@@ -55,7 +58,11 @@ fn point_face_detection_matches_the_brute_force_truth_on_perturbed_garments() {
     let inside: BTreeSet<u32> = (0..truth.inside.len() as u32)
         .filter(|&v| truth.inside[v as usize])
         .collect();
-    assert!(inside.len() > 300, "the perturbation must push many vertices in: {}", inside.len());
+    assert!(
+        inside.len() > 300,
+        "the perturbation must push many vertices in: {}",
+        inside.len()
+    );
     let mut results = Vec::new();
     for acceleration in [
         Acceleration::BruteForce,
@@ -81,7 +88,12 @@ fn point_face_detection_matches_the_brute_force_truth_on_perturbed_garments() {
 fn line_line_misses_are_reported_and_bounded() {
     let g = perturbed(12, 0.03, 0.02);
     let truth = ground_truth(&real_body().mesh.mesh, &g.mesh.positions, &[]);
-    let d = detect(index(), &g.input(), &DetectOptions::default(), &mut DetectState::default());
+    let d = detect(
+        index(),
+        &g.input(),
+        &DetectOptions::default(),
+        &mut DetectState::default(),
+    );
     let found = hit_set(&d);
     let exact = detect(
         index(),
@@ -92,7 +104,11 @@ fn line_line_misses_are_reported_and_bounded() {
     let line: Vec<usize> = (0..g.mesh.positions.len())
         .filter(|&v| d.methods[v] == Some(DetectionMethod::LineLine))
         .collect();
-    assert!(line.len() > 1000, "legs and abdomen are tested line-line: {}", line.len());
+    assert!(
+        line.len() > 1000,
+        "legs and abdomen are tested line-line: {}",
+        line.len()
+    );
     let inside_line = line.iter().filter(|&&v| truth.inside[v]).count();
     let missed: Vec<usize> = line
         .iter()
@@ -106,7 +122,13 @@ fn line_line_misses_are_reported_and_bounded() {
     // Every miss and false hit lies near the skin: its exact depth is at most the slice
     // spacing's worth of surface change plus a little (the paper's bound is a quarter of
     // a ring edge).
-    let depth_of = |v: usize| exact.hits.iter().find(|h| h.vertex as usize == v).map_or(0.0, |h| h.depth);
+    let depth_of = |v: usize| {
+        exact
+            .hits
+            .iter()
+            .find(|h| h.vertex as usize == v)
+            .map_or(0.0, |h| h.depth)
+    };
     let worst_missed = missed.iter().map(|&v| depth_of(v)).fold(0.0, f64::max);
     eprintln!(
         "line-line: {} vertices, {} inside, {} missed (deepest {:.2} mm), {} false hits",
@@ -155,7 +177,11 @@ fn check_rules(g: &GarmentMesh, c: &drape::collision::Collision) -> BTreeSet<App
         let v = r.vertex as usize;
         let plane = |d: DVec3| r.iso.map_or(d, |n| d - n * d.dot(n));
         if let Some(n) = r.iso {
-            assert!(r.direction.dot(n).abs() < 1e-9, "v{v}: iso-height broken ({:?})", r.rule);
+            assert!(
+                r.direction.dot(n).abs() < 1e-9,
+                "v{v}: iso-height broken ({:?})",
+                r.rule
+            );
         }
         assert!((r.direction.length() - 1.0).abs() < 1e-9 || r.rule == AppliedRule::Fallback);
         match r.rule {
@@ -205,7 +231,11 @@ fn after_response_the_demo_m0_has_no_vertex_inside_and_no_crossing_edge() {
     let g = tight_jumpsuit();
     let mut state = DetectState::default();
     let c = collide(index(), &g, 0.004, &CollisionOptions::default(), &mut state);
-    assert!(c.detection.hits.len() > 100, "the tight ease pushes M0 in: {}", c.detection.hits.len());
+    assert!(
+        c.detection.hits.len() > 100,
+        "the tight ease pushes M0 in: {}",
+        c.detection.hits.len()
+    );
     let before = ground_truth(&real_body().mesh.mesh, &g.mesh.positions, &[]);
     assert!(before.inside_count() > 100);
     let after = ground_truth(&real_body().mesh.mesh, &c.mesh.positions, &g.edges);
@@ -219,13 +249,23 @@ fn after_response_the_demo_m0_has_no_vertex_inside_and_no_crossing_edge() {
     }
     // The ease is met: moved vertices stand the ease off within 1 mm (most exactly).
     let within = c.responses.iter().filter(|r| r.ease_error.abs() < 1e-6).count();
-    assert!(within * 10 >= c.responses.len() * 9, "{within} of {}", c.responses.len());
+    assert!(
+        within * 10 >= c.responses.len() * 9,
+        "{within} of {}",
+        c.responses.len()
+    );
 }
 
 #[test]
 fn every_response_rule_keeps_its_direction_on_a_garment_pushed_in_everywhere() {
     let g = perturbed(13, 0.03, 0.0);
-    let c = collide(index(), &g, 0.019, &CollisionOptions::default(), &mut DetectState::default());
+    let c = collide(
+        index(),
+        &g,
+        0.019,
+        &CollisionOptions::default(),
+        &mut DetectState::default(),
+    );
     let seen = check_rules(&g, &c);
     for rule in [
         AppliedRule::VertexNormal,
@@ -278,7 +318,10 @@ fn inert_points_and_patch_skipping_change_no_result() {
     let skipped: usize = on.iter().map(|s| s.2 + s.3).sum();
     let inert: usize = on.iter().map(|s| s.2).sum();
     let patch: usize = on.iter().map(|s| s.3).sum();
-    assert!(inert > 0 && patch > 0, "both skips must act: inert {inert}, patch {patch}");
+    assert!(
+        inert > 0 && patch > 0,
+        "both skips must act: inert {inert}, patch {patch}"
+    );
     eprintln!("skipped {skipped} vertex tests over the session (inert {inert}, patch {patch})");
 }
 
@@ -319,7 +362,10 @@ fn cube_with_sliver() -> TriMesh {
 #[test]
 fn degenerate_triangles_and_points_on_edges_vertices_and_faces_do_not_break_detection() {
     let mesh = cube_with_sliver();
-    assert!(mesh.signed_volume() > 0.99 && mesh.signed_volume() < 1.01, "closed and outward");
+    assert!(
+        mesh.signed_volume() > 0.99 && mesh.signed_volume() < 1.01,
+        "closed and outward"
+    );
     let index = BodyIndex::from_mesh(&mesh).expect("manifold");
     let reach = Reach {
         inside: 1.0,
@@ -368,7 +414,13 @@ fn degenerate_triangles_and_points_on_edges_vertices_and_faces_do_not_break_dete
         patch_curves: vec![],
         controls: Default::default(),
     };
-    let c = collide(&index, &garment, 0.01, &CollisionOptions::default(), &mut DetectState::default());
+    let c = collide(
+        &index,
+        &garment,
+        0.01,
+        &CollisionOptions::default(),
+        &mut DetectState::default(),
+    );
     assert!(c.detection.hits.is_empty());
     assert!(c.mesh.positions.iter().all(|p| p.is_finite()));
 }

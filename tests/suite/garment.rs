@@ -294,9 +294,15 @@ fn collided(fw: &drape::garment::Framework) -> Vec<DVec3> {
     use drape::collision::{BodyIndex, CollisionOptions, DetectState, GarmentMesh, SliceOptions, collide};
     let index = BodyIndex::new(real_body(), &SliceOptions::default());
     let g = GarmentMesh::from_framework(fw, index.height);
-    collide(&index, &g, fw.ease(), &CollisionOptions::default(), &mut DetectState::default())
-        .mesh
-        .positions
+    collide(
+        &index,
+        &g,
+        fw.ease(),
+        &CollisionOptions::default(),
+        &mut DetectState::default(),
+    )
+    .mesh
+    .positions
 }
 
 #[test]

@@ -1,6 +1,6 @@
+mod collision;
 mod common;
 mod convexify;
-mod collision;
 mod coons;
 mod ease;
 mod garment;
