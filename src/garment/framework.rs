@@ -897,11 +897,7 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         let plane = Plane::from_point_normal(DVec3::new(x, 0.0, 0.0), DVec3::X);
         let reference = landmark(body, LandmarkKind::Shoulder, side)?;
         let reference = DVec3::new(x, shoulder_y, reference.z);
-        planes.push(ctx.plane_for(
-            name,
-            plane,
-            DVec3::new(x, shoulder_y - 0.04 * h, reference.z),
-        ));
+        planes.push(ctx.plane_for(name, plane, DVec3::new(x, shoulder_y - 0.04 * h, reference.z)));
         let part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &plane)
             .iter()
             .filter_map(|l| section_part(l, chest_y, Apex::Highest))

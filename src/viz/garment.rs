@@ -100,13 +100,7 @@ impl RerunLogger {
                     let loops = stage_points(stages, step);
                     let strips: Vec<Vec<[f32; 3]>> = loops
                         .iter()
-                        .map(|l| {
-                            if is_closed {
-                                closed(l)
-                            } else {
-                                f32s(l)
-                            }
-                        })
+                        .map(|l| if is_closed { closed(l) } else { f32s(l) })
                         .collect();
                     let path = format!("garment/curves/rings/{name}");
                     rec.log(
