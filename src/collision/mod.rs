@@ -156,6 +156,20 @@ impl GarmentMesh {
     }
 }
 
+/// Compute time of each phase of a collision, ms (wall clock: for metrics, never logged
+/// into compared data).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CollisionTimings {
+    /// Detection.
+    pub detect: f64,
+    /// Vertex response.
+    pub respond: f64,
+    /// Edge rounds.
+    pub respond_edges: f64,
+    /// Quality.
+    pub quality: f64,
+}
+
 /// One step's collision of a garment mesh.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Collision {
@@ -172,9 +186,18 @@ pub struct Collision {
     pub mesh: TriMesh,
     /// Quality after response.
     pub quality: Quality,
+    /// Compute time per phase.
+    pub timings: CollisionTimings,
 }
 
-/// Detects, responds and measures in one call (the runner times the phases itself).
+fn timed<T>(slot: &mut f64, f: impl FnOnce() -> T) -> T {
+    let start = std::time::Instant::now();
+    let out = f();
+    *slot = start.elapsed().as_secs_f64() * 1e3;
+    out
+}
+
+/// Detects, responds (vertices, then edge rounds) and measures the quality.
 pub fn collide(
     index: &BodyIndex,
     garment: &GarmentMesh,
@@ -182,27 +205,37 @@ pub fn collide(
     options: &CollisionOptions,
     state: &mut DetectState,
 ) -> Collision {
-    let detection = detect(index, &garment.input(), &options.detect, state);
+    let mut timings = CollisionTimings::default();
+    let detection = timed(&mut timings.detect, || {
+        detect(index, &garment.input(), &options.detect, state)
+    });
     let ease = response_ease(index, garment_ease, &options.response);
-    let (mut positions, mut responses) = respond(
-        index,
-        &garment.mesh.positions,
-        &detection.hits,
-        &garment.roles(),
-        ease,
-        &options.response,
-    );
-    let (edge_responses, edge_rounds) = respond_edges(
-        index,
-        &mut positions,
-        &garment.edges,
-        &detection.partition,
-        &garment.roles(),
-        ease,
-        &options.response,
-    );
+    let roles = garment.roles();
+    let (mut positions, mut responses) = timed(&mut timings.respond, || {
+        respond(
+            index,
+            &garment.mesh.positions,
+            &detection.hits,
+            &roles,
+            ease,
+            &options.response,
+        )
+    });
+    let (edge_responses, edge_rounds) = timed(&mut timings.respond_edges, || {
+        respond_edges(
+            index,
+            &mut positions,
+            &garment.edges,
+            &detection.partition,
+            &roles,
+            ease,
+            &options.response,
+        )
+    });
     responses.extend(edge_responses);
-    let quality = quality(index, &positions, &garment.edges, &responses);
+    let quality = timed(&mut timings.quality, || {
+        quality(index, &positions, &garment.edges, &responses)
+    });
     Collision {
         detection,
         ease,
@@ -213,5 +246,6 @@ pub fn collide(
             triangles: garment.mesh.triangles.clone(),
         },
         quality,
+        timings,
     }
 }

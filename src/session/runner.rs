@@ -13,10 +13,7 @@ use super::metrics::StepMetrics;
 use crate::body::{
     self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition, PartitionOptions,
 };
-use crate::collision::{
-    self, BodyIndex, Collision, CollisionOptions, DetectState, GarmentMesh, VerifyReport, detect, quality, respond,
-    respond_edges, response_ease,
-};
+use crate::collision::{self, BodyIndex, Collision, CollisionOptions, DetectState, GarmentMesh, VerifyReport};
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind, build_framework};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
@@ -551,48 +548,17 @@ fn collide_garment(
     let Some(index) = index.as_ref() else {
         return;
     };
-    let co = &options.collision;
     let garment = GarmentMesh::from_framework(fw, index.height);
-    let detection = timed(m, "collision.detect", || {
-        detect(index, &garment.input(), &co.detect, &mut state.detect)
-    });
-    let ease = response_ease(index, fw.ease(), &co.response);
-    let (mut positions, mut responses) = timed(m, "collision.respond", || {
-        respond(
-            index,
-            &garment.mesh.positions,
-            &detection.hits,
-            &garment.roles(),
-            ease,
-            &co.response,
-        )
-    });
-    let (edge_responses, edge_rounds) = timed(m, "collision.respond_edges", || {
-        respond_edges(
-            index,
-            &mut positions,
-            &garment.edges,
-            &detection.partition,
-            &garment.roles(),
-            ease,
-            &co.response,
-        )
-    });
-    responses.extend(edge_responses);
-    let q = timed(m, "collision.quality", || {
-        quality(index, &positions, &garment.edges, &responses)
-    });
-    let collision = Collision {
-        detection,
-        ease,
-        responses,
-        edge_rounds,
-        mesh: crate::mesh::TriMesh {
-            positions,
-            triangles: garment.mesh.triangles.clone(),
-        },
-        quality: q,
-    };
+    let collision = collision::collide(index, &garment, fw.ease(), &options.collision, &mut state.detect);
+    let t = collision.timings;
+    for (name, ms) in [
+        ("collision.detect", t.detect),
+        ("collision.respond", t.respond),
+        ("collision.respond_edges", t.respond_edges),
+        ("collision.quality", t.quality),
+    ] {
+        m.timings_ms.insert(name.to_string(), ms);
+    }
     let verify = options.verify.then(|| {
         timed(m, "collision.verify", || {
             let before = collision::ground_truth(&body.mesh.mesh, &garment.mesh.positions, &garment.edges);

@@ -15,24 +15,11 @@ use drape::mesh::TriMesh;
 use drape::session::{CollisionPart, RunOptions, Stage, StageInfo, StageSink, parse_session, run_session};
 use glam::DVec3;
 
-use super::common::{real_body, real_jumpsuit, real_probe};
+use super::common::{Lcg, real_body, real_jumpsuit, real_probe};
 
 fn index() -> &'static BodyIndex {
     static INDEX: OnceLock<BodyIndex> = OnceLock::new();
     INDEX.get_or_init(|| BodyIndex::new(real_body(), &SliceOptions::default()))
-}
-
-/// A small deterministic generator (no dependency on a crate's stream across versions).
-struct Lcg(u64);
-
-impl Lcg {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// The default jumpsuit's M0 with every vertex pushed along its normal by a random amount
@@ -41,7 +28,7 @@ fn perturbed(seed: u64, in_m: f64, out_m: f64) -> GarmentMesh {
     let mut g = GarmentMesh::from_framework(real_jumpsuit(), index().height);
     let mut rng = Lcg(seed);
     for (p, n) in g.mesh.positions.iter_mut().zip(&g.normals) {
-        *p += *n * (rng.unit() * (in_m + out_m) - in_m);
+        *p += *n * (rng.next() * (in_m + out_m) - in_m);
     }
     g.normals = g.mesh.vertex_normals();
     g

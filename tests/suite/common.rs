@@ -86,3 +86,18 @@ pub fn real_jumpsuit() -> &'static drape::garment::Framework {
         .expect("the jumpsuit builds")
     })
 }
+
+/// A small deterministic generator (64-bit LCG), so failures reproduce.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in `[0, 1)`.
+    #[allow(clippy::should_implement_trait)]
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}

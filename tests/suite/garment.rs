@@ -10,20 +10,7 @@ use drape::geom::inside::winding_number;
 use drape::mesh::Adjacency;
 use glam::DVec3;
 
-use super::common::{real_body, real_jumpsuit, real_probe};
-
-/// A small deterministic generator (64-bit LCG), so failures reproduce.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use super::common::{Lcg, real_body, real_jumpsuit, real_probe};
 
 /// Perimeter of the M0 vertices lying exactly in the horizontal plane `y` on one side of
 /// `x = split` (`side` -1, 0 for all, +1), ordered by angle about their centroid.
