@@ -4,23 +4,10 @@
 
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 
-use super::colors::partition_color;
+use super::colors::{partition_color, rule_color};
 use super::logger::{RerunLogger, f32s, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::runner::{CollisionOutcome, CollisionPart, SinkError};
-
-/// Colour of a response rule.
-pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
-    match rule {
-        AppliedRule::VertexNormal => [90, 90, 255],
-        AppliedRule::ViewDirection => [0, 200, 200],
-        AppliedRule::BodyNormal => [255, 170, 0],
-        AppliedRule::GlobalCentre => [30, 160, 60],
-        AppliedRule::LocalCentre => [150, 220, 60],
-        AppliedRule::Guard => [230, 30, 200],
-        AppliedRule::Fallback => [140, 140, 140],
-    }
-}
 
 impl RerunLogger {
     pub(super) fn collision(

@@ -1,6 +1,7 @@
-//! Colours: one per partition, one per landmark kind, and an error colour map.
+//! Colours: one per partition, one per collision response rule, and an error colour map.
 
 use crate::body::PartitionId;
+use crate::collision::AppliedRule;
 
 /// Display colour of a partition (RGB).
 pub fn partition_color(id: PartitionId) -> [u8; 3] {
@@ -35,4 +36,17 @@ pub fn error_color(value: f64, max: f64) -> [u8; 3] {
     let f = x - i as f64;
     let (a, b) = (STOPS[i], STOPS[i + 1]);
     [0, 1, 2].map(|k| (a[k] + (b[k] - a[k]) * f).round() as u8)
+}
+
+/// Colour of a response rule (its arrows in `collision/response/<rule>`).
+pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
+    match rule {
+        AppliedRule::VertexNormal => [90, 90, 255],
+        AppliedRule::ViewDirection => [0, 200, 200],
+        AppliedRule::BodyNormal => [255, 170, 0],
+        AppliedRule::GlobalCentre => [30, 160, 60],
+        AppliedRule::LocalCentre => [150, 220, 60],
+        AppliedRule::Guard => [230, 30, 200],
+        AppliedRule::Fallback => [140, 140, 140],
+    }
 }
