@@ -73,7 +73,8 @@ struct RunArgs {
     /// the log, the metrics and the progress lines.
     #[arg(long)]
     verify: bool,
-    /// Test every vertex against every body triangle (no partitions, no BVH), to compare.
+    /// Test every vertex point-face against every body triangle (no partitions, no BVH, no
+    /// line-line), to compare.
     #[arg(long)]
     brute_force: bool,
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
@@ -285,6 +286,7 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     };
     if args.brute_force {
         options.collision.detect.acceleration = drape::collision::Acceleration::BruteForce;
+        options.collision.detect.method_override = Some(drape::body::DetectionMethod::PointFace);
     }
     if args.no_skipping {
         options.collision.detect.inert = false;
