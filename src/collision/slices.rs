@@ -256,3 +256,59 @@ impl SliceStack {
 pub fn flat(p: DVec3) -> DVec2 {
     DVec2::new(p.x, p.z)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn circle(c: DVec2, r: f64, n: usize) -> Vec<DVec2> {
+        (0..n)
+            .map(|k| {
+                let t = std::f64::consts::TAU * k as f64 / n as f64;
+                c + DVec2::new(t.cos(), t.sin()) * r
+            })
+            .collect()
+    }
+
+    fn area(points: &[DVec2]) -> f64 {
+        polygon::signed_area(points).abs()
+    }
+
+    #[test]
+    fn a_convex_ring_keeps_its_global_centre() {
+        let ring = circle(DVec2::new(0.1, -0.2), 0.15, 64);
+        let c = centres(&ring, area(&ring), &SliceOptions::default()).expect("centres");
+        assert_eq!(c.choice, CentreChoice::Global);
+        assert!(c.global.distance(DVec2::new(0.1, -0.2)) < 1e-12);
+        assert!((c.width - 0.3).abs() < 1e-12);
+        // The half rings' means lie at 2r/pi... of a semicircle's points: inside W/2.
+        assert!(c.local[0].x < 0.1 && c.local[1].x > 0.1);
+    }
+
+    #[test]
+    fn two_legs_are_a_concave_ring_with_local_centres() {
+        let (l, r) = (
+            circle(DVec2::new(-0.1, 0.0), 0.07, 48),
+            circle(DVec2::new(0.1, 0.0), 0.07, 48),
+        );
+        let points: Vec<DVec2> = l.iter().chain(&r).copied().collect();
+        let c = centres(&points, area(&l) + area(&r), &SliceOptions::default()).expect("centres");
+        assert_eq!(c.choice, CentreChoice::Local);
+        assert!(c.local[0].distance(DVec2::new(-0.1, 0.0)) < 1e-12);
+        assert!(c.local[1].distance(DVec2::new(0.1, 0.0)) < 1e-12);
+        let (centre, global) = c.for_point(DVec2::new(0.15, 0.05));
+        assert!(!global && centre.distance(DVec2::new(0.1, 0.0)) < 1e-12);
+    }
+
+    #[test]
+    fn a_local_centre_beyond_half_the_width_keeps_all_centres() {
+        // A narrow ring (W = 0.2 across x) with a long lobe towards +z on its right half:
+        // that half's mean lies about 0.9 from the global centre, beyond W / 2.
+        let mut points = vec![DVec2::new(-0.1, 0.0), DVec2::new(0.1, 0.0)];
+        points.extend((0..100).map(|k| DVec2::new(0.05, 0.8 + 0.002 * k as f64)));
+        let c = centres(&points, 0.01, &SliceOptions::default()).expect("centres");
+        assert_eq!(c.choice, CentreChoice::All);
+        let (centre, global) = c.for_point(DVec2::new(0.02, 0.0));
+        assert!(global && centre == c.global);
+    }
+}

@@ -267,9 +267,9 @@ fn every_response_rule_keeps_its_direction_on_a_garment_pushed_in_everywhere() {
     assert_eq!(after.inside_count(), 0);
 }
 
-/// Keeps each step's M0 after response.
+/// Keeps each step's M0 after response (with its detection counts) and before it.
 #[derive(Default)]
-struct Meshes(Vec<(TriMesh, usize, usize, usize)>);
+struct Meshes(Vec<(TriMesh, usize, usize, usize)>, Vec<TriMesh>);
 
 impl StageSink for Meshes {
     fn stage(&mut self, _: &StageInfo, stage: Stage<'_>) -> Result<(), drape::session::runner::SinkError> {
@@ -277,6 +277,7 @@ impl StageSink for Meshes {
             let d = &o.collision.detection;
             self.0
                 .push((o.collision.mesh.clone(), d.tested, d.skipped_inert, d.skipped_patch));
+            self.1.push(o.garment.mesh.clone());
         }
         Ok(())
     }
@@ -410,4 +411,34 @@ fn degenerate_triangles_and_points_on_edges_vertices_and_faces_do_not_break_dete
     );
     assert!(c.detection.hits.is_empty());
     assert!(c.mesh.positions.iter().all(|p| p.is_finite()));
+}
+
+#[test]
+fn export_writes_each_steps_m0_after_response() {
+    let text = "drape 1\nbody builtin\ngarment jumpsuit\nset ease 0.004\n";
+    let session = parse_session(text, "export.drape", std::path::Path::new(".")).expect("parses");
+    let dir = std::env::temp_dir().join(format!("drape-export-test-{}", std::process::id()));
+    let mut exporter = drape::session::export::ObjExporter::new(dir.clone()).expect("folder");
+    let mut meshes = Meshes::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut exporter, &mut meshes]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    for (step, (responded, ..)) in [1, 2].iter().zip(&meshes.0) {
+        let path = dir.join(format!("step{step:02}_jumpsuit_m0.obj"));
+        let obj = drape::mesh::read_obj(&path, 1.0).expect("the export reads back");
+        assert_eq!(obj.mesh.triangles, responded.triangles);
+        let worst = obj
+            .mesh
+            .positions
+            .iter()
+            .zip(&responded.positions)
+            .map(|(a, b)| a.distance(*b))
+            .fold(0.0, f64::max);
+        assert!(
+            worst < 1e-6,
+            "step {step}: export differs from M0 after response by {worst}"
+        );
+    }
+    // Step 2's response moved vertices: the export is not the raw M0.
+    assert_ne!(meshes.0[1].0.positions, meshes.1[1].positions);
+    std::fs::remove_dir_all(&dir).ok();
 }
