@@ -289,6 +289,20 @@ pub fn detect(
     state: &mut DetectState,
 ) -> Detection {
     let n = garment.positions.len();
+    if index.partitions.is_empty() {
+        // A body without partitions has nothing to test against.
+        return Detection {
+            hits: Vec::new(),
+            partition: vec![0; n],
+            skip: vec![Skip::Tested; n],
+            methods: vec![None; n],
+            tested: 0,
+            skipped_inert: 0,
+            skipped_patch: 0,
+            patches_skipped: 0,
+            by_method: [0, 0],
+        };
+    }
     let reach = options.reach(index.height);
     let edge = mean_edge(garment.positions, garment.edges);
     if state.memo.len() != n {

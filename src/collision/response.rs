@@ -169,7 +169,11 @@ fn rule_direction(
 ) -> (DVec3, AppliedRule, Option<DVec2>) {
     let v = hit.vertex as usize;
     let n = roles.normals.get(v).copied().unwrap_or(DVec3::ZERO);
-    match index.partitions[hit.partition].response {
+    let rule = index
+        .partitions
+        .get(hit.partition)
+        .map_or(ResponseRule::VertexNormal, |p| p.response);
+    match rule {
         ResponseRule::VertexNormal => (n, AppliedRule::VertexNormal, None),
         ResponseRule::ViewDirection if roles.boundary.get(v).copied().unwrap_or(false) => {
             let sign = if n.dot(options.view) < 0.0 { -1.0 } else { 1.0 };
