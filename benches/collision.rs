@@ -259,14 +259,14 @@ fn methods_table(body: &Body, probe: &BodyProbe) {
 fn main() {
     let mesh = BodyMesh::from_obj_text(drape::body::BUILTIN_BODY_OBJ, "builtin", 1.0).expect("builtin body");
     let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");
-    let probe = BodyProbe::new(&body.mesh.mesh).expect("probe");
     let start = Instant::now();
-    let index = BodyIndex::new(&body, &SliceOptions::default());
+    let probe = BodyProbe::new(&body);
+    let index = probe.index();
     println!(
         "body index (pseudo-normals, 8 BVHs, {} slices): {:.1} ms, once per body",
         index.slices.len(),
         start.elapsed().as_secs_f64() * 1e3
     );
-    detection_table(&body, &probe, &index);
+    detection_table(&body, &probe, index);
     methods_table(&body, &probe);
 }

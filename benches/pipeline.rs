@@ -73,7 +73,7 @@ const RESOLUTIONS: [usize; 4] = [3, 6, 12, 24];
 
 fn garment_scene() -> (Body, BodyProbe, Dimensions) {
     let body = Body::analyse(body_mesh(), &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");
-    let probe = BodyProbe::new(&body.mesh.mesh).expect("probe");
+    let probe = BodyProbe::new(&body);
     let base = build_framework(
         &body,
         &probe,

@@ -1,9 +1,11 @@
 //! The body: mesh loading and validation, landmarks, section rings, partitions A-G.
 
+pub mod index;
 pub mod landmarks;
 pub mod partition;
 pub mod profile;
 pub mod rings;
+pub mod slices;
 
 use std::path::{Path, PathBuf};
 

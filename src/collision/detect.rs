@@ -17,10 +17,10 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::body_index::BodyIndex;
 use super::line_line::line_line;
 use super::point_face::{Reach, Search, point_face};
 use crate::body::DetectionMethod;
+use crate::body::index::BodyIndex;
 use crate::garment::CurveRef;
 
 /// Which triangles each vertex is tested against.

@@ -13,7 +13,7 @@
 use glam::{DVec2, DVec3};
 
 use super::point_face::Reach;
-use super::slices::{Slice, flat};
+use crate::body::slices::{Slice, flat};
 use crate::geom::polygon;
 
 /// What the line-line test found.

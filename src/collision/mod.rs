@@ -6,30 +6,27 @@
 //! Data flow of one step: [`GarmentMesh::from_framework`] (M0 with the roles the rules
 //! read) -> [`detect()`] (hits, with [`DetectState`] carried between steps) -> [`respond()`]
 //! (moved vertices and the rule of each) -> [`quality()`] (what is left inside, crossing
-//! edges, ease error). The body side is built once: [`BodyIndex::new`].
+//! edges, ease error). The body side is built once per body and shared with the garment:
+//! [`BodyIndex::new`] (in [`crate::body::index`]).
 
-pub mod body_index;
-pub mod closest;
 pub mod detect;
 pub mod line_line;
 pub mod par;
 pub mod point_face;
 pub mod quality;
-pub mod ray;
 pub mod response;
-pub mod slices;
 pub mod verify;
 
 use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-pub use body_index::{BodyIndex, Nearest, PartitionIndex};
+pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
+pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, respond_edges, response_ease};
-pub use slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use verify::{GroundTruth, VerifyReport, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};
@@ -75,15 +72,16 @@ impl GarmentMesh {
     pub fn from_framework(fw: &Framework, height: f64) -> Self {
         let m0 = &fw.m0;
         let n = m0.mesh.positions.len();
-        let mut uses: BTreeMap<[u32; 2], u32> = BTreeMap::new();
-        for [a, b] in &m0.directed_edges {
-            *uses.entry([(*a).min(*b), (*a).max(*b)]).or_default() += 1;
-        }
+        // Openings: the ends of edges with a face on one side only.
         let mut boundary = vec![false; n];
-        for ([a, b], count) in uses {
-            if count == 1 {
-                boundary[a as usize] = true;
-                boundary[b as usize] = true;
+        if let Ok(adjacency) = crate::mesh::Adjacency::try_new(&m0.mesh) {
+            for (tri, across) in m0.mesh.triangles.iter().zip(&adjacency.neighbours) {
+                for k in 0..3 {
+                    if across[k] == crate::mesh::topology::NO_NEIGHBOUR {
+                        boundary[tri[k] as usize] = true;
+                        boundary[tri[(k + 1) % 3] as usize] = true;
+                    }
+                }
             }
         }
         let tol = 1e-9 * height;

@@ -11,8 +11,7 @@
 
 use glam::DVec3;
 
-use super::body_index::{BodyIndex, Nearest};
-use super::closest::Feature;
+use crate::body::index::{BodyIndex, Nearest};
 
 /// Which triangles the test looks at.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -43,9 +42,6 @@ pub struct PointFace {
     pub nearest: Option<Nearest>,
     /// Whether the vertex lies inside (deeper than the surface tolerance, within `w1`).
     pub inside: bool,
-    /// Whether the inside verdict came from the segment along a face normal (the paper's
-    /// case) rather than from a concave edge or vertex.
-    pub by_face: bool,
 }
 
 impl PointFace {
@@ -73,9 +69,5 @@ pub fn point_face(index: &BodyIndex, search: Search, p: DVec3, reach: &Reach) ->
     };
     let inside = nearest
         .is_some_and(|n| n.distance > reach.surface && n.distance <= reach.inside && (p - n.foot).dot(n.normal) < 0.0);
-    PointFace {
-        nearest,
-        inside,
-        by_face: inside && nearest.is_some_and(|n| n.feature == Feature::Face),
-    }
+    PointFace { nearest, inside }
 }

@@ -4,9 +4,9 @@
 
 use glam::DVec3;
 
-use super::body_index::BodyIndex;
 use super::par::par_map;
 use super::response::Response;
+use crate::body::index::BodyIndex;
 
 /// Quality figures of a garment mesh against the body.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]

@@ -30,11 +30,11 @@
 
 use glam::{DVec2, DVec3};
 
-use super::body_index::BodyIndex;
 use super::detect::Hit;
 use super::par::par_map;
-use super::slices::flat;
 use crate::body::ResponseRule;
+use crate::body::index::BodyIndex;
+use crate::body::slices::flat;
 
 /// Response settings.
 #[derive(Clone, Debug, PartialEq)]

@@ -9,9 +9,9 @@ use glam::DVec3;
 use super::detect::Detection;
 use super::par::par_map as parallel;
 use super::quality::Quality;
-use super::ray::ray_triangle;
 use crate::body::DetectionMethod;
 use crate::geom::inside::winding_number;
+use crate::geom::ray::ray_triangle;
 use crate::mesh::TriMesh;
 
 /// The ground truth for one garment mesh.

@@ -1,78 +1,67 @@
-//! Clearance against the body: signed distance from parry3d's oriented triangle mesh (its
-//! BVH and pseudo-normals), and pushing curve samples out to a gap.
-//!
-//! Used for the curves that are not cut from a body section (shoulder seams, the crotch
-//! junction, contour spans between rings): their samples are moved out along the surface
-//! normal until they stand `gap` off the skin.
+//! Clearance against the body for the feature curves that no section gives (shoulder
+//! seams, the crotch junction, contour spans between rings): their samples are moved out
+//! along the way out of the body until they stand `gap` off the skin. The queries are the
+//! body index's (exact nearest point and pseudo-normal sign), the same the collision uses.
 
 use glam::DVec3;
-use parry3d::query::PointQuery;
-use parry3d::shape::{TriMesh as ParryMesh, TriMeshFlags};
 
-use crate::mesh::TriMesh;
+use crate::body::Body;
+use crate::body::index::BodyIndex;
+use crate::body::slices::SliceOptions;
 
-/// A body prepared for distance queries (built once per body).
+/// A body prepared for clearance queries: it owns the body's one [`BodyIndex`].
+#[derive(Debug)]
 pub struct BodyProbe {
-    mesh: ParryMesh,
-}
-
-impl std::fmt::Debug for BodyProbe {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("BodyProbe")
-            .field("triangles", &self.mesh.num_triangles())
-            .finish()
-    }
+    index: BodyIndex,
 }
 
 impl BodyProbe {
-    /// Builds the probe; `None` if parry refuses the mesh (no triangles, or not orientable).
-    pub fn new(mesh: &TriMesh) -> Option<Self> {
-        let vertices = mesh.positions.iter().map(|p| p.as_vec3()).collect();
-        let mesh = ParryMesh::with_flags(vertices, mesh.triangles.clone(), TriMeshFlags::ORIENTED).ok()?;
-        Some(Self { mesh })
+    /// Prepares `body` (its index with the default slices).
+    pub fn new(body: &Body) -> Self {
+        Self::from_index(BodyIndex::new(body, &SliceOptions::default()))
     }
 
-    /// The nearest surface point and the signed distance (negative inside).
-    pub fn nearest(&self, p: DVec3) -> (DVec3, f64) {
-        let projection = self.mesh.project_local_point(p.as_vec3(), true);
-        let foot = projection.point.as_dvec3();
-        let d = p.distance(foot);
-        (foot, if projection.is_inside { -d } else { d })
+    /// Wraps an index already built.
+    pub fn from_index(index: BodyIndex) -> Self {
+        Self { index }
     }
 
-    /// Signed distance to the body surface (negative inside).
+    /// The body index (for the collision).
+    pub fn index(&self) -> &BodyIndex {
+        &self.index
+    }
+
+    /// The nearest surface point and the signed distance (negative inside); `None` for a
+    /// body with no triangles.
+    pub fn nearest(&self, p: DVec3) -> Option<(DVec3, f64, DVec3)> {
+        self.index
+            .nearest(p, f64::INFINITY)
+            .map(|n| (n.foot, n.signed(p), n.normal))
+    }
+
+    /// Signed distance to the body surface (negative inside); infinite with no body.
     pub fn signed_distance(&self, p: DVec3) -> f64 {
-        self.nearest(p).1
+        self.nearest(p).map_or(f64::INFINITY, |(_, d, _)| d)
     }
 
     /// Moves `p` out until it stands at least `gap` off the body: from the nearest surface
-    /// point along the outward direction. A few passes settle points near concave creases.
-    /// Points already `gap` away are returned unchanged (bit for bit).
+    /// point along the way out. A few passes settle points near concave creases. Points
+    /// already `gap` away are returned unchanged (bit for bit).
     pub fn clear(&self, p: DVec3, gap: f64) -> DVec3 {
         let mut q = p;
         for _ in 0..4 {
-            let (foot, d) = self.nearest(q);
-            // f32 queries: accept a hair under the gap.
-            if d >= gap * (1.0 - 1e-4) {
+            let Some((foot, d, normal)) = self.nearest(q) else {
+                break;
+            };
+            if d >= gap * (1.0 - 1e-9) {
                 break;
             }
             let mut out = (q - foot) * d.signum();
             if out.length_squared() <= 1e-24 {
-                out = self.normal_at(foot);
+                out = normal;
             }
             q = foot + out.normalize_or_zero() * gap;
         }
         q
-    }
-
-    fn normal_at(&self, foot: DVec3) -> DVec3 {
-        let (_, feature) = self.mesh.project_local_point_and_get_feature(foot.as_vec3());
-        match feature {
-            parry3d::shape::FeatureId::Face(f) => {
-                let t = self.mesh.triangle(f % self.mesh.num_triangles() as u32);
-                t.normal().map_or(DVec3::Y, |n| n.as_dvec3())
-            }
-            _ => DVec3::Y,
-        }
     }
 }

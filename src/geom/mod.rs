@@ -1,10 +1,12 @@
 //! Curves, planes and sections: the geometry every stage builds on.
 
 pub mod chord_spline;
+pub mod closest;
 pub mod coons;
 pub mod inside;
 pub mod plane;
 pub mod polygon;
+pub mod ray;
 pub mod section;
 pub mod spline;
 

@@ -350,7 +350,6 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     driver.emit(0, "scene", "done", Stage::StepDone(&done), &mut m);
     report.steps.push(m);
     let mut probe: Option<BodyProbe> = None;
-    let mut index: Option<BodyIndex> = None;
     let mut garment: Option<GarmentState> = None;
 
     // --- The steps.
@@ -423,14 +422,16 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                     detect: DetectState::default(),
                     collision: None,
                 };
-                solve_garment(&body, &mut probe, state, &mut m).map(|mut state| {
+                solve_garment(&body, &mut probe, options, state, &mut m).map(|mut state| {
                     if let Some(fw) = &state.framework {
                         for part in GarmentPart::all() {
                             driver.emit(step_index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
                         }
                     }
-                    collide_garment(&body, &mut index, &mut state, options, &mut m);
-                    emit_collision(&mut driver, step_index, op, &state, index.as_ref(), &mut m);
+                    if let Some(probe) = &probe {
+                        collide_garment(&body, probe.index(), &mut state, options, &mut m);
+                        emit_collision(&mut driver, step_index, op, &state, probe.index(), &mut m);
+                    }
                     garment = Some(state);
                 })
             }
@@ -451,7 +452,7 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                         collision: None,
                     };
                     next.dims.values.insert(name.clone(), value);
-                    match solve_garment(&body, &mut probe, next, &mut m) {
+                    match solve_garment(&body, &mut probe, options, next, &mut m) {
                         Ok(mut next) => {
                             if let Some(after) = &next.framework {
                                 let moved = before
@@ -474,8 +475,10 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                                     driver.emit(step_index, op, part.stage_name(), Stage::Garment(after, part), &mut m);
                                 }
                             }
-                            collide_garment(&body, &mut index, &mut next, options, &mut m);
-                            emit_collision(&mut driver, step_index, op, &next, index.as_ref(), &mut m);
+                            if let Some(probe) = &probe {
+                                collide_garment(&body, probe.index(), &mut next, options, &mut m);
+                                emit_collision(&mut driver, step_index, op, &next, probe.index(), &mut m);
+                            }
                             garment = Some(next);
                             Ok(())
                         }
@@ -518,34 +521,25 @@ fn emit_collision(
     step: usize,
     op: &'static str,
     state: &GarmentState,
-    index: Option<&BodyIndex>,
+    index: &BodyIndex,
     m: &mut StepMetrics,
 ) {
-    if let (Some(outcome), Some(index)) = (&state.collision, index) {
+    if let Some(outcome) = &state.collision {
         for part in [CollisionPart::Detect, CollisionPart::Respond] {
             driver.emit(step, op, part.stage_name(), Stage::Collision(outcome, index, part), m);
         }
     }
 }
 
-/// Collides the state's M0 with the body (building the body index once), recording the
-/// figures in the step's metrics.
+/// Collides the state's M0 with the body, recording the figures in the step's metrics.
 fn collide_garment(
     body: &Body,
-    index: &mut Option<BodyIndex>,
+    index: &BodyIndex,
     state: &mut GarmentState,
     options: &RunOptions,
     m: &mut StepMetrics,
 ) {
     let Some(fw) = &state.framework else {
-        return;
-    };
-    if index.is_none() {
-        *index = Some(timed(m, "collision.index", || {
-            BodyIndex::new(body, &options.collision.slices)
-        }));
-    }
-    let Some(index) = index.as_ref() else {
         return;
     };
     let garment = GarmentMesh::from_framework(fw, index.height);
@@ -624,15 +618,16 @@ fn record_collision(m: &mut StepMetrics, index: &BodyIndex, c: &Collision, verif
 fn solve_garment(
     body: &Body,
     probe: &mut Option<BodyProbe>,
+    options: &RunOptions,
     mut state: GarmentState,
     m: &mut StepMetrics,
 ) -> Result<GarmentState, String> {
-    if probe.is_none() {
-        *probe = timed(m, "garment.probe", || BodyProbe::new(&body.mesh.mesh));
-    }
-    let probe = probe
-        .as_ref()
-        .ok_or_else(|| "the body mesh cannot be prepared for distance queries".to_string())?;
+    // The body's one index (clearance here, collision after), built once per body.
+    let probe = probe.get_or_insert_with(|| {
+        timed(m, "body.index", || {
+            BodyProbe::from_index(BodyIndex::new(body, &options.collision.slices))
+        })
+    });
     let fw = timed(m, "garment.solve", || {
         build_framework(body, probe, state.template, &state.dims, &state.options)
     })

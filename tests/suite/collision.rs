@@ -3,12 +3,11 @@
 //! nothing, and degenerate input.
 
 use std::collections::BTreeSet;
-use std::sync::OnceLock;
 
 use drape::body::DetectionMethod;
 use drape::collision::{
     Acceleration, AppliedRule, BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, Reach, Search,
-    SliceOptions, collide, detect, ground_truth, point_face,
+    collide, detect, ground_truth, point_face,
 };
 use drape::garment::{Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mesh::TriMesh;
@@ -18,8 +17,7 @@ use glam::DVec3;
 use super::common::{Lcg, real_body, real_jumpsuit, real_probe};
 
 fn index() -> &'static BodyIndex {
-    static INDEX: OnceLock<BodyIndex> = OnceLock::new();
-    INDEX.get_or_init(|| BodyIndex::new(real_body(), &SliceOptions::default()))
+    real_probe().index()
 }
 
 /// The default jumpsuit's M0 with every vertex pushed along its normal by a random amount

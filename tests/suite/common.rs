@@ -69,7 +69,7 @@ pub fn ellipse_perimeter(a: f64, b: f64) -> f64 {
 /// The body probe of the shipped body, built once.
 pub fn real_probe() -> &'static drape::garment::BodyProbe {
     static PROBE: OnceLock<drape::garment::BodyProbe> = OnceLock::new();
-    PROBE.get_or_init(|| drape::garment::BodyProbe::new(&real_body().mesh.mesh).expect("probe builds"))
+    PROBE.get_or_init(|| drape::garment::BodyProbe::new(real_body()))
 }
 
 /// The default jumpsuit on the shipped body, built once.

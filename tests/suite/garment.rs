@@ -278,11 +278,11 @@ fn assert_outside(name: &str, positions: &[DVec3]) {
 
 /// M0 after the mesh-layer collision response.
 fn collided(fw: &drape::garment::Framework) -> Vec<DVec3> {
-    use drape::collision::{BodyIndex, CollisionOptions, DetectState, GarmentMesh, SliceOptions, collide};
-    let index = BodyIndex::new(real_body(), &SliceOptions::default());
+    use drape::collision::{CollisionOptions, DetectState, GarmentMesh, collide};
+    let index = real_probe().index();
     let g = GarmentMesh::from_framework(fw, index.height);
     collide(
-        &index,
+        index,
         &g,
         fw.ease(),
         &CollisionOptions::default(),

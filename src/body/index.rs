@@ -1,19 +1,21 @@
-//! The body prepared for collision queries, built once per body: `f64` triangles with
-//! face, edge and vertex pseudo-normals (Bærentzen and Aanæs 2005: angle-weighted at
-//! vertices, the two faces' sum on edges), one parry3d BVH over all triangles (rays,
-//! exact checks) and one per partition A-G (detection), and the horizontal slice stack
-//! the line-line test and the ring-centre response read.
+//! The body prepared for distance, inside and ray queries, built once per body and shared
+//! by the garment (curve clearance) and the collision: `f64` triangles with face, edge and
+//! vertex pseudo-normals (Bærentzen and Aanæs 2005: angle-weighted at vertices, the two
+//! faces' sum on edges), one parry3d BVH over all triangles (nearest point, rays) and one
+//! per partition A-G (detection), and the horizontal slice stack the line-line test and
+//! the ring-centre response read.
 
 use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, TraversalAction};
 
-use super::closest::{Feature, closest_on_triangle};
-use super::ray::ray_triangle;
 use super::slices::{SliceOptions, SliceStack};
-use crate::body::{Body, DetectionMethod, PartitionId, ResponseRule};
-use crate::mesh::topology::NO_NEIGHBOUR;
+use super::{Body, DetectionMethod, PartitionId, ResponseRule};
+use crate::geom::closest::{Feature, closest_on_triangle};
+use crate::geom::ray::ray_triangle;
 use parry3d::query::PointQuery;
+
+use crate::mesh::topology::NO_NEIGHBOUR;
 
 /// The nearest point of the body (or of a partition) to a query point.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -12,9 +12,8 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::body::Body;
-use crate::body::LandmarkKind;
-use crate::body::profile::{loop_at, outer_loops};
+use super::profile::{loop_at, outer_loops};
+use super::{Body, LandmarkKind};
 use crate::geom::polygon;
 
 /// Slice settings.
@@ -168,7 +167,7 @@ impl SliceStack {
     /// Cuts the slices of `body` up to the top of the highest partition whose detection is
     /// line-line or whose response reads ring centres (plus one slice).
     pub fn new(body: &Body, options: &SliceOptions) -> Self {
-        use crate::body::{DetectionMethod, ResponseRule};
+        use super::{DetectionMethod, ResponseRule};
         let mesh = &body.mesh.mesh;
         let Some((lo, hi)) = mesh.bounds() else {
             return Self::default();
