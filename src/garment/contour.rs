@@ -16,20 +16,51 @@ pub struct Contour {
     pub through: Vec<String>,
     /// Their positions.
     pub points: Vec<DVec3>,
-    /// The spline (natural ends).
+    /// The spline.
     pub spline: ChordSpline3,
+    /// Clamped end tangents (lowest end, highest end); `None` leaves that end natural.
+    pub tangents: [Option<DVec3>; 2],
 }
 
 impl Contour {
-    /// Fits the contour through `points` (lowest first).
+    /// Fits the contour through `points` (lowest first), natural ends.
     pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>) -> Result<Self, SplineError> {
-        let spline = ChordSpline3::try_new(&points, CurveEnds::Open { start: None, end: None })?;
+        Self::fit_with(name, through, points, [None, None])
+    }
+
+    /// Fits the contour through `points` with the end tangents clamped where given.
+    pub fn fit_with(
+        name: &str,
+        through: Vec<String>,
+        points: Vec<DVec3>,
+        tangents: [Option<DVec3>; 2],
+    ) -> Result<Self, SplineError> {
+        let spline = ChordSpline3::try_new(
+            &points,
+            CurveEnds::Open {
+                start: tangents[0],
+                end: tangents[1],
+            },
+        )?;
         Ok(Self {
             name: name.to_string(),
             through,
             points,
             spline,
+            tangents,
         })
+    }
+
+    /// Refits through new points and end tangents, keeping the name and what it passes.
+    pub fn refit(&mut self, points: Vec<DVec3>, tangents: [Option<DVec3>; 2]) -> Result<(), SplineError> {
+        *self = Self::fit_with(&self.name, self.through.clone(), points, tangents)?;
+        Ok(())
+    }
+
+    /// The unit tangent at the lowest (`0`) or highest (`1`) end, pointing up the contour.
+    pub fn end_tangent(&self, end: usize) -> DVec3 {
+        let l = if end == 0 { 0.0 } else { self.spline.length() };
+        self.spline.derivative(l).normalize_or_zero()
     }
 
     /// `n + 1` samples of the span from point `k` to point `k + 1`, ends exact. With a

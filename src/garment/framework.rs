@@ -5,9 +5,10 @@ use glam::DVec3;
 use thiserror::Error;
 
 use super::adjust::{combined_adjustment, straighten};
-use super::contour::{Contour, clear_line};
+use super::assemble::{Counts, LEFT_LEG, Layout, QUAD, RIGHT_LEG, TORSO, assemble};
+use super::contour::Contour;
 use super::ease::Ease;
-use super::m0::{CurveRef, M0, PatchError, PatchGrid, stitch};
+use super::m0::{M0, PatchError, PatchGrid};
 use super::open_curve::{Apex, OpenCurve, OpenInput, section_part};
 use super::probe::BodyProbe;
 use super::ring::{AnchorRule, AnchorSpec, GarmentRing, RingBuildError, RingInput, RingOptions};
@@ -161,6 +162,8 @@ pub struct Framework {
     pub m0: M0,
     /// Dimensions reached.
     pub dimensions: Vec<DimensionValue>,
+    /// Sample counts of the patches and lines (fixed for the garment's life).
+    pub layout: Layout,
 }
 
 impl Framework {
@@ -221,20 +224,6 @@ impl Framework {
 
 /// The thigh ring below the crotch, as a fraction of the body's height.
 const THIGH_DROP: f64 = 0.025;
-
-const TORSO: [&str; 8] = [
-    "front",
-    "front_left",
-    "left",
-    "back_left",
-    "back",
-    "back_right",
-    "right",
-    "front_right",
-];
-const QUAD: [&str; 4] = ["front", "left", "back", "right"];
-const LEFT_LEG: [&str; 4] = ["front", "outer", "back", "inner"];
-const RIGHT_LEG: [&str; 4] = ["front", "inner", "back", "outer"];
 
 fn quad_anchors() -> Vec<AnchorSpec> {
     vec![
@@ -444,6 +433,16 @@ impl Ctx<'_> {
         ((dy.abs() * stretch / edge).round() as usize).max(2)
     }
 
+    fn layout(&self, counts: Counts) -> Layout {
+        Layout {
+            height: self.height,
+            clearance: self.ease,
+            weld: self.options.weld_threshold * self.height,
+            k: self.options.resolution.max(2),
+            counts,
+        }
+    }
+
     fn plane_for(&self, name: &str, plane: Plane, centre: DVec3) -> NamedPlane {
         NamedPlane {
             name: name.to_string(),
@@ -476,30 +475,6 @@ fn point(rings: &[GarmentRing], ring: &str, anchor: &str) -> DVec3 {
         .unwrap_or_else(|| unreachable!("anchor {ring}.{anchor} exists"))
 }
 
-fn arc(rings: &[GarmentRing], ring: &str, from: &str, to: &str, n: usize) -> Vec<DVec3> {
-    find(rings, ring)
-        .arc(from, to, n)
-        .unwrap_or_else(|| unreachable!("anchors {ring}.{from}, {ring}.{to} exist"))
-}
-
-/// Joins sample runs that share their end points.
-fn join(parts: &[Vec<DVec3>]) -> Vec<DVec3> {
-    let mut out: Vec<DVec3> = Vec::new();
-    for p in parts {
-        if out.is_empty() {
-            out.extend_from_slice(p);
-        } else {
-            out.extend_from_slice(&p[1..]);
-        }
-    }
-    out
-}
-
-fn reversed(mut v: Vec<DVec3>) -> Vec<DVec3> {
-    v.reverse();
-    v
-}
-
 /// A contour spec: name and the `(ring, anchor)` points it passes, lowest first.
 type ContourSpec = (String, Vec<(String, String)>);
 
@@ -525,40 +500,6 @@ fn fit_contours(
             Contour::fit(name, through, points).map_err(|e| FrameworkError::Contour(name.clone(), e))
         })
         .collect()
-}
-
-fn contour<'c>(contours: &'c [Contour], name: &str) -> &'c Contour {
-    contours
-        .iter()
-        .find(|c| c.name == name)
-        .unwrap_or_else(|| unreachable!("contour {name} is fitted"))
-}
-
-/// Samples of contour `name` from its point on ring `from` up to the next one.
-fn span(contours: &[Contour], name: &str, from: &str, n: usize, clearance: (&BodyProbe, f64)) -> Vec<DVec3> {
-    let c = contour(contours, name);
-    let k = c
-        .through
-        .iter()
-        .position(|t| t.split('.').next() == Some(from))
-        .unwrap_or_else(|| unreachable!("contour {name} passes ring {from}"));
-    c.span(k, n, Some(clearance))
-}
-
-/// The control points of contour `name` that shape its span from ring `from`: the span's
-/// two ends and one more either side (a cubic spline's influence decays fast beyond).
-fn span_ref(contours: &[Contour], name: &str, from: &str) -> CurveRef {
-    let c = contour(contours, name);
-    let k = c
-        .through
-        .iter()
-        .position(|t| t.split('.').next() == Some(from))
-        .unwrap_or_else(|| unreachable!("contour {name} passes ring {from}"));
-    CurveRef {
-        curve: name.to_string(),
-        first: k.saturating_sub(1),
-        last: k + 2,
-    }
 }
 
 /// Loose fit: straightens the contours below `fixed` and deforms the rings below it.
@@ -664,30 +605,34 @@ struct Parts {
     planes: Vec<NamedPlane>,
     rings: Vec<GarmentRing>,
     open_curves: Vec<OpenCurve>,
-    lines: Vec<FeatureLine>,
     contours: Vec<Contour>,
     straightened: Vec<Straightened>,
-    patches: Vec<PatchGrid>,
+    layout: Layout,
 }
 
-/// Stitches the patches into M0. Patch interiors are left where the Coons blend puts them:
-/// where they dip into the body (the seat below the hip ring) the mesh-layer collision
-/// finds and moves them.
-fn finish(ctx: &Ctx<'_>, template: TemplateKind, fit: Fit, parts: Parts) -> Framework {
-    let m0 = stitch(&parts.patches, ctx.options.weld_threshold * ctx.height);
-    Framework {
+/// Assembles the lines, patches and M0 from the curves. Patch interiors are left where
+/// the Coons blend puts them: where they dip into the body (the seat below the hip ring)
+/// the mesh-layer collision finds and moves them.
+fn finish(ctx: &Ctx<'_>, template: TemplateKind, fit: Fit, parts: Parts) -> Result<Framework, FrameworkError> {
+    let mut fw = Framework {
         template,
         fit,
         planes: parts.planes,
         rings: parts.rings,
         open_curves: parts.open_curves,
-        lines: parts.lines,
+        lines: Vec::new(),
         contours: parts.contours,
         straightened: parts.straightened,
-        patches: parts.patches,
-        m0,
+        patches: Vec::new(),
+        m0: M0::default(),
         dimensions: Vec::new(),
-    }
+        layout: parts.layout,
+    };
+    let built = assemble(&fw, ctx.probe, None)?;
+    fw.lines = built.lines;
+    fw.patches = built.patches;
+    fw.m0 = built.m0;
+    Ok(fw)
 }
 
 fn landmark(body: &Body, kind: LandmarkKind, side: Side) -> Result<DVec3, FrameworkError> {
@@ -981,283 +926,27 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
     let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
     let contours = fit_contours(&specs, &rings, &crotch_point)?;
 
-    // Lines: shoulder seams and crotch junctions.
     let k = ctx.options.resolution.max(2);
-    let n_seam = (k / 3).max(1);
-    let n_neck = k - n_seam;
-    let clearance = (ctx.probe, ctx.ease);
-    let strap_top = |i: usize| open_curves[i].apex;
-    let seam_left = clear_line(
-        point(&rings, "neckline", "left"),
-        strap_top(1),
-        n_seam,
-        ctx.probe,
-        ctx.ease,
-    );
-    let seam_right = clear_line(
-        point(&rings, "neckline", "right"),
-        strap_top(2),
-        n_seam,
-        ctx.probe,
-        ctx.ease,
-    );
-    let n_junction = ctx.segments(hip_y - thigh_y, 1.0);
-    let n_inner = (n_junction / 3).max(1);
-    let n_crotch = n_junction - n_inner;
-    let inner_span = |s: &str| {
-        span(
-            &contours,
-            &format!("inner_{s}"),
-            &format!("{s}_thigh"),
-            n_inner,
-            clearance,
-        )
-    };
-    let mut lines = vec![
-        FeatureLine {
-            name: "seam_left".into(),
-            points: seam_left.clone(),
-        },
-        FeatureLine {
-            name: "seam_right".into(),
-            points: seam_right.clone(),
-        },
-    ];
-    for (_, s) in side_names {
-        lines.push(FeatureLine {
-            name: format!("junction_{s}"),
-            points: inner_span(s),
-        });
-    }
-
-    // Patches.
-    let mut patches = Vec::new();
-    let tol = 1e-9 * h;
-    let torso_contours = [
-        "centre_front",
-        "front_left",
-        "side_left",
-        "back_left",
-        "centre_back",
-        "back_right",
-        "side_right",
-        "front_right",
-    ];
-    let torso_spans = [("hip", "waist"), ("waist", "bust"), ("bust", "chest")];
-    for (lo, hi) in torso_spans {
+    let seam = (k / 3).max(1);
+    let junction = ctx.segments(hip_y - thigh_y, 1.0);
+    let inner = (junction / 3).max(1);
+    let torso = [("hip", "waist"), ("waist", "bust"), ("bust", "chest")].map(|(lo, hi)| {
         let (ylo, yhi) = (find(&rings, lo).plane.offset, find(&rings, hi).plane.offset);
-        let nv = ctx.segments(yhi - ylo, 1.0);
-        for i in 0..8 {
-            let (a, b) = (TORSO[i], TORSO[(i + 1) % 8]);
-            let bottom = arc(&rings, lo, a, b, k);
-            let top = arc(&rings, hi, a, b, k);
-            let left = span(&contours, torso_contours[i], lo, nv, clearance);
-            let right = span(&contours, torso_contours[(i + 1) % 8], lo, nv, clearance);
-            patches.push(
-                PatchGrid::coons(&format!("torso.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], tol)?.with_curves(
-                    vec![
-                        CurveRef::whole(lo),
-                        CurveRef::whole(hi),
-                        span_ref(&contours, torso_contours[i], lo),
-                        span_ref(&contours, torso_contours[(i + 1) % 8], lo),
-                    ],
-                ),
-            );
-        }
-    }
-    let crotch_front = reversed(open_curves[0].half(true, n_crotch));
-    let crotch_back = open_curves[0].half(false, n_crotch);
-    for (side, s) in side_names {
-        let thigh = format!("{s}_thigh");
-        let c = |name: &str| format!("{name}_{s}");
-        let sp = |name: &str| span(&contours, name, &thigh, n_junction, clearance);
-        let inner_front = join(&[inner_span(s), crotch_front.clone()]);
-        let inner_back = join(&[inner_span(s), crotch_back.clone()]);
-        let specs: Vec<(String, [Vec<DVec3>; 4])> = if side == Side::Left {
-            vec![
-                (
-                    "front_inner".into(),
-                    [
-                        arc(&rings, &thigh, "inner", "front", k),
-                        arc(&rings, "hip", "front", "front_left", k),
-                        inner_front,
-                        sp(&c("front")),
-                    ],
-                ),
-                (
-                    "front_outer".into(),
-                    [
-                        arc(&rings, &thigh, "front", "outer", k),
-                        arc(&rings, "hip", "front_left", "left", k),
-                        sp(&c("front")),
-                        sp(&c("side")),
-                    ],
-                ),
-                (
-                    "back_outer".into(),
-                    [
-                        arc(&rings, &thigh, "outer", "back", k),
-                        arc(&rings, "hip", "left", "back_left", k),
-                        sp(&c("side")),
-                        sp(&c("back")),
-                    ],
-                ),
-                (
-                    "back_inner".into(),
-                    [
-                        arc(&rings, &thigh, "back", "inner", k),
-                        arc(&rings, "hip", "back_left", "back", k),
-                        sp(&c("back")),
-                        inner_back,
-                    ],
-                ),
-            ]
-        } else {
-            vec![
-                (
-                    "back_inner".into(),
-                    [
-                        arc(&rings, &thigh, "inner", "back", k),
-                        arc(&rings, "hip", "back", "back_right", k),
-                        inner_back,
-                        sp(&c("back")),
-                    ],
-                ),
-                (
-                    "back_outer".into(),
-                    [
-                        arc(&rings, &thigh, "back", "outer", k),
-                        arc(&rings, "hip", "back_right", "right", k),
-                        sp(&c("back")),
-                        sp(&c("side")),
-                    ],
-                ),
-                (
-                    "front_outer".into(),
-                    [
-                        arc(&rings, &thigh, "outer", "front", k),
-                        arc(&rings, "hip", "right", "front_right", k),
-                        sp(&c("side")),
-                        sp(&c("front")),
-                    ],
-                ),
-                (
-                    "front_inner".into(),
-                    [
-                        arc(&rings, &thigh, "front", "inner", k),
-                        arc(&rings, "hip", "front_right", "front", k),
-                        sp(&c("front")),
-                        inner_front,
-                    ],
-                ),
-            ]
-        };
-        let junction_curves = vec![
-            CurveRef::whole(&thigh),
-            CurveRef::whole("hip"),
-            span_ref(&contours, &c("front"), &thigh),
-            span_ref(&contours, &c("side"), &thigh),
-            span_ref(&contours, &c("back"), &thigh),
-            span_ref(&contours, &c("inner"), &thigh),
-            CurveRef::whole("crotch"),
-        ];
-        for (name, [bottom, top, left, right]) in specs {
-            patches.push(
-                PatchGrid::coons(&format!("junction.{s}.{name}"), [&bottom, &top, &left, &right], tol)?
-                    .with_curves(junction_curves.clone()),
-            );
-        }
-        let (order, cont) = if side == Side::Left {
-            (LEFT_LEG, ["front", "side", "back", "inner"])
-        } else {
-            (RIGHT_LEG, ["front", "inner", "back", "side"])
-        };
-        for (lo, hi) in [("hem", "knee"), ("knee", "thigh")] {
-            let (lo, hi) = (format!("{s}_{lo}"), format!("{s}_{hi}"));
-            // Counts from the landmarks, not the hem dimension: the topology stays fixed.
-            let dy = if lo.ends_with("hem") {
-                knee_y - ankle_y
-            } else {
-                thigh_y - knee_y
-            };
-            let nv = ctx.segments(dy, 1.0);
-            for i in 0..4 {
-                let (a, b) = (order[i], order[(i + 1) % 4]);
-                let bottom = arc(&rings, &lo, a, b, k);
-                let top = arc(&rings, &hi, a, b, k);
-                let left = span(&contours, &c(cont[i]), &lo, nv, clearance);
-                let right = span(&contours, &c(cont[(i + 1) % 4]), &lo, nv, clearance);
-                patches.push(
-                    PatchGrid::coons(
-                        &format!("leg.{s}.{}_{}.{a}", &lo[s.len() + 1..], &hi[s.len() + 1..]),
-                        [&bottom, &top, &left, &right],
-                        tol,
-                    )?
-                    .with_curves(vec![
-                        CurveRef::whole(&lo),
-                        CurveRef::whole(&hi),
-                        span_ref(&contours, &c(cont[i]), &lo),
-                        span_ref(&contours, &c(cont[(i + 1) % 4]), &lo),
-                    ]),
-                );
-            }
-        }
-    }
-    // Front and back panels between the chest ring, the straps and the neckline.
-    let n_strap = ctx.segments(shoulder_y - chest_y, 1.5);
-    let strap = |i: usize, front: bool| open_curves[i].half(front, n_strap);
-    let front_bottom = join(&[
-        arc(&rings, "chest", "front_right", "front", k),
-        arc(&rings, "chest", "front", "front_left", k),
-    ]);
-    let front_top = join(&[
-        reversed(seam_right.clone()),
-        arc(&rings, "neckline", "right", "front", n_neck),
-        arc(&rings, "neckline", "front", "left", n_neck),
-        seam_left.clone(),
-    ]);
-    let panel_curves: Vec<CurveRef> = [
-        "chest",
-        "neckline",
-        "left_strap",
-        "right_strap",
-        "seam_left",
-        "seam_right",
-    ]
-    .map(CurveRef::whole)
-    .to_vec();
-    patches.push(
-        PatchGrid::coons(
-            "panel.front",
-            [&front_bottom, &front_top, &strap(2, true), &strap(1, true)],
-            tol,
-        )?
-        .with_curves(panel_curves.clone()),
-    );
-    let back_bottom = join(&[
-        arc(&rings, "chest", "back_left", "back", k),
-        arc(&rings, "chest", "back", "back_right", k),
-    ]);
-    let back_top = join(&[
-        reversed(seam_left),
-        arc(&rings, "neckline", "left", "back", n_neck),
-        arc(&rings, "neckline", "back", "right", n_neck),
-        seam_right,
-    ]);
-    patches.push(
-        PatchGrid::coons(
-            "panel.back",
-            [
-                &back_bottom,
-                &back_top,
-                &reversed(strap(1, false)),
-                &reversed(strap(2, false)),
-            ],
-            tol,
-        )?
-        .with_curves(panel_curves),
-    );
-    Ok(finish(
+        ctx.segments(yhi - ylo, 1.0)
+    });
+    // Counts from the landmarks, not the hem dimension: the topology stays fixed.
+    let leg = [knee_y - ankle_y, thigh_y - knee_y].map(|dy| ctx.segments(dy, 1.0));
+    let layout = ctx.layout(Counts::Jumpsuit {
+        seam,
+        neck: k - seam,
+        junction,
+        inner,
+        crotch: junction - inner,
+        strap: ctx.segments(shoulder_y - chest_y, 1.5),
+        torso,
+        leg,
+    });
+    finish(
         ctx,
         TemplateKind::Jumpsuit,
         fit,
@@ -1265,12 +954,11 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
             planes,
             rings,
             open_curves,
-            lines,
             contours,
             straightened,
-            patches,
+            layout,
         },
-    ))
+    )
 }
 
 fn dress(ctx: &mut Ctx<'_>) -> Result<Framework, FrameworkError> {
@@ -1325,35 +1013,10 @@ fn dress(ctx: &mut Ctx<'_>) -> Result<Framework, FrameworkError> {
         .collect();
     let straightened = loosen(&mut rings, &specs, "hip", &ctx.options.ring)?;
     let contours = fit_contours(&specs, &rings, &[])?;
-    let k = ctx.options.resolution.max(2);
-    let clearance = (ctx.probe, ctx.ease);
-    let mut patches = Vec::new();
-    let tol = 1e-9 * h;
-    for (lo, hi, dy) in [
-        ("hem", "thigh", thigh_y - knee_y),
-        ("thigh", "hip", hip_y - thigh_y),
-        ("hip", "waist", waist_y - hip_y),
-    ] {
-        let nv = ctx.segments(dy, 1.0);
-        for i in 0..4 {
-            let (a, b) = (QUAD[i], QUAD[(i + 1) % 4]);
-            let bottom = arc(&rings, lo, a, b, 2 * k);
-            let top = arc(&rings, hi, a, b, 2 * k);
-            let left = span(&contours, names[i], lo, nv, clearance);
-            let right = span(&contours, names[(i + 1) % 4], lo, nv, clearance);
-            patches.push(
-                PatchGrid::coons(&format!("skirt.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], tol)?.with_curves(
-                    vec![
-                        CurveRef::whole(lo),
-                        CurveRef::whole(hi),
-                        span_ref(&contours, names[i], lo),
-                        span_ref(&contours, names[(i + 1) % 4], lo),
-                    ],
-                ),
-            );
-        }
-    }
-    Ok(finish(
+    let layout = ctx.layout(Counts::Dress(
+        [thigh_y - knee_y, hip_y - thigh_y, waist_y - hip_y].map(|dy| ctx.segments(dy, 1.0)),
+    ));
+    finish(
         ctx,
         TemplateKind::Dress,
         Fit::Loose,
@@ -1361,10 +1024,9 @@ fn dress(ctx: &mut Ctx<'_>) -> Result<Framework, FrameworkError> {
             planes,
             rings,
             open_curves: Vec::new(),
-            lines: Vec::new(),
             contours,
             straightened,
-            patches,
+            layout,
         },
-    ))
+    )
 }

@@ -154,7 +154,7 @@ pub struct StitchReport {
 }
 
 /// The stitched mesh.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct M0 {
     /// Vertices and faces.
     pub mesh: TriMesh,

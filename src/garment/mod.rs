@@ -2,6 +2,7 @@
 //! templates, Coons surfacing and the stitched mesh M0.
 
 pub mod adjust;
+pub mod assemble;
 pub mod contour;
 pub mod convexify;
 pub mod ease;
