@@ -21,6 +21,7 @@
 
 pub mod body;
 pub mod collision;
+pub mod constraint;
 pub mod garment;
 pub mod geom;
 pub mod mannequin;

@@ -924,7 +924,20 @@ fn jumpsuit(ctx: &mut Ctx<'_>, fit: Fit) -> Result<Framework, FrameworkError> {
         }
     }
     let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
-    let contours = fit_contours(&specs, &rings, &crotch_point)?;
+    let mut contours = fit_contours(&specs, &rings, &crotch_point)?;
+    // The princess lines run on into the straps: each meets its strap's end tangent.
+    for c in &mut contours {
+        let strap = match c.name.split_once('_') {
+            Some((part @ ("front" | "back"), side @ ("left" | "right"))) => Some((part == "front", side)),
+            _ => None,
+        };
+        if let Some((front, side)) = strap {
+            let i = if side == "left" { 1 } else { 2 };
+            let t = open_curves[i].end_tangent(front);
+            c.refit(c.points.clone(), [None, Some(t)])
+                .map_err(|e| FrameworkError::Contour(c.name.clone(), e))?;
+        }
+    }
 
     let k = ctx.options.resolution.max(2);
     let seam = (k / 3).max(1);

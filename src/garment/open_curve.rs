@@ -202,6 +202,32 @@ impl OpenCurve {
         out
     }
 
+    /// The unit tangent at the front (or back) end, pointing into the curve.
+    pub fn end_tangent(&self, front: bool) -> DVec3 {
+        if front {
+            self.spline.derivative(0.0).normalize_or_zero()
+        } else {
+            -self.spline.derivative(self.spline.length()).normalize_or_zero()
+        }
+    }
+
+    /// Refits the spline through new control points (the apex stays the middle one).
+    pub fn refit(&mut self, control: Vec<DVec3>) -> Result<(), RingBuildError> {
+        let spline = ChordSpline3::try_new(&control, CurveEnds::Open { start: None, end: None })
+            .map_err(|e| RingBuildError::Fit(self.name.clone(), e))?;
+        let c = control.len() / 2;
+        let per_half = (self.stages.fitted.len().max(3) - 1) / 2;
+        self.apex_param = spline.knots()[c];
+        self.apex = control[c];
+        self.spline = spline;
+        self.stages.control = control;
+        let mut fitted = self.half(true, per_half);
+        fitted.pop();
+        fitted.extend(self.half(false, per_half));
+        self.stages.fitted = fitted;
+        Ok(())
+    }
+
     /// The front end.
     pub fn front_end(&self) -> DVec3 {
         self.stages.control[0]

@@ -84,6 +84,18 @@ impl Plane {
         let (u, v) = self.frame();
         DVec2::new(p.dot(u), p.dot(v))
     }
+
+    /// The point of the plane with in-plane coordinates `q` (the inverse of [`Self::project`]
+    /// on the plane).
+    pub fn lift(&self, q: DVec2) -> DVec3 {
+        let (u, v) = self.frame();
+        self.normal * self.offset + u * q.x + v * q.y
+    }
+
+    /// `p` moved along the normal onto the plane.
+    pub fn snap(&self, p: DVec3) -> DVec3 {
+        p - self.normal * self.signed_distance(p)
+    }
 }
 
 #[cfg(test)]

@@ -1,5 +1,6 @@
 mod collision;
 mod common;
+mod constraints;
 mod convexify;
 mod coons;
 mod ease;

@@ -1,0 +1,916 @@
+//! The constraint solver of an edit ([collide] section 2.3, [frame] section 3).
+//!
+//! An edit moves control points of one curve (the active element). The solver then works
+//! outward through the network: a curve is solved when a constraint with an already
+//! solved curve is violated, and its neighbours are visited in priority order. Solving a
+//! curve applies, in order:
+//!
+//! 1. the constraints from its solved neighbours (coincident points, mirrored points,
+//!    tangents), with the curve's other control points following in proportion;
+//! 2. its self constraints: symmetry, the ease against its body section, the design
+//!    polygon, coplanarity;
+//! 3. the node layer: every control point is collided with the body (moved out, within the
+//!    curve's plane, until it stands the collision gap off the skin);
+//! 4. the curve layer: the refitted curve's samples are collided, and each sample short of
+//!    the gap pushes the two control points around it out, for a few rounds;
+//! 5. the self-crossing check, which stops the edit with the curve's name.
+//!
+//! A collision response can break a constraint with a curve solved before (a closed chain
+//! A -> B -> C -> A). With [`Chains::Iterate`] the solver moves A to meet the constraint
+//! and solves again from A, until nothing breaks or the pass limit is reached (the
+//! remaining violations are then reported). With [`Chains::Split`] each curve is split at
+//! the points it shares with curves already solved: those points stay pinned during its
+//! response, the chain is open, and one pass is made.
+
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+
+use glam::{DVec2, DVec3};
+use thiserror::Error;
+
+use super::crossing::self_crossings;
+use super::curves::{self, CurveKind, CurveNode};
+use super::kinds::{Kind, SAMPLES_PER_SPAN, mirror, signed_gap};
+use super::network::ConstraintNet;
+use crate::garment::{BodyProbe, Ease, Framework, RingOptions, ease_ring};
+
+/// How closed chains are handled.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Chains {
+    /// Move the first element of the chain and solve again (the default).
+    #[default]
+    Iterate,
+    /// Split the chain's curves at their shared points so it is open; one pass.
+    Split,
+}
+
+impl Chains {
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Iterate => "iterate",
+            Self::Split => "split",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(s: &str) -> Option<Self> {
+        [Self::Iterate, Self::Split].into_iter().find(|c| c.name() == s)
+    }
+}
+
+/// Solver settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolverOptions {
+    /// Closed chains (default iterate).
+    pub chains: Chains,
+    /// Most passes over the network (default 8).
+    pub passes: usize,
+    /// A constraint is met when its residual is at most this, m or rad (default 1e-6: a
+    /// micrometre; coincident points are copied and meet exactly).
+    pub tolerance: f64,
+    /// Rounds of the curve-layer response per curve (default 4).
+    pub response_rounds: usize,
+    /// The curve-layer response aims this fraction of the gap beyond it (default 0.05), so
+    /// that a closed chain is not re-broken by a shortfall of a few micrometres.
+    pub response_margin: f64,
+    /// The collision gap as a fraction of the garment's ease (default 0.5, as the mesh
+    /// layer), at least `min_gap` of the body's height (default 0.002).
+    pub gap_fraction: f64,
+    /// Floor of the collision gap, as a fraction of the body's height (default 0.002).
+    pub min_gap: f64,
+    /// Ring refitting.
+    pub ring: RingOptions,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        Self {
+            chains: Chains::Iterate,
+            passes: 8,
+            tolerance: 1e-6,
+            response_rounds: 4,
+            response_margin: 0.05,
+            gap_fraction: 0.5,
+            min_gap: 0.002,
+            ring: RingOptions::default(),
+        }
+    }
+}
+
+/// Where a drag goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// Move by this vector, m.
+    By(DVec3),
+    /// Move to this point, m.
+    To(DVec3),
+}
+
+/// An edit of the framework's curves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Drag a named control point (`waist.front`, `crotch.point`, `left_strap.top`).
+    Point {
+        /// Point name.
+        name: String,
+        /// Where to.
+        target: Target,
+    },
+    /// Drag a whole curve by a vector.
+    Curve {
+        /// Curve name.
+        name: String,
+        /// The move, m.
+        by: DVec3,
+    },
+}
+
+/// Why an edit cannot be made. The framework is left as it was.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum EditError {
+    /// No such control point.
+    #[error("unknown control point '{name}': expected one of {known}")]
+    UnknownPoint {
+        /// Asked.
+        name: String,
+        /// What exists.
+        known: String,
+    },
+    /// No such curve.
+    #[error("unknown curve '{name}': expected one of {known}")]
+    UnknownCurve {
+        /// Asked.
+        name: String,
+        /// What exists.
+        known: String,
+    },
+    /// A coordinate is not finite.
+    #[error("the drag of '{0}' is not a finite vector")]
+    NotFinite(String),
+    /// The edit would make a curve cross itself.
+    #[error(
+        "curve '{curve}' would cross itself (segments {i} and {j} meet at ({x:.4}, {y:.4}, {z:.4}) m, cutting off a loop of {loop_length:.4} m): edit refused",
+        x = at.x, y = at.y, z = at.z
+    )]
+    SelfCrossing {
+        /// Curve.
+        curve: String,
+        /// First segment.
+        i: usize,
+        /// Second segment.
+        j: usize,
+        /// Where.
+        at: DVec3,
+        /// Loop length, m.
+        loop_length: f64,
+    },
+    /// A curve cannot be refitted.
+    #[error("curve '{curve}' cannot be refitted: {message}")]
+    Refit {
+        /// Curve.
+        curve: String,
+        /// Why.
+        message: String,
+    },
+}
+
+/// A control point moved by the node-layer collision.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NodeHit {
+    /// Control point index.
+    pub point: usize,
+    /// Signed distance to the body before, m.
+    pub distance: f64,
+    /// Before.
+    pub before: DVec3,
+    /// After.
+    pub after: DVec3,
+}
+
+/// The curve-layer collision of one curve.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CurveHits {
+    /// Samples tested.
+    pub samples: usize,
+    /// Samples short of the gap before the response.
+    pub short_before: usize,
+    /// Largest shortfall before, m.
+    pub deficit_before: f64,
+    /// Largest shortfall after, m.
+    pub deficit_after: f64,
+    /// Response rounds made.
+    pub rounds: usize,
+    /// Control points the response moved.
+    pub moved: Vec<usize>,
+    /// Control points kept still (shared with curves solved before, split chains).
+    pub pinned: Vec<usize>,
+}
+
+/// One curve solved: what drove it, what the collision did, and the residuals of the
+/// constraints it touches afterwards.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Iteration {
+    /// Pass (0-based).
+    pub pass: usize,
+    /// Curve index in the network.
+    pub curve: usize,
+    /// Constraints applied from solved neighbours.
+    pub driven_by: Vec<usize>,
+    /// Node layer.
+    pub node: Vec<NodeHit>,
+    /// Curve layer.
+    pub curve_layer: CurveHits,
+    /// `(constraint, residual)` of every constraint touching the curve.
+    pub residuals: Vec<(usize, f64)>,
+    /// Constraints with curves solved before that this solve left violated.
+    pub broken: Vec<usize>,
+    /// The curve's control points afterwards.
+    pub control: Vec<DVec3>,
+}
+
+/// The result of an edit.
+#[derive(Clone, Debug)]
+pub struct Solution {
+    /// The framework with its curves solved (lines, patches and M0 not yet rebuilt).
+    pub framework: Framework,
+    /// Every curve solve, in order.
+    pub iterations: Vec<Iteration>,
+    /// Passes made.
+    pub passes: usize,
+    /// Whether the last pass broke nothing.
+    pub converged: bool,
+    /// Every constraint's residual at the end.
+    pub residuals: Vec<f64>,
+    /// `(constraint, residual)` above the tolerance at the end.
+    pub violations: Vec<(usize, f64)>,
+    /// The dragged point (curve, control point), for a point drag.
+    pub dragged: Option<(usize, usize)>,
+    /// The dragged point: where it was, where it was asked to go, after the first pass's
+    /// node layer, and after each pass.
+    pub path: Vec<DVec3>,
+    /// The curves solved.
+    pub solved: Vec<usize>,
+    /// The collision gap used, m.
+    pub gap: f64,
+    /// Largest shortfall of the gap left on a solved planar curve's samples, m.
+    pub clearance_deficit: f64,
+}
+
+/// Every draggable point name with its (curve, control point).
+pub fn point_names(fw: &Framework, net: &ConstraintNet) -> Vec<(String, usize, usize)> {
+    let mut out = Vec::new();
+    for (k, c) in net.curves.iter().enumerate() {
+        match c.kind {
+            CurveKind::Ring => {
+                for a in &fw.rings[c.index].anchors {
+                    out.push((format!("{}.{}", c.name, a.name), k, a.control));
+                }
+            }
+            CurveKind::Open => {
+                let apex = if c.name == "crotch" { "point" } else { "top" };
+                out.push((format!("{}.{apex}", c.name), k, curves::points(fw, c).len() / 2));
+            }
+            CurveKind::Contour => {}
+        }
+    }
+    out
+}
+
+struct Run<'a> {
+    fw: Framework,
+    net: &'a ConstraintNet,
+    probe: &'a BodyProbe,
+    options: &'a SolverOptions,
+    gap: f64,
+    iterations: Vec<Iteration>,
+}
+
+fn refit_error(c: &CurveNode, message: String) -> EditError {
+    EditError::Refit {
+        curve: c.name.clone(),
+        message,
+    }
+}
+
+/// Solves an edit on `fw`. The input is not changed; on error nothing is returned but the
+/// error.
+pub fn solve(
+    fw: &Framework,
+    net: &ConstraintNet,
+    edit: &Edit,
+    probe: &BodyProbe,
+    options: &SolverOptions,
+) -> Result<Solution, EditError> {
+    let gap = (options.gap_fraction * fw.ease()).max(options.min_gap * fw.layout.height);
+    let mut run = Run {
+        fw: fw.clone(),
+        net,
+        probe,
+        options,
+        gap,
+        iterations: Vec::new(),
+    };
+    // The edit as moves of the active curve's points.
+    let (active, moves, dragged, whole) = match edit {
+        Edit::Point { name, target } => {
+            let names = point_names(fw, net);
+            let Some((_, c, p)) = names.iter().find(|(n, _, _)| n == name) else {
+                let known: Vec<&str> = names.iter().map(|(n, _, _)| n.as_str()).collect();
+                return Err(EditError::UnknownPoint {
+                    name: name.clone(),
+                    known: known.join(", "),
+                });
+            };
+            let at = curves::points(fw, &net.curves[*c])[*p];
+            let d = match target {
+                Target::By(v) => *v,
+                Target::To(q) => *q - at,
+            };
+            if !d.is_finite() {
+                return Err(EditError::NotFinite(name.clone()));
+            }
+            (*c, vec![(*p, d)], Some((*c, *p)), None)
+        }
+        Edit::Curve { name, by } => {
+            let Some(c) = net.curve(name) else {
+                let known: Vec<&str> = net.curves.iter().map(|c| c.name.as_str()).collect();
+                return Err(EditError::UnknownCurve {
+                    name: name.clone(),
+                    known: known.join(", "),
+                });
+            };
+            if !by.is_finite() {
+                return Err(EditError::NotFinite(name.clone()));
+            }
+            let n = curves::points(fw, &net.curves[c]).len();
+            (c, (0..n).map(|p| (p, *by)).collect(), None, Some(*by))
+        }
+    };
+    let mut path = Vec::new();
+    if let Some((c, p)) = dragged {
+        let at = curves::points(fw, &net.curves[c])[p];
+        path.push(at);
+        path.push(at + moves[0].1);
+    }
+    if let Some(by) = whole {
+        curves::shift_plane(&mut run.fw, &net.curves[active], by);
+    }
+    let mut pending: BTreeMap<usize, Vec<(usize, DVec3)>> = BTreeMap::new();
+    pending.insert(active, moves);
+    let mut solved_all: BTreeSet<usize> = BTreeSet::new();
+    let mut passes = 0;
+    let mut converged = false;
+    for pass in 0..options.passes.max(1) {
+        passes = pass + 1;
+        let broken = run.pass(pass, &mut pending, &mut solved_all)?;
+        if let Some((c, p)) = dragged {
+            if pass == 0
+                && let Some(first) = run.iterations.iter().find(|it| it.curve == c)
+            {
+                path.push(first.control[p]);
+            }
+            path.push(curves::points(&run.fw, &net.curves[c])[p]);
+        }
+        if broken.is_empty() {
+            converged = true;
+            break;
+        }
+        if options.chains == Chains::Split {
+            break;
+        }
+        // Close the chain: move the element solved first (A) to meet the constraint the
+        // later one (C) broke, and solve again from A.
+        pending = run.close_chains(&broken);
+    }
+    let residuals = net.residuals(&run.fw);
+    let violations = residuals
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| **r > options.tolerance)
+        .map(|(k, r)| (k, *r))
+        .collect();
+    let solved: Vec<usize> = solved_all.into_iter().collect();
+    let clearance_deficit = solved
+        .iter()
+        .filter(|&&c| net.curves[c].kind != CurveKind::Contour)
+        .map(|&c| run.deficits(c).1)
+        .fold(0.0, f64::max);
+    Ok(Solution {
+        framework: run.fw,
+        iterations: run.iterations,
+        passes,
+        converged,
+        residuals,
+        violations,
+        dragged,
+        path,
+        solved,
+        gap,
+        clearance_deficit,
+    })
+}
+
+impl Run<'_> {
+    fn node(&self, c: usize) -> &CurveNode {
+        &self.net.curves[c]
+    }
+
+    /// The collision gap of curve `c`: the solver's gap, or the least clearance the curve
+    /// was built with where that is less (a ring whose ease is limited next to an arm).
+    fn gap_of(&self, c: usize) -> f64 {
+        self.gap.min(self.net.clearance[c]).max(0.0)
+    }
+
+    fn residual(&self, k: usize) -> f64 {
+        self.net.constraints[k].residual(&self.fw, &self.net.curves)
+    }
+
+    /// One pass outward from the curves with pending moves. Returns the constraints left
+    /// broken by a curve solved after the other end of the constraint.
+    fn pass(
+        &mut self,
+        pass: usize,
+        pending: &mut BTreeMap<usize, Vec<(usize, DVec3)>>,
+        solved_all: &mut BTreeSet<usize>,
+    ) -> Result<Vec<(usize, usize)>, EditError> {
+        let tol = self.options.tolerance;
+        let mut solved: BTreeSet<usize> = BTreeSet::new();
+        let mut queue: VecDeque<usize> = pending.keys().copied().collect();
+        let mut queued: BTreeSet<usize> = queue.iter().copied().collect();
+        let mut broken: Vec<(usize, usize)> = Vec::new();
+        let mut deferred: BTreeSet<usize> = BTreeSet::new();
+        while let Some(c) = queue.pop_front() {
+            // A curve waits (once) for a queued curve that drives it one way (a strap
+            // before the contour that continues it).
+            let waits = self.net.touching(c).iter().any(|&k| {
+                let con = &self.net.constraints[k];
+                con.directed && con.j == c && queue.contains(&con.i) && !solved.contains(&con.i)
+            });
+            if waits && deferred.insert(c) {
+                queue.push_back(c);
+                continue;
+            }
+            let moves = pending.remove(&c).unwrap_or_default();
+            let mut it = self.solve_curve(pass, c, &moves, &solved)?;
+            solved.insert(c);
+            solved_all.insert(c);
+            let touching = self.net.touching(c);
+            for &k in &touching {
+                let r = self.residual(k);
+                it.residuals.push((k, r));
+                let o = self.net.constraints[k].other(c);
+                if r > tol && solved.contains(&o) {
+                    it.broken.push(k);
+                    broken.push((k, c));
+                }
+            }
+            self.iterations.push(it);
+            // Outward, in priority order: neighbours whose constraint with c is violated.
+            for &k in &touching {
+                let con = &self.net.constraints[k];
+                let o = con.other(c);
+                if o == c || solved.contains(&o) || queued.contains(&o) || !con.drives(c, o) {
+                    continue;
+                }
+                if self.residual(k) > tol {
+                    queue.push_back(o);
+                    queued.insert(o);
+                }
+            }
+        }
+        Ok(broken)
+    }
+
+    /// Moves for the next pass: for each broken constraint (k, by curve c), the other
+    /// curve A takes c's point (or c itself is solved again for a self constraint).
+    fn close_chains(&mut self, broken: &[(usize, usize)]) -> BTreeMap<usize, Vec<(usize, DVec3)>> {
+        let mut out: BTreeMap<usize, Vec<(usize, DVec3)>> = BTreeMap::new();
+        for &(k, c) in broken {
+            let con = &self.net.constraints[k];
+            let a = con.other(c);
+            let entry = out.entry(a).or_default();
+            if a == c {
+                continue;
+            }
+            if let Kind::Tangent { front } = con.kind {
+                let (open, contour) = (self.net.curves[con.i].index, self.net.curves[con.j].index);
+                let t = self.fw.open_curves[open].end_tangent(front);
+                self.fw.contours[contour].tangents[1] = Some(t);
+                continue;
+            }
+            let (pa, pc) = (
+                curves::points(&self.fw, self.node(a)),
+                curves::points(&self.fw, self.node(c)),
+            );
+            match &con.kind {
+                Kind::Coincident { a: ia, b: ib } => {
+                    let (on_a, on_c) = if con.i == a { (*ia, *ib) } else { (*ib, *ia) };
+                    entry.push((on_a, pc[on_c] - pa[on_a]));
+                }
+                Kind::Symmetry { mid_x, pairs, rest } => {
+                    let plane = curves::plane(&self.fw, &self.net.curves[a]);
+                    for (&(i, j), r) in pairs.iter().zip(rest) {
+                        let (on_a, want) = if con.i == a {
+                            (i, mirror(pc[j] - *r, *mid_x))
+                        } else {
+                            (j, mirror(pc[i], *mid_x) + *r)
+                        };
+                        let want = plane.map_or(want, |p| p.snap(want));
+                        entry.push((on_a, want - pa[on_a]));
+                    }
+                }
+                _ => {}
+            }
+        }
+        out
+    }
+
+    fn solve_curve(
+        &mut self,
+        pass: usize,
+        c: usize,
+        moves: &[(usize, DVec3)],
+        solved: &BTreeSet<usize>,
+    ) -> Result<Iteration, EditError> {
+        let tol = self.options.tolerance;
+        let node = self.node(c).clone();
+        let mut driven_by = Vec::new();
+        let mut moved: Vec<(usize, DVec3)> = moves.to_vec();
+        let mut pinned: BTreeSet<usize> = BTreeSet::new();
+        let touching = self.net.touching(c);
+        // 1. From the solved neighbours.
+        let mut tangents = match node.kind {
+            CurveKind::Contour => self.fw.contours[node.index].tangents,
+            _ => [None, None],
+        };
+        for &k in &touching {
+            let con = &self.net.constraints[k];
+            let o = con.other(c);
+            if o == c || !solved.contains(&o) {
+                continue;
+            }
+            // Shared points stay where the solved curve put them (split chains).
+            if let Kind::Coincident { a, b } = con.kind {
+                pinned.insert(if con.i == c { a } else { b });
+            }
+            if !con.drives(o, c) || con.residual(&self.fw, &self.net.curves) <= tol {
+                continue;
+            }
+            driven_by.push(k);
+            let (po, pc) = (curves::points(&self.fw, self.node(o)), curves::points(&self.fw, &node));
+            match &con.kind {
+                Kind::Coincident { a, b } => {
+                    let (on_c, on_o) = if con.i == c { (*a, *b) } else { (*b, *a) };
+                    set_move(&mut moved, on_c, po[on_o] - pc[on_c]);
+                }
+                Kind::Symmetry { mid_x, pairs, rest } => {
+                    let plane = curves::plane(&self.fw, &node);
+                    for (&(i, j), r) in pairs.iter().zip(rest) {
+                        let (on_c, want) = if con.i == c {
+                            (i, mirror(po[j] - *r, *mid_x))
+                        } else {
+                            (j, mirror(po[i], *mid_x) + *r)
+                        };
+                        let want = plane.map_or(want, |p| p.snap(want));
+                        set_move(&mut moved, on_c, want - pc[on_c]);
+                    }
+                }
+                Kind::Tangent { front } => {
+                    let t = self.fw.open_curves[self.node(o).index].end_tangent(*front);
+                    tangents[1] = Some(t);
+                }
+                _ => {}
+            }
+        }
+        if node.kind == CurveKind::Contour {
+            self.fw.contours[node.index].tangents = tangents;
+        }
+        let mut control = curves::spread(&self.fw, &node, &moved);
+        if node.kind == CurveKind::Open {
+            // An open curve's plane is the vertical plane through its ends.
+            let (a, b) = (control[0], control[control.len() - 1]);
+            let n = (b - a).cross(DVec3::Y).normalize_or_zero();
+            if n != DVec3::ZERO {
+                let old = self.fw.open_curves[node.index].plane.normal;
+                let n = if n.dot(old) < 0.0 { -n } else { n };
+                self.fw.open_curves[node.index].plane = crate::geom::Plane::from_point_normal(a, n);
+            }
+        }
+        // 2. Self constraints: ease, region, symmetry, plane (the last wins).
+        if let Some(plane) = curves::plane(&self.fw, &node) {
+            for &k in &touching {
+                let con = &self.net.constraints[k];
+                if !con.is_self() {
+                    continue;
+                }
+                match &con.kind {
+                    Kind::OutsideBody { section, need } => {
+                        let flat: Vec<DVec2> = section.iter().map(|p| plane.project(*p)).collect();
+                        for (p, n) in control.iter_mut().zip(need) {
+                            if signed_gap(plane.project(*p), &flat) < n - tol
+                                && let Ok(q) = ease_ring(&[*p], section, &plane, Ease::Uniform(*n))
+                            {
+                                *p = q[0];
+                            }
+                        }
+                    }
+                    Kind::InsidePolygon { polygon } => {
+                        for p in control.iter_mut() {
+                            let q = plane.project(*p);
+                            if signed_gap(q, polygon) > 0.0 {
+                                *p = plane.lift(nearest_on_polygon(q, polygon))
+                                    + plane.normal * plane.signed_distance(*p);
+                            }
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            let driven: BTreeSet<usize> = moved.iter().map(|m| m.0).collect();
+            for &k in &touching {
+                let con = &self.net.constraints[k];
+                if !con.is_self() {
+                    continue;
+                }
+                if let Kind::Symmetry { mid_x, pairs, rest } = &con.kind {
+                    for (&(i, j), r) in pairs.iter().zip(rest) {
+                        if i == j {
+                            // A point on the mirror plane stays there (up to its rest offset).
+                            control[i].x = *mid_x + 0.5 * r.x;
+                            continue;
+                        }
+                        let from_i = mirror(control[i], *mid_x) + *r;
+                        let from_j = mirror(control[j] - *r, *mid_x);
+                        let take_i = match (driven.contains(&i), driven.contains(&j)) {
+                            (true, false) => true,
+                            (false, true) => false,
+                            // Both or neither driven: keep the side standing further off the body.
+                            _ => self.probe.signed_distance(control[i]) >= self.probe.signed_distance(control[j]),
+                        };
+                        if take_i {
+                            control[j] = from_i;
+                        } else {
+                            control[i] = from_j;
+                        }
+                    }
+                }
+            }
+            for p in control.iter_mut() {
+                *p = plane.snap(*p);
+            }
+        }
+        curves::set_points(&mut self.fw, &node, control, &self.options.ring).map_err(|m| refit_error(&node, m))?;
+        self.check_crossing(&node)?;
+        // 3. Node layer.
+        let keep: BTreeSet<usize> = if self.options.chains == Chains::Split {
+            pinned
+        } else {
+            BTreeSet::new()
+        };
+        let node_hits = self.node_layer(c, &keep)?;
+        // 4. Curve layer.
+        let curve_layer = self.curve_layer(c, &keep)?;
+        self.check_crossing(&node)?;
+        Ok(Iteration {
+            pass,
+            curve: c,
+            driven_by,
+            node: node_hits,
+            curve_layer,
+            residuals: Vec::new(),
+            broken: Vec::new(),
+            control: curves::points(&self.fw, &node).to_vec(),
+        })
+    }
+
+    fn check_crossing(&self, node: &CurveNode) -> Result<(), EditError> {
+        let Some(plane) = curves::plane(&self.fw, node) else {
+            return Ok(());
+        };
+        let samples = curves::samples(&self.fw, node, SAMPLES_PER_SPAN);
+        let flat: Vec<DVec2> = samples.iter().map(|(_, p)| plane.project(*p)).collect();
+        if let Some(x) = self_crossings(&flat, curves::closed(node)).first() {
+            return Err(EditError::SelfCrossing {
+                curve: node.name.clone(),
+                i: x.i,
+                j: x.j,
+                at: plane.lift(x.at),
+                loop_length: x.loop_length,
+            });
+        }
+        Ok(())
+    }
+
+    /// Moves `p` out of the body until it stands `gap` off it: along the body normal, kept
+    /// in `plane` when given (found by bisection to 1e-12 m).
+    fn push_out(&self, p: DVec3, plane: crate::geom::Plane, centre: DVec3, gap: f64) -> DVec3 {
+        let Some((_, d, normal)) = self.probe.nearest(p) else {
+            return p;
+        };
+        if d >= gap * (1.0 - 1e-9) {
+            return p;
+        }
+        let mut u = normal - plane.normal * plane.normal.dot(normal);
+        if u.length_squared() < 1e-12 {
+            u = plane.snap(p) - plane.snap(centre);
+        }
+        let u = u.normalize_or_zero();
+        if u == DVec3::ZERO {
+            return p;
+        }
+        let sd = |t: f64| self.probe.signed_distance(p + u * t);
+        let (mut lo, mut hi) = (0.0, (gap - d).max(1e-6));
+        let mut grow = 0;
+        while sd(hi) < gap && grow < 40 {
+            lo = hi;
+            hi *= 2.0;
+            grow += 1;
+        }
+        for _ in 0..80 {
+            let mid = 0.5 * (lo + hi);
+            if sd(mid) < gap {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+            if hi - lo <= 1e-12 {
+                break;
+            }
+        }
+        p + u * hi
+    }
+
+    /// Collides every control point of a planar curve (a contour's points belong to the
+    /// rings and open curves, which collide them).
+    fn node_layer(&mut self, c: usize, keep: &BTreeSet<usize>) -> Result<Vec<NodeHit>, EditError> {
+        let node = &self.net.curves[c];
+        let Some(plane) = curves::plane(&self.fw, node) else {
+            return Ok(Vec::new());
+        };
+        let gap = self.gap_of(c);
+        let control = curves::points(&self.fw, node).to_vec();
+        let centre = control.iter().sum::<DVec3>() / control.len().max(1) as f64;
+        let mut out = Vec::new();
+        let mut next = control.clone();
+        for (i, p) in control.iter().enumerate() {
+            if keep.contains(&i) {
+                continue;
+            }
+            let d = self.probe.signed_distance(*p);
+            if d >= gap * (1.0 - 1e-9) {
+                continue;
+            }
+            let q = self.push_out(*p, plane, centre, gap);
+            next[i] = q;
+            out.push(NodeHit {
+                point: i,
+                distance: d,
+                before: *p,
+                after: q,
+            });
+        }
+        if !out.is_empty() {
+            curves::set_points(&mut self.fw, node, next, &self.options.ring).map_err(|m| refit_error(node, m))?;
+        }
+        Ok(out)
+    }
+
+    /// Samples short of the gap: `(count, largest shortfall, per-sample (param, shortfall,
+    /// in-plane direction out))`.
+    fn deficits(&self, c: usize) -> (usize, f64, Vec<(f64, f64, DVec3)>) {
+        let node = self.node(c);
+        let Some(plane) = curves::plane(&self.fw, node) else {
+            return (0, 0.0, Vec::new());
+        };
+        let control = curves::points(&self.fw, node);
+        let centre = control.iter().sum::<DVec3>() / control.len().max(1) as f64;
+        let gap = self.gap_of(c);
+        let mut out = Vec::new();
+        let mut worst: f64 = 0.0;
+        for (l, s) in curves::samples(&self.fw, node, SAMPLES_PER_SPAN) {
+            let Some((_, d, normal)) = self.probe.nearest(s) else {
+                continue;
+            };
+            if d < gap * (1.0 - 1e-9) {
+                let mut u = normal - plane.normal * plane.normal.dot(normal);
+                if u.length_squared() < 1e-12 {
+                    u = plane.snap(s) - plane.snap(centre);
+                }
+                worst = worst.max(gap - d);
+                out.push((l, gap - d, u.normalize_or_zero()));
+            }
+        }
+        (out.len(), worst, out)
+    }
+
+    fn curve_layer(&mut self, c: usize, keep: &BTreeSet<usize>) -> Result<CurveHits, EditError> {
+        let node = self.node(c).clone();
+        let mut hits = CurveHits {
+            samples: curves::samples(&self.fw, &node, SAMPLES_PER_SPAN).len(),
+            pinned: keep.iter().copied().collect(),
+            ..CurveHits::default()
+        };
+        if node.kind == CurveKind::Contour {
+            // A contour's points are all shared with rings: its samples are cleared off the
+            // body where the patches sample it; nothing moves here.
+            let (n, worst) = self.deficits_any(&node);
+            hits.short_before = n;
+            hits.deficit_before = worst;
+            hits.deficit_after = worst;
+            return Ok(hits);
+        }
+        let mut moved: BTreeSet<usize> = BTreeSet::new();
+        for round in 0..=self.options.response_rounds {
+            let (n, worst, short) = self.deficits(c);
+            if round == 0 {
+                hits.short_before = n;
+                hits.deficit_before = worst;
+            }
+            hits.deficit_after = worst;
+            if n == 0 || round == self.options.response_rounds {
+                break;
+            }
+            hits.rounds = round + 1;
+            let control = curves::points(&self.fw, &node).to_vec();
+            let knots = curves::knots(&self.fw, &node).to_vec();
+            let m = control.len();
+            let mut push: Vec<DVec3> = vec![DVec3::ZERO; m];
+            for (l, deficit, u) in short {
+                let k = knots
+                    .partition_point(|&x| x <= l)
+                    .saturating_sub(1)
+                    .min(knots.len() - 2);
+                let t = ((l - knots[k]) / (knots[k + 1] - knots[k]).max(1e-300)).clamp(0.0, 1.0);
+                let (a, b) = (k % m, (k + 1) % m);
+                let (wa, wb) = (
+                    if keep.contains(&a) { 0.0 } else { 1.0 - t },
+                    if keep.contains(&b) { 0.0 } else { t },
+                );
+                let norm = wa * wa + wb * wb;
+                if norm < 1e-6 {
+                    continue;
+                }
+                let target = deficit + self.options.response_margin * self.gap_of(c);
+                for (i, w) in [(a, wa), (b, wb)] {
+                    let d = u * (target * w / norm);
+                    if d.length() > push[i].length() {
+                        push[i] = d;
+                    }
+                }
+            }
+            let mut next = control.clone();
+            for (i, d) in push.iter().enumerate() {
+                if *d != DVec3::ZERO {
+                    next[i] += *d;
+                    moved.insert(i);
+                }
+            }
+            curves::set_points(&mut self.fw, &node, next, &self.options.ring).map_err(|m| refit_error(&node, m))?;
+        }
+        hits.moved = moved.into_iter().collect();
+        Ok(hits)
+    }
+
+    fn deficits_any(&self, node: &CurveNode) -> (usize, f64) {
+        let mut n = 0;
+        let mut worst: f64 = 0.0;
+        for (_, s) in curves::samples(&self.fw, node, SAMPLES_PER_SPAN) {
+            let d = self.probe.signed_distance(s);
+            if d < self.gap * (1.0 - 1e-9) {
+                n += 1;
+                worst = worst.max(self.gap - d);
+            }
+        }
+        (n, worst)
+    }
+}
+
+/// Records a driven move of point `i` unless a stronger constraint (seen earlier, in
+/// priority order) or the edit itself already placed it.
+fn set_move(moved: &mut Vec<(usize, DVec3)>, i: usize, d: DVec3) {
+    if !moved.iter().any(|m| m.0 == i) {
+        moved.push((i, d));
+    }
+}
+
+/// The nearest point of a polygon's boundary.
+fn nearest_on_polygon(q: DVec2, polygon: &[DVec2]) -> DVec2 {
+    let n = polygon.len();
+    let mut best = q;
+    let mut best_d = f64::INFINITY;
+    for k in 0..n {
+        let (a, b) = (polygon[k], polygon[(k + 1) % n]);
+        let ab = b - a;
+        let t = if ab.length_squared() > 0.0 {
+            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let p = a + ab * t;
+        if q.distance(p) < best_d {
+            best_d = q.distance(p);
+            best = p;
+        }
+    }
+    best
+}
