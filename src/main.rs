@@ -35,6 +35,13 @@ enum Command {
         /// The session file.
         session: PathBuf,
     },
+    /// Print the constraint network of every garment the session builds: its curves, the
+    /// matrix g_ij, and every constraint with its priority, direction and residual; then
+    /// each drag's outcome.
+    Constraints {
+        /// The session file; without it, the built-in demo.
+        session: Option<PathBuf>,
+    },
     /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
     /// and print each method's deviation from the true surface per region.
     Mannequin(MannequinArgs),
@@ -107,6 +114,7 @@ fn main() -> ExitCode {
         None => run(RunArgs::default()),
         Some(Command::Run(args)) => run(args),
         Some(Command::Check { session }) => check(&session),
+        Some(Command::Constraints { session }) => constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin(&args),
     };
     match result {
@@ -151,6 +159,81 @@ fn check(path: &Path) -> Result<ExitCode> {
     }
 }
 
+/// Prints the constraint network of each garment built and each drag's outcome.
+struct NetworkPrinter;
+
+impl StageSink for NetworkPrinter {
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> std::result::Result<(), SinkError> {
+        match stage {
+            Stage::Network(fw, net) => {
+                println!("step {} ({}):", info.step, info.op);
+                println!(
+                    "{}",
+                    net.describe(fw, drape::constraint::SolverOptions::default().tolerance)
+                );
+            }
+            Stage::Solve {
+                edit, net, solution, ..
+            } => println!("step {}: {}", info.step, solve_line(edit, net, solution)),
+            Stage::Refused { message, .. } => println!("step {}: refused: {message}", info.step),
+            Stage::Failed(e) => println!("step {} FAILED: {}", info.step, e.message),
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+fn solve_line(
+    edit: &drape::constraint::Edit,
+    net: &drape::constraint::ConstraintNet,
+    s: &drape::constraint::Solution,
+) -> String {
+    let worst = s.residuals.iter().copied().fold(0.0, f64::max);
+    let violations: Vec<String> = s
+        .violations
+        .iter()
+        .map(|&(k, r)| {
+            let c = &net.constraints[k];
+            format!(
+                "{} {}/{} {:.2e} {}",
+                c.kind.name(),
+                net.curves[c.i].name,
+                net.curves[c.j].name,
+                r,
+                c.kind.unit()
+            )
+        })
+        .collect();
+    format!(
+        "{edit}: {} iteration(s), {} pass(es), {}; largest residual {worst:.2e}{}",
+        s.iterations.len(),
+        s.passes,
+        if s.converged { "converged" } else { "NOT converged" },
+        if violations.is_empty() {
+            String::new()
+        } else {
+            format!("; violated: {}", violations.join(", "))
+        }
+    )
+}
+
+fn constraints(path: Option<&Path>) -> Result<ExitCode> {
+    let session = match load_session(path)? {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return Ok(ExitCode::from(2));
+        }
+    };
+    let mut printer = NetworkPrinter;
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut printer]);
+    Ok(if report.error.is_some() {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    })
+}
+
 /// Prints each stage as it completes, so long runs show progress.
 struct Progress;
 
@@ -170,12 +253,20 @@ impl StageSink for Progress {
                     .filter(|(k, _)| k.starts_with("log."))
                     .map(|(_, v)| v)
                     .sum();
+                // An empty sum is -0.0.
+                let (compute, log) = (compute + 0.0, log + 0.0);
                 eprintln!(
                     "  step {} {:<10} done: compute {compute:8.1} ms, logging {log:6.1} ms",
                     info.step, info.op
                 );
             }
             Stage::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message),
+            Stage::Solve {
+                edit, net, solution, ..
+            } => {
+                eprintln!("  step {} solve: {}", info.step, solve_line(edit, net, solution));
+            }
+            Stage::Refused { message, .. } => eprintln!("  step {} drag REFUSED: {message}", info.step),
             Stage::Collision(outcome, _, drape::session::CollisionPart::Respond) => {
                 let c = &outcome.collision;
                 let d = &c.detection;

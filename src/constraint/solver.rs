@@ -125,6 +125,23 @@ pub enum Edit {
     },
 }
 
+impl std::fmt::Display for Edit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = |d: DVec3| format!("({:.3}, {:.3}, {:.3})", d.x, d.y, d.z);
+        match self {
+            Self::Point {
+                name,
+                target: Target::By(d),
+            } => write!(f, "drag {name} by {} m", v(*d)),
+            Self::Point {
+                name,
+                target: Target::To(p),
+            } => write!(f, "drag {name} to {} m", v(*p)),
+            Self::Curve { name, by } => write!(f, "drag curve {name} by {} m", v(*by)),
+        }
+    }
+}
+
 /// Why an edit cannot be made. The framework is left as it was.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum EditError {
@@ -254,6 +271,8 @@ pub struct Solution {
     pub gap: f64,
     /// Largest shortfall of the gap left on a solved planar curve's samples, m.
     pub clearance_deficit: f64,
+    /// The tolerance the constraints were solved to.
+    pub tolerance: f64,
 }
 
 /// Every draggable point name with its (curve, control point).
@@ -407,6 +426,7 @@ pub fn solve(
         solved,
         gap,
         clearance_deficit,
+        tolerance: options.tolerance,
     })
 }
 

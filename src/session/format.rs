@@ -12,7 +12,14 @@
 //! section y=0.60 name=mid_thigh
 //! garment jumpsuit fit=tight resolution=6        # build a garment: jumpsuit | dress
 //! set waist_girth +0.04                          # change a dimension: +d / -d relative, or a value
+//! drag waist.front by=0,0,-0.03                  # drag a control point by a vector (m) ...
+//! drag crotch.point to=0,0.70,0.07               # ... or to a position
+//! drag left_knee by=0,0.02,0                     # drag a whole curve by a vector
+//! undo                                           # back to the state before the last step
 //! ```
+//!
+//! The scene may also say how the constraint solver treats closed chains:
+//! `solver chains=iterate passes=8` (the default) or `solver chains=split`.
 //!
 //! Scene statements (`drape`, `body`, `units`, `landmark`) come before the first step.
 //! Arguments are `key=value`; unknown statements, keys or values are errors that name the
@@ -24,6 +31,7 @@ use glam::DVec3;
 use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
+use crate::constraint::{Chains, Edit, SolverOptions, Target};
 use crate::garment::{Fit, TemplateKind};
 use crate::mannequin::MannequinOptions;
 
@@ -81,6 +89,8 @@ pub struct Scene {
     pub units: Units,
     /// Landmark corrections, in file order.
     pub landmarks: Vec<(LandmarkKind, LandmarkOverride)>,
+    /// Constraint solver settings (`solver chains=iterate|split passes=N`).
+    pub solver: SolverOptions,
 }
 
 /// One operation.
@@ -111,6 +121,10 @@ pub enum Op {
         /// The change.
         change: Change,
     },
+    /// Drag a control point or a whole curve of the current garment.
+    Drag(Edit),
+    /// Go back to the state before the last garment step.
+    Undo,
 }
 
 /// A dimension change.
@@ -140,6 +154,8 @@ impl Op {
             Self::Section { .. } => "section",
             Self::Garment { .. } => "garment",
             Self::Set { .. } => "set",
+            Self::Drag(_) => "drag",
+            Self::Undo => "undo",
         }
     }
 }
@@ -164,8 +180,8 @@ pub struct Session {
     pub steps: Vec<Step>,
 }
 
-const SCENE_KEYWORDS: [&str; 4] = ["drape", "body", "units", "landmark"];
-const STEP_KEYWORDS: [&str; 4] = ["mannequin", "section", "garment", "set"];
+const SCENE_KEYWORDS: [&str; 5] = ["drape", "body", "units", "landmark", "solver"];
+const STEP_KEYWORDS: [&str; 6] = ["mannequin", "section", "garment", "set", "drag", "undo"];
 
 #[derive(Clone, Copy, Debug)]
 struct Token<'a> {
@@ -336,6 +352,32 @@ fn integer_in(
     Ok(v)
 }
 
+/// `x,y,z`: three finite numbers, errors at the offending part.
+fn vector(line: &Line<'_>, t: Token<'_>, key: &str) -> Result<DVec3, ParseError> {
+    let parts: Vec<&str> = t.text.split(',').collect();
+    if parts.len() != 3 {
+        return Err(line.error(
+            t.column,
+            format!("expected {key}=x,y,z (3 numbers), found '{}'", t.text),
+        ));
+    }
+    let mut xyz = [0.0; 3];
+    let mut column = t.column;
+    for (slot, part) in xyz.iter_mut().zip(&parts) {
+        *slot = number(
+            line,
+            Token {
+                text: part,
+                column,
+                quoted: false,
+            },
+            "a coordinate",
+        )?;
+        column += part.len() + 1;
+    }
+    Ok(DVec3::from_array(xyz))
+}
+
 /// Parses and validates a session. `name` is used in messages; `base_dir` resolves
 /// relative body paths.
 ///
@@ -349,6 +391,9 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
     let mut landmark_lines: Vec<(LandmarkKind, usize)> = Vec::new();
     let mut steps = Vec::new();
     let mut garment: Option<TemplateKind> = None;
+    let mut solver: Option<(SolverOptions, usize)> = None;
+    // Garment steps that `undo` can take back.
+    let mut undoable = 0usize;
     for (index, raw) in text.lines().enumerate() {
         let line = tokenize(name, index + 1, raw)?;
         let Some((head, rest)) = line.tokens.split_first() else {
@@ -440,27 +485,8 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 let correction = match (a.get("y"), a.get("at")) {
                     (Some(y), None) => LandmarkOverride::Height(number(&line, y, "y")?),
                     (None, Some(at)) => {
-                        let parts: Vec<&str> = at.text.split(',').collect();
-                        if parts.len() != 3 {
-                            return Err(
-                                line.error(at.column, format!("expected at=x,y,z (3 numbers), found '{}'", at.text))
-                            );
-                        }
-                        let mut xyz = [0.0; 3];
-                        let mut column = at.column;
-                        for (slot, part) in xyz.iter_mut().zip(&parts) {
-                            *slot = number(
-                                &line,
-                                Token {
-                                    text: part,
-                                    column,
-                                    quoted: false,
-                                },
-                                "a coordinate",
-                            )?;
-                            column += part.len() + 1;
-                        }
-                        LandmarkOverride::Point(DVec3::from_array(xyz))
+                        let xyz = vector(&line, at, "at")?;
+                        LandmarkOverride::Point(xyz)
                     }
                     (Some(_), Some(at)) => {
                         return Err(line.error(at.column, "give either y= or at=, not both"));
@@ -471,6 +497,100 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 };
                 landmarks.push((kind, correction));
                 landmark_lines.push((kind, line.number));
+            }
+            "solver" => {
+                if let Some((_, first)) = solver {
+                    return Err(line.error(head.column, format!("the solver is already set on line {first}")));
+                }
+                let a = Args::parse(&line, rest, &["chains", "passes"], "solver")?;
+                let mut options = SolverOptions::default();
+                if let Some(t) = a.get("chains") {
+                    options.chains = Chains::from_name(t.text).ok_or_else(|| {
+                        line.error(
+                            t.column,
+                            format!("unknown chains '{}': expected iterate or split", t.text),
+                        )
+                    })?;
+                }
+                if let Some(t) = a.get("passes") {
+                    options.passes = integer_in(&line, t, "passes", 1..=100)?;
+                }
+                solver = Some((options, line.number));
+            }
+            "drag" => {
+                if garment.is_none() {
+                    return Err(line.error(head.column, "'drag' needs a garment: put a 'garment' step before it"));
+                }
+                let Some((which, args)) = rest.split_first() else {
+                    return Err(line.error(
+                        line.end_column,
+                        "expected a control point (waist.front) or a curve (left_knee) after 'drag'",
+                    ));
+                };
+                if which.quoted
+                    || !which
+                        .text
+                        .chars()
+                        .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.')
+                {
+                    return Err(line.error(
+                        which.column,
+                        format!("expected a point or curve name, found '{}'", which.text),
+                    ));
+                }
+                let a = Args::parse(&line, args, &["by", "to"], "drag")?;
+                let point = which.text.contains('.');
+                let edit = match (a.get("by"), a.get("to")) {
+                    (Some(by), None) => {
+                        let v = vector(&line, by, "by")?;
+                        if point {
+                            Edit::Point {
+                                name: which.text.to_string(),
+                                target: Target::By(v),
+                            }
+                        } else {
+                            Edit::Curve {
+                                name: which.text.to_string(),
+                                by: v,
+                            }
+                        }
+                    }
+                    (None, Some(to)) if point => Edit::Point {
+                        name: which.text.to_string(),
+                        target: Target::To(vector(&line, to, "to")?),
+                    },
+                    (None, Some(to)) => {
+                        return Err(line.error(
+                            to.column,
+                            "a whole curve is dragged by a vector (by=dx,dy,dz), not to a point",
+                        ));
+                    }
+                    (Some(_), Some(to)) => return Err(line.error(to.column, "give either by= or to=, not both")),
+                    (None, None) => {
+                        return Err(line.error(line.end_column, "expected by=dx,dy,dz or to=x,y,z (metres)"));
+                    }
+                };
+                undoable += 1;
+                steps.push(Step {
+                    line: line.number,
+                    op: Op::Drag(edit),
+                });
+            }
+            "undo" => {
+                if let Some(extra) = rest.first() {
+                    return Err(line.error(extra.column, format!("unexpected '{}' after 'undo'", extra.text)));
+                }
+                if undoable == 0 {
+                    return Err(line.error(
+                        head.column,
+                        "nothing to undo: 'undo' takes back a drag or set step of the garment",
+                    ));
+                }
+                undoable -= 1;
+                steps.push(Step {
+                    line: line.number,
+                    op: Op::Undo,
+                });
             }
             "mannequin" => {
                 let a = Args::parse(&line, rest, &["layers", "points", "subdivisions"], "mannequin")?;
@@ -542,6 +662,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                     Some(t) => integer_in(&line, t, "resolution", 2..=24)?,
                 };
                 garment = Some(template);
+                undoable = 0;
                 steps.push(Step {
                     line: line.number,
                     op: Op::Garment {
@@ -585,6 +706,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
                 } else {
                     Change::To(v)
                 };
+                undoable += 1;
                 steps.push(Step {
                     line: line.number,
                     op: Op::Set {
@@ -619,6 +741,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
             body: body.map_or(BodySource::Builtin, |b| b.0),
             units: units.map_or(Units::Metres, |u| u.0),
             landmarks,
+            solver: solver.map_or_else(SolverOptions::default, |s| s.0),
         },
         steps,
     })

@@ -14,6 +14,8 @@ use crate::body::{
     self, Body, BodyMesh, BodyRing, BodySource, LandmarkOptions, Landmarks, Partition, PartitionOptions,
 };
 use crate::collision::{self, BodyIndex, Collision, CollisionOptions, DetectState, GarmentMesh, VerifyReport};
+use crate::constraint::{self, ConstraintNet, Edit, NetworkOptions, Solution};
+use crate::garment::assemble::assemble;
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind, build_framework};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 use crate::mannequin::{DressForm, MannequinResult, Region, run_mannequin};
@@ -66,6 +68,29 @@ pub enum Stage<'a> {
     },
     /// Mesh-layer collision of a step's M0.
     Collision(&'a CollisionOutcome, &'a BodyIndex, CollisionPart),
+    /// The constraint network of a garment as built.
+    Network(&'a Framework, &'a ConstraintNet),
+    /// An edit solved by the constraint layer: the framework before, the solution (its
+    /// framework is re-surfaced in the stages that follow).
+    Solve {
+        /// The edit.
+        edit: &'a Edit,
+        /// The network.
+        net: &'a ConstraintNet,
+        /// Before the edit.
+        before: &'a Framework,
+        /// The solve.
+        solution: &'a Solution,
+    },
+    /// An edit was refused; the garment is as before the step.
+    Refused {
+        /// The edit.
+        edit: &'a Edit,
+        /// Why.
+        message: &'a str,
+    },
+    /// `undo`: the garment is back to this state.
+    Undone(&'a Framework),
     /// A step failed; everything before it stands.
     Failed(&'a RunError),
     /// A step finished with these metrics.
@@ -351,6 +376,8 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     report.steps.push(m);
     let mut probe: Option<BodyProbe> = None;
     let mut garment: Option<GarmentState> = None;
+    // Garment states before each drag or set, for `undo`.
+    let mut history: Vec<GarmentState> = Vec::new();
 
     // --- The steps.
     for (i, step) in session.steps.iter().enumerate() {
@@ -421,11 +448,17 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                     framework: None,
                     detect: DetectState::default(),
                     collision: None,
+                    net: None,
+                    edits: Vec::new(),
                 };
+                history.clear();
                 solve_garment(&body, &mut probe, options, state, &mut m).map(|mut state| {
                     if let Some(fw) = &state.framework {
                         for part in GarmentPart::all() {
                             driver.emit(step_index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
+                        }
+                        if let Some(net) = &state.net {
+                            driver.emit(step_index, op, "constraints.network", Stage::Network(fw, net), &mut m);
                         }
                     }
                     if let Some(probe) = &probe {
@@ -450,9 +483,13 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                         framework: None,
                         detect: state.detect.clone(),
                         collision: None,
+                        net: None,
+                        edits: state.edits.clone(),
                     };
                     next.dims.values.insert(name.clone(), value);
-                    match solve_garment(&body, &mut probe, options, next, &mut m) {
+                    let solved = solve_garment(&body, &mut probe, options, next, &mut m)
+                        .and_then(|next| replay_edits(next, probe.as_ref(), &session.scene.solver, &mut m));
+                    match solved {
                         Ok(mut next) => {
                             if let Some(after) = &next.framework {
                                 let moved = before
@@ -479,11 +516,80 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                                 collide_garment(&body, probe.index(), &mut next, options, &mut m);
                                 emit_collision(&mut driver, step_index, op, &next, probe.index(), &mut m);
                             }
-                            garment = Some(next);
+                            if let Some(previous) = garment.replace(next) {
+                                history.push(previous);
+                            }
                             Ok(())
                         }
                         Err(e) => Err(e),
                     }
+                }
+            },
+            Op::Drag(edit) => match (garment.as_ref(), probe.as_ref()) {
+                (Some(state), Some(probe)) if state.framework.is_some() && state.net.is_some() => {
+                    match drag(state, edit, probe, &session.scene.solver, &mut m) {
+                        Ok((mut next, solution)) => {
+                            if let (Some(before), Some(net), Some(after)) =
+                                (&state.framework, &state.net, &next.framework)
+                            {
+                                driver.emit(
+                                    step_index,
+                                    op,
+                                    "constraints.solve",
+                                    Stage::Solve {
+                                        edit,
+                                        net,
+                                        before,
+                                        solution: &solution,
+                                    },
+                                    &mut m,
+                                );
+                                for part in [GarmentPart::Curves, GarmentPart::Patches, GarmentPart::Mesh] {
+                                    driver.emit(step_index, op, part.stage_name(), Stage::Garment(after, part), &mut m);
+                                }
+                            }
+                            collide_garment(&body, probe.index(), &mut next, options, &mut m);
+                            emit_collision(&mut driver, step_index, op, &next, probe.index(), &mut m);
+                            if let Some(previous) = garment.replace(next) {
+                                history.push(previous);
+                            }
+                        }
+                        Err(message) => {
+                            // Refused: the garment stays as it was (an `undo` of this step
+                            // changes nothing); the session goes on.
+                            history.push(state.clone());
+                            m.set("refused", message.clone());
+                            driver.emit(
+                                step_index,
+                                op,
+                                "constraints.refused",
+                                Stage::Refused {
+                                    edit,
+                                    message: &message,
+                                },
+                                &mut m,
+                            );
+                        }
+                    }
+                    Ok(())
+                }
+                _ => Err("no garment to drag: a 'garment' step must come first".to_string()),
+            },
+            Op::Undo => match history.pop() {
+                None => Err("nothing to undo: no drag or set step of the current garment ran".to_string()),
+                Some(previous) => {
+                    if let Some(fw) = &previous.framework {
+                        m.set("m0_vertices", fw.m0.mesh.positions.len());
+                        driver.emit(step_index, op, "garment.undo", Stage::Undone(fw), &mut m);
+                        for part in [GarmentPart::Curves, GarmentPart::Patches, GarmentPart::Mesh] {
+                            driver.emit(step_index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
+                        }
+                    }
+                    if let Some(probe) = &probe {
+                        emit_collision(&mut driver, step_index, op, &previous, probe.index(), &mut m);
+                    }
+                    garment = Some(previous);
+                    Ok(())
                 }
             },
         };
@@ -505,8 +611,9 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     report
 }
 
-/// The current garment: its template, settings, the dimensions set so far, the solve, and
-/// what collision remembers between steps.
+/// The current garment: its template, settings, the dimensions set so far, the solve, the
+/// drags made since, its constraint network, and what collision remembers between steps.
+#[derive(Clone)]
 struct GarmentState {
     template: TemplateKind,
     options: FrameworkOptions,
@@ -514,6 +621,94 @@ struct GarmentState {
     framework: Option<Framework>,
     detect: DetectState,
     collision: Option<CollisionOutcome>,
+    net: Option<ConstraintNet>,
+    edits: Vec<Edit>,
+}
+
+/// Solves a drag on the state's framework and re-surfaces the changed patches. The state
+/// is not touched; the error is the refusal's message.
+fn drag(
+    state: &GarmentState,
+    edit: &Edit,
+    probe: &BodyProbe,
+    solver: &constraint::SolverOptions,
+    m: &mut StepMetrics,
+) -> Result<(GarmentState, Solution), String> {
+    let (Some(before), Some(net)) = (&state.framework, &state.net) else {
+        return Err("no garment to drag".into());
+    };
+    let solution = timed(m, "constraints.solve", || {
+        constraint::solve(before, net, edit, probe, solver)
+    })
+    .map_err(|e| e.to_string())?;
+    let built = timed(m, "garment.assemble", || {
+        assemble(&solution.framework, probe, Some(before))
+    })
+    .map_err(|e| format!("the edited curves cannot be surfaced: {e}"))?;
+    let mut after = solution.framework.clone();
+    after.lines = built.lines;
+    after.patches = built.patches;
+    after.m0 = built.m0;
+    record_solve(m, net, &solution, built.resurfaced.len(), after.patches.len());
+    let mut next = state.clone();
+    next.framework = Some(after);
+    next.collision = None;
+    next.edits.push(edit.clone());
+    Ok((next, solution))
+}
+
+/// Re-applies the drags made before a dimension change to the re-solved framework.
+fn replay_edits(
+    mut state: GarmentState,
+    probe: Option<&BodyProbe>,
+    solver: &constraint::SolverOptions,
+    m: &mut StepMetrics,
+) -> Result<GarmentState, String> {
+    let edits = std::mem::take(&mut state.edits);
+    let Some(probe) = probe else {
+        return Ok(state);
+    };
+    for (k, edit) in edits.iter().enumerate() {
+        let (next, _) = drag(&state, edit, probe, solver, m)
+            .map_err(|e| format!("replaying drag {} of {} after the change: {e}", k + 1, edits.len()))?;
+        state = next;
+    }
+    m.set("replayed_drags", edits.len());
+    Ok(state)
+}
+
+fn record_solve(m: &mut StepMetrics, net: &ConstraintNet, s: &Solution, resurfaced: usize, patches: usize) {
+    m.set("passes", s.passes);
+    m.set("solver_iterations", s.iterations.len());
+    m.set("converged", s.converged);
+    m.set(
+        "curves_solved",
+        s.solved.iter().map(|&c| net.curves[c].name.clone()).collect::<Vec<_>>(),
+    );
+    m.set("max_residual", s.residuals.iter().copied().fold(0.0, f64::max));
+    let violations: Vec<_> = s
+        .violations
+        .iter()
+        .map(|&(k, r)| {
+            let c = &net.constraints[k];
+            json!({
+                "constraint": k,
+                "kind": c.kind.name(),
+                "curves": [net.curves[c.i].name.clone(), net.curves[c.j].name.clone()],
+                "residual": r,
+                "unit": c.kind.unit(),
+            })
+        })
+        .collect();
+    m.set("violations", violations);
+    m.set("node_hits", s.iterations.iter().map(|it| it.node.len()).sum::<usize>());
+    m.set("collision_gap_m", s.gap);
+    m.set("clearance_deficit_m", s.clearance_deficit);
+    m.set("resurfaced_patches", resurfaced);
+    m.set("kept_patches", patches - resurfaced);
+    if let Some(p) = s.path.last() {
+        m.set("dragged_to", [p.x, p.y, p.z]);
+    }
 }
 
 fn emit_collision(
@@ -655,6 +850,12 @@ fn solve_garment(
         .collect();
     m.set("girths", girths);
     m.set("dimensions", serde_json::to_value(&fw.dimensions).unwrap_or_default());
+    let net = timed(m, "constraints.network", || {
+        ConstraintNet::for_framework(&fw, probe, &NetworkOptions::default())
+    });
+    m.set("constraints", net.constraints.len());
+    m.set("curves", net.curves.len());
+    state.net = Some(net);
     state.framework = Some(fw);
     Ok(state)
 }

@@ -3,8 +3,9 @@
 use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical};
 
 /// 3D view of everything spatial on the left, above a close view of the collision (hits,
-/// response arrows, what is left; it frames itself on them); metrics and the per-stage log
-/// on the right; the time panel on the `stage` timeline.
+/// response arrows, what is left; it frames itself on them) and one of the constraint
+/// network with the feature curves (solver iterations on the `iter` timeline); metrics and
+/// the per-stage log on the right; the time panel on the `stage` timeline.
 pub fn default_blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
@@ -17,12 +18,24 @@ pub fn default_blueprint() -> Blueprint {
                         "+ /section/**",
                         "+ /garment/**",
                         "+ /collision/**",
+                        "+ /constraints/**",
                     ])
                     .into(),
-                Spatial3DView::new("Collision")
-                    .with_origin("/")
-                    .with_contents(["+ /collision/**"])
-                    .into(),
+                Horizontal::new([
+                    Spatial3DView::new("Collision")
+                        .with_origin("/")
+                        .with_contents(["+ /collision/**"])
+                        .into(),
+                    Spatial3DView::new("Constraints")
+                        .with_origin("/")
+                        .with_contents([
+                            "+ /constraints/**",
+                            "+ /garment/curves/**",
+                            "- /garment/curves/straightened",
+                        ])
+                        .into(),
+                ])
+                .into(),
             ])
             .with_row_shares([3.0, 2.0])
             .into(),

@@ -54,6 +54,7 @@ impl LogOptions {
 pub struct RerunLogger {
     rec: RecordingStream,
     options: LogOptions,
+    iter: i64,
 }
 
 pub(super) fn to_sink(e: rerun::RecordingStreamError) -> SinkError {
@@ -96,12 +97,18 @@ impl RerunLogger {
                 .map_err(to_sink)?;
             }
         }
-        Ok(Self { rec, options })
+        Ok(Self { rec, options, iter: 0 })
     }
 
     /// The recording.
     pub fn recording(&self) -> &RecordingStream {
         &self.rec
+    }
+
+    /// The next value of the `iter` timeline (solver iterations, counted over the session).
+    pub(super) fn next_iter(&mut self) -> i64 {
+        self.iter += 1;
+        self.iter
     }
 
     pub(super) fn text(&self, level: &str, text: String) -> Result<(), SinkError> {
@@ -410,6 +417,27 @@ impl RerunLogger {
             Stage::GarmentEdit { name, before, after } => self.garment_edit(name, before, after),
             Stage::Collision(outcome, index, part) => self.collision(outcome, index, part),
             Stage::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
+            Stage::Network(fw, net) => self.network_built(fw, net),
+            Stage::Solve {
+                edit,
+                net,
+                before,
+                solution,
+            } => self.solve(edit, net, before, solution),
+            Stage::Refused { edit, message } => self.text(
+                TextLogLevel::WARN,
+                format!(
+                    "{} refused: {message}; the garment is as before",
+                    super::constraints::describe_edit(edit)
+                ),
+            ),
+            Stage::Undone(fw) => self.text(
+                TextLogLevel::INFO,
+                format!(
+                    "undo: the garment is back to its state before the last step ({} M0 vertices)",
+                    fw.m0.mesh.positions.len()
+                ),
+            ),
             Stage::StepDone(metrics) => {
                 if self.options.timings {
                     for (name, ms) in &metrics.timings_ms {

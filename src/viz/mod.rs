@@ -10,12 +10,15 @@
 //! `garment/m0` (+ `/edges`; after response at the `collision.response` stage),
 //! `garment/edit/moves`, `collision/mesh/hits/<A..G>` (+ `/depth`),
 //! `collision/response/<rule>` (arrows), `collision/mesh/remaining`,
-//! `collision/mesh/crossing_edges`, `metrics/...` (scalars), `log` (text per stage).
-//! Timelines: `step` and `stage`.
+//! `collision/mesh/crossing_edges`, `constraints/network/{links,curves}` (green met, red
+//! violated), `constraints/solve/{curve,control,node_hits}` (per solver iteration),
+//! `constraints/drag/{path,points}`, `metrics/...` (scalars), `log` (text per stage).
+//! Timelines: `step`, `stage`, and `iter` (solver iterations over the session).
 
 pub mod blueprint;
 mod collision;
 pub mod colors;
+mod constraints;
 mod garment;
 pub mod logger;
 pub mod target;
