@@ -1,123 +1,469 @@
-//! The constraint network and the solver on the real body.
+//! The constraint layer on the real body: every kind's residual on the built jumpsuit, the
+//! solver restoring each kind after random perturbations, a drag into the body, closed
+//! chains (converging and not), a refused self-crossing drag, undo, and the re-surfacing
+//! of changed patches only.
 
-use drape::constraint::{ConstraintNet, Edit, NetworkOptions, SolverOptions, Target, solve};
-use glam::DVec3;
+use std::collections::BTreeSet;
 
-use super::common::{real_jumpsuit, real_probe};
+use drape::constraint::{
+    Chains, ConstraintNet, Edit, EditError, Kind, NetworkOptions, SolverOptions, Target, curves, self_crossings,
+    self_crossings_brute, solve,
+};
+use drape::garment::assemble::assemble;
+use drape::garment::{Ease, Framework, ease_ring};
+use drape::mesh::TriMesh;
+use drape::session::runner::{GarmentPart, Stage, StageInfo, StageSink};
+use drape::session::{CollisionPart, RunOptions, parse_session, run_session};
+use glam::{DVec2, DVec3};
+use proptest::prelude::*;
+
+use super::common::{Lcg, real_jumpsuit, real_probe};
+
+fn net() -> &'static ConstraintNet {
+    static NET: std::sync::OnceLock<ConstraintNet> = std::sync::OnceLock::new();
+    NET.get_or_init(|| ConstraintNet::for_framework(real_jumpsuit(), real_probe(), &NetworkOptions::default()))
+}
+
+const TOL: f64 = 1e-6;
+
+fn kinds_of(net: &ConstraintNet, name: &str) -> Vec<usize> {
+    (0..net.constraints.len())
+        .filter(|&k| net.constraints[k].kind.name() == name)
+        .collect()
+}
 
 #[test]
-fn scratch_network() {
+fn every_constraint_holds_on_the_built_jumpsuit_and_every_kind_is_there() {
     let fw = real_jumpsuit();
-    let net = ConstraintNet::for_framework(fw, real_probe(), &NetworkOptions::default());
-    println!("{}", net.describe(fw, 1e-9));
-    let probe = real_probe();
-    for (name, by) in [
-        ("waist.front", DVec3::new(0.0, 0.0, -0.05)),
-        ("waist.front_left", DVec3::new(0.0, 0.0, 0.02)),
-        ("chest.front_left", DVec3::new(0.0, 0.0, -0.04)),
-        ("crotch.point", DVec3::new(0.0, -0.03, 0.0)),
-        ("left_knee.outer", DVec3::new(0.03, 0.0, 0.0)),
+    let net = net();
+    let r = net.residuals(fw);
+    for kind in [
+        "symmetry",
+        "coplanar",
+        "inside_polygon",
+        "outside_body",
+        "no_self_crossing",
+        "coincident",
+        "tangent",
     ] {
-        for chains in [drape::constraint::Chains::Iterate, drape::constraint::Chains::Split] {
-            let opts = SolverOptions {
-                chains,
-                ..SolverOptions::default()
-            };
-            let t = std::time::Instant::now();
-            let r = solve(
-                fw,
-                &net,
-                &Edit::Point {
-                    name: name.into(),
-                    target: Target::By(by),
-                },
-                probe,
-                &opts,
-            );
-            match r {
-                Ok(s) => {
-                    println!(
-                        "{name} {:?}: {:.1} ms, {} iterations, {} passes, converged {}, violations {:?}, deficit {:.2e}, path {:?}",
-                        chains,
-                        t.elapsed().as_secs_f64() * 1e3,
-                        s.iterations.len(),
-                        s.passes,
-                        s.converged,
-                        s.violations
-                            .iter()
-                            .map(|(k, r)| (
-                                net.constraints[*k].kind.name(),
-                                net.curves[net.constraints[*k].i].name.clone(),
-                                *r
-                            ))
-                            .collect::<Vec<_>>(),
-                        s.clearance_deficit,
-                        s.path
-                    );
-                    for it in &s.iterations {
-                        println!(
-                            "   pass {} {} driven {:?} node {} curve short {} ({:.2e} -> {:.2e}) moved {:?} broken {:?}",
-                            it.pass,
-                            net.curves[it.curve].name,
-                            it.driven_by
-                                .iter()
-                                .map(|k| net.constraints[*k].kind.name())
-                                .collect::<Vec<_>>(),
-                            it.node.len(),
-                            it.curve_layer.short_before,
-                            it.curve_layer.deficit_before,
-                            it.curve_layer.deficit_after,
-                            it.curve_layer.moved,
-                            it.broken
-                                .iter()
-                                .map(|k| (
-                                    net.constraints[*k].kind.name(),
-                                    net.curves[net.constraints[*k].i].name.clone(),
-                                    net.curves[net.constraints[*k].j].name.clone()
-                                ))
-                                .collect::<Vec<_>>()
-                        );
-                    }
-                }
-                Err(e) => println!("{name}: {e}"),
+        let ks = kinds_of(net, kind);
+        assert!(!ks.is_empty(), "no {kind} constraint");
+        for k in ks {
+            assert!(r[k] <= 1e-9, "#{k} {kind} residual {:e} on the built framework", r[k]);
+        }
+    }
+    // Independent checks of two kinds: contour points are the ring anchors they name, and
+    // each princess contour leaves in its strap's end direction.
+    for c in &fw.contours {
+        for (name, p) in c.through.iter().zip(&c.points) {
+            let (ring, anchor) = name.split_once('.').expect("ring.anchor");
+            if let Some(a) = fw.ring(ring).and_then(|r| r.anchor(anchor)) {
+                assert_eq!(a.point, *p, "{name} on {}", c.name);
             }
         }
+    }
+    let strap = fw.open_curves.iter().find(|c| c.name == "left_strap").expect("strap");
+    let contour = fw.contours.iter().find(|c| c.name == "front_left").expect("contour");
+    let n = contour.points.len() - 1;
+    let l = contour.spline.knots()[n];
+    let h = 1e-6;
+    let numeric = (contour.spline.sample(l) - contour.spline.sample(l - h)) / h;
+    let s0 = strap.spline.sample(0.0);
+    let strap_dir = (strap.spline.sample(h) - s0) / h;
+    assert!(numeric.normalize().angle_between(strap_dir.normalize()) < 1e-4);
+}
+
+/// A copy of the framework with control point `p` of curve `c` moved by `d` (no refit of
+/// anything else: the constraints around it are broken).
+fn perturbed(fw: &Framework, net: &ConstraintNet, c: usize, moves: &[(usize, DVec3)]) -> Framework {
+    let mut out = fw.clone();
+    let node = &net.curves[c];
+    let mut pts = curves::points(&out, node).to_vec();
+    for &(p, d) in moves {
+        pts[p] += d;
+    }
+    curves::set_points(&mut out, node, pts, &drape::garment::RingOptions::default()).expect("refits");
+    out
+}
+
+fn touch(name: &str) -> Edit {
+    Edit::Curve {
+        name: name.into(),
+        by: DVec3::ZERO,
+    }
+}
+
+fn residual_of(net: &ConstraintNet, fw: &Framework, kind: &str, curve: usize) -> f64 {
+    kinds_of(net, kind)
+        .into_iter()
+        .filter(|&k| net.constraints[k].i == curve || net.constraints[k].j == curve)
+        .map(|k| net.constraints[k].residual(fw, &net.curves))
+        .fold(0.0, f64::max)
+}
+
+fn unit(a: f64, b: f64) -> DVec3 {
+    let (t, z) = (a * std::f64::consts::TAU, 2.0 * b - 1.0);
+    let r = (1.0 - z * z).sqrt();
+    DVec3::new(r * t.cos(), z, r * t.sin())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Coplanarity, symmetry and the design region of a ring: its anchors knocked off the
+    /// plane, asymmetric and far out; solving the ring puts them back.
+    #[test]
+    fn the_solver_restores_a_rings_plane_symmetry_and_region(
+        ring in 0usize..5, anchor in 0usize..8, a in 0.0f64..1.0, b in 0.0f64..1.0, size in 0.002f64..0.03,
+    ) {
+        let (fw, net) = (real_jumpsuit(), net());
+        let ring = ["chest", "bust", "waist", "hip", "neckline"][ring];
+        let c = net.curve(ring).expect("ring");
+        let r = &fw.rings[net.curves[c].index];
+        let p = r.anchors[anchor % r.anchors.len()].control;
+        let broken = perturbed(fw, net, c, &[(p, unit(a, b) * size)]);
+        let before = residual_of(net, &broken, "coplanar", c).max(residual_of(net, &broken, "symmetry", c));
+        prop_assume!(before > TOL);
+        let s = solve(&broken, net, &touch(ring), real_probe(), &SolverOptions::default()).expect("solves");
+        for kind in ["coplanar", "symmetry", "inside_polygon", "coincident"] {
+            let after = residual_of(net, &s.framework, kind, c);
+            prop_assert!(after <= TOL, "{ring} {kind}: {before:e} -> {after:e}");
+        }
+    }
+
+    /// Coincident points and tangents: a contour point (or a strap's end direction) moved
+    /// off its ring; solving from the ring (or the strap) brings the contour back.
+    #[test]
+    fn the_solver_restores_coincident_points_and_tangents(
+        contour in 0usize..10, point in 0usize..7, a in 0.0f64..1.0, b in 0.0f64..1.0, size in 0.001f64..0.02,
+    ) {
+        let (fw, net) = (real_jumpsuit(), net());
+        let contours: Vec<usize> = (0..net.curves.len()).filter(|&c| net.curves[c].kind == drape::constraint::CurveKind::Contour).collect();
+        let c = contours[contour % contours.len()];
+        let n = curves::points(fw, &net.curves[c]).len();
+        let p = point % n;
+        let mut broken = perturbed(fw, net, c, &[(p, unit(a, b) * size)]);
+        // Knock the end tangent of a princess contour too.
+        let k = net.curves[c].index;
+        if broken.contours[k].tangents[1].is_some() {
+            broken.contours[k].tangents[1] = Some(unit(b, a));
+            let pts = broken.contours[k].points.clone();
+            let t = broken.contours[k].tangents;
+            broken.contours[k].refit(pts, t).expect("refits");
+        }
+        // The curve on the other side of the broken joint drives.
+        let driver = net.touching(c).into_iter().map(|k| &net.constraints[k]).find(|con| match con.kind {
+            Kind::Coincident { a, b } => (con.j == c && b == p) || (con.i == c && a == p),
+            _ => false,
+        }).map(|con| con.other(c)).expect("every contour point is shared");
+        let before = residual_of(net, &broken, "coincident", c).max(residual_of(net, &broken, "tangent", c));
+        prop_assume!(before > TOL);
+        let s = solve(&broken, net, &touch(&net.curves[driver].name), real_probe(), &SolverOptions::default()).expect("solves");
+        // Tangents are solved from their strap, which the ring's solve reaches when the
+        // strap shares the point; otherwise solve from the strap as well.
+        let mut fw2 = s.framework;
+        if residual_of(net, &fw2, "tangent", c) > TOL {
+            let strap = net.touching(c).into_iter().map(|k| &net.constraints[k]).find(|con| matches!(con.kind, Kind::Tangent { .. })).map(|con| con.i).expect("tangent");
+            fw2 = solve(&fw2, net, &touch(&net.curves[strap].name), real_probe(), &SolverOptions::default()).expect("solves").framework;
+        }
+        for kind in ["coincident", "tangent"] {
+            let after = residual_of(net, &fw2, kind, c);
+            prop_assert!(after <= 1e-9, "{} {kind}: {before:e} -> {after:e}", net.curves[c].name);
+        }
+    }
+
+    /// The ease against the section: ring control points pushed into the body section come
+    /// back out to their gap.
+    #[test]
+    fn the_solver_restores_a_ring_outside_its_section(ring in 0usize..6, point in 0usize..12, depth in 0.005f64..0.04) {
+        let (fw, net) = (real_jumpsuit(), net());
+        let ring = ["bust", "waist", "hip", "left_knee", "right_thigh", "left_hem"][ring];
+        let c = net.curve(ring).expect("ring");
+        let r = &fw.rings[net.curves[c].index];
+        let p = point % r.stages.control.len();
+        // Towards the ring's centre, in its plane.
+        let centre = r.stages.control.iter().sum::<DVec3>() / r.stages.control.len() as f64;
+        let inward = (centre - r.stages.control[p]).with_y(0.0).normalize();
+        let broken = perturbed(fw, net, c, &[(p, inward * depth)]);
+        let before = residual_of(net, &broken, "outside_body", c);
+        prop_assume!(before > TOL);
+        let s = solve(&broken, net, &touch(ring), real_probe(), &SolverOptions::default()).expect("solves");
+        let after = residual_of(net, &s.framework, "outside_body", c);
+        prop_assert!(after <= TOL, "{ring}: {before:e} -> {after:e}");
+    }
+
+    /// The box-swept self-crossing check finds exactly what the all-pairs check finds.
+    #[test]
+    fn the_crossing_prefilter_misses_nothing(seed in 0u64..10_000, n in 4usize..60, closed in proptest::bool::ANY) {
+        let mut g = Lcg(seed);
+        let pts: Vec<DVec2> = (0..n).map(|_| DVec2::new(g.next(), g.next())).collect();
+        let fast = self_crossings(&pts, closed);
+        let mut slow = self_crossings_brute(&pts, closed);
+        slow.sort_by(|a, b| (a.i, a.j).cmp(&(b.i, b.j)));
+        prop_assert_eq!(fast, slow);
     }
 }
 
 #[test]
-fn scratch_clearance() {
-    let fw = real_jumpsuit();
+fn no_self_crossing_is_met_by_refusal_and_the_framework_stays() {
+    let (fw, net) = (real_jumpsuit(), net());
+    let before = fw.clone();
+    let err = solve(
+        fw,
+        net,
+        &Edit::Point {
+            name: "waist.back".into(),
+            target: Target::By(DVec3::new(0.0, 0.0, 0.35)),
+        },
+        real_probe(),
+        &SolverOptions::default(),
+    )
+    .expect_err("a ring pulled through itself is refused");
+    match &err {
+        EditError::SelfCrossing { curve, loop_length, .. } => {
+            assert_eq!(curve, "waist");
+            assert!(*loop_length > 0.0);
+        }
+        other => panic!("expected a self-crossing, got {other}"),
+    }
+    assert!(err.to_string().contains("'waist'"), "{err}");
+    assert_eq!(fw.m0, before.m0);
+    let c = net.curve("waist").expect("waist");
+    assert_eq!(residual_of(net, fw, "no_self_crossing", c), 0.0);
+}
+
+#[test]
+fn a_drag_into_the_body_ends_outside_by_the_ease_with_its_joints_exact() {
+    let (fw, net) = (real_jumpsuit(), net());
     let probe = real_probe();
-    println!("ease {}", fw.ease());
-    for r in &fw.rings {
-        let d: Vec<String> = r
-            .stages
-            .control
-            .iter()
-            .map(|p| format!("{:.1}", probe.signed_distance(*p) * 1e3))
-            .collect();
-        let min_s = r
-            .spline
-            .subdivide(6, true)
-            .iter()
-            .map(|p| probe.signed_distance(*p))
-            .fold(f64::INFINITY, f64::min);
-        println!(
-            "{:<12} control mm [{}] min sample {:.1} mm ease {:?}",
-            r.name,
-            d.join(" "),
-            min_s * 1e3,
-            r.ease
-        );
+    let name = "waist.front";
+    let c = net.curve("waist").expect("waist");
+    let r = &fw.rings[net.curves[c].index];
+    let p = r.anchor("front").expect("front").control;
+    let start = r.stages.control[p];
+    let s = solve(
+        fw,
+        net,
+        &Edit::Point {
+            name: name.into(),
+            target: Target::By(DVec3::new(0.0, 0.0, -0.06)),
+        },
+        probe,
+        &SolverOptions::default(),
+    )
+    .expect("solves");
+    assert!(
+        probe.signed_distance(start + DVec3::new(0.0, 0.0, -0.06)) < 0.0,
+        "the drag goes inside"
+    );
+    let end = s.framework.rings[net.curves[c].index].stages.control[p];
+    // Outside by the ease: the section gap (the ring's own ease, computed here with the
+    // easing code on the section) and at least the collision gap off the 3D body.
+    let ring = &s.framework.rings[net.curves[c].index];
+    let Ease::Uniform(e) = ring.ease else {
+        panic!("the waist's ease is uniform here")
+    };
+    let eased = ease_ring(&[end], &ring.stages.convex, &ring.plane, Ease::Uniform(e)).expect("eases")[0];
+    assert!(end.distance(eased) < 2e-4, "{end} vs eased {eased}");
+    assert!(probe.signed_distance(end) >= s.gap - 1e-9);
+    assert!(
+        end.distance(start) < 2e-4,
+        "back where the ease puts it: {:e}",
+        end.distance(start)
+    );
+    for k in net.touching(c) {
+        if matches!(net.constraints[k].kind, Kind::Coincident { .. }) {
+            let res = net.constraints[k].residual(&s.framework, &net.curves);
+            assert!(res <= 1e-9, "#{k} {res:e}");
+        }
     }
-    for c in &fw.open_curves {
-        let d: Vec<String> = c
-            .stages
-            .control
-            .iter()
-            .map(|p| format!("{:.1}", probe.signed_distance(*p) * 1e3))
-            .collect();
-        println!("{:<12} control mm [{}]", c.name, d.join(" "));
+    assert!(s.violations.is_empty(), "{:?}", s.violations);
+    assert_eq!(s.path.len(), 4, "start, asked, after the first pass, final");
+}
+
+#[test]
+fn a_closed_chain_converges_and_the_split_alternative_reports_what_is_left() {
+    let (fw, net) = (real_jumpsuit(), net());
+    let edit = Edit::Point {
+        name: "chest.front_left".into(),
+        target: Target::By(DVec3::new(0.0, 0.0, -0.04)),
+    };
+    let iterate = solve(fw, net, &edit, real_probe(), &SolverOptions::default()).expect("solves");
+    let limit = SolverOptions::default().passes;
+    assert!(iterate.converged, "{:?}", iterate.violations);
+    assert!(
+        iterate.passes > 1 && iterate.passes <= limit,
+        "{} passes",
+        iterate.passes
+    );
+    // The chain closed at least once: a curve broke a joint with one solved before it.
+    assert!(iterate.iterations.iter().any(|it| !it.broken.is_empty()));
+    assert!(iterate.violations.is_empty());
+    let split = solve(
+        fw,
+        net,
+        &edit,
+        real_probe(),
+        &SolverOptions {
+            chains: Chains::Split,
+            ..SolverOptions::default()
+        },
+    )
+    .expect("solves");
+    assert_eq!(split.passes, 1);
+    // One way only: what is still violated is reported, not hidden.
+    let recount = net.residuals(&split.framework).iter().filter(|r| **r > TOL).count();
+    assert_eq!(split.violations.len(), recount);
+    assert!(!split.converged || split.violations.is_empty());
+}
+
+#[test]
+fn a_chain_that_cannot_converge_reports_the_violation_at_the_limit() {
+    let (fw, base) = (real_jumpsuit(), net());
+    // A design region for the waist whose front edge lies 3 cm inside the body: the region
+    // pulls the ring's front in, the collision pushes it out, for ever.
+    let mut net = base.clone();
+    let c = net.curve("waist").expect("waist");
+    let plane = curves::plane(fw, &net.curves[c]).expect("planar");
+    let flat: Vec<DVec2> = curves::points(fw, &net.curves[c])
+        .iter()
+        .map(|p| plane.project(*p))
+        .collect();
+    let front = plane.project(fw.ring("waist").and_then(|r| r.anchor("front")).expect("front").point);
+    let (lo, hi) = flat.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(a, b), q| (a.min(*q), b.max(*q)),
+    );
+    let (lo, mut hi) = (lo - 0.05, hi + 0.05);
+    // The plane's first axis is z here (horizontal plane): cut the front.
+    assert!(
+        (front.x - (hi.x - 0.05)).abs() < 1e-9,
+        "the front is the largest first coordinate"
+    );
+    hi.x = front.x - 0.03;
+    for con in &mut net.constraints {
+        if con.i == c
+            && con.j == c
+            && let Kind::InsidePolygon { polygon } = &mut con.kind
+        {
+            *polygon = vec![lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
+        }
     }
+    let options = SolverOptions {
+        passes: 5,
+        ..SolverOptions::default()
+    };
+    let s = solve(
+        fw,
+        &net,
+        &Edit::Point {
+            name: "waist.front".into(),
+            target: Target::By(DVec3::new(0.0, 0.0, 0.01)),
+        },
+        real_probe(),
+        &options,
+    )
+    .expect("returns, does not loop");
+    assert!(!s.converged);
+    assert_eq!(s.passes, 5);
+    let region: BTreeSet<usize> = kinds_of(&net, "inside_polygon").into_iter().collect();
+    let left: Vec<_> = s.violations.iter().filter(|(k, _)| region.contains(k)).collect();
+    assert_eq!(left.len(), 1, "{:?}", s.violations);
+    assert_eq!(net.constraints[left[0].0].i, c);
+    assert!(
+        left[0].1 > 0.01,
+        "the ring's front stays outside the region: {:e}",
+        left[0].1
+    );
+}
+
+#[test]
+fn only_patches_next_to_changed_curves_are_resurfaced_and_they_match_a_full_rebuild() {
+    let (fw, net) = (real_jumpsuit(), net());
+    let s = solve(
+        fw,
+        net,
+        &Edit::Point {
+            name: "left_knee.outer".into(),
+            target: Target::By(DVec3::new(0.02, 0.0, 0.0)),
+        },
+        real_probe(),
+        &SolverOptions::default(),
+    )
+    .expect("solves");
+    let partial = assemble(&s.framework, real_probe(), Some(fw)).expect("assembles");
+    let full = assemble(&s.framework, real_probe(), None).expect("assembles");
+    assert_eq!(full.resurfaced.len(), fw.patches.len());
+    // The knees and the contours through them changed (the contours run from the hems to
+    // the chest); the panels, the crotch junction's front and back, and the centre bands
+    // did not.
+    assert!(
+        !partial.resurfaced.is_empty() && partial.resurfaced.len() < fw.patches.len(),
+        "{} of {}",
+        partial.resurfaced.len(),
+        fw.patches.len()
+    );
+    for kept in [
+        "panel.front",
+        "panel.back",
+        "torso.hip_waist.front",
+        "torso.bust_chest.back",
+    ] {
+        assert!(!partial.resurfaced.iter().any(|n| n == kept), "{kept} resurfaced");
+    }
+    assert_eq!(partial.m0.mesh, full.m0.mesh, "kept patches are what a rebuild gives");
+}
+
+/// Keeps M0 (before and after response) at every mesh stage.
+#[derive(Default)]
+struct Steps {
+    m0: Vec<(usize, TriMesh)>,
+    responded: Vec<(usize, TriMesh)>,
+    refused: Vec<String>,
+}
+
+impl StageSink for Steps {
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), drape::session::runner::SinkError> {
+        match stage {
+            Stage::Garment(fw, GarmentPart::Mesh) => self.m0.push((info.step, fw.m0.mesh.clone())),
+            Stage::Collision(o, _, CollisionPart::Respond) => {
+                self.responded.push((info.step, o.collision.mesh.clone()));
+            }
+            Stage::Refused { message, .. } => self.refused.push(message.to_string()),
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+#[test]
+fn undo_restores_the_exact_previous_state_and_a_refused_drag_changes_nothing() {
+    let text = "drape 1\nbody builtin\ngarment jumpsuit\ndrag waist.front_left by=0,0,0.02\n\
+                drag crotch.point by=0,-0.02,0\nundo\ndrag waist.back by=0,0,0.35\nundo\nundo\n";
+    let session = parse_session(text, "undo.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = Steps::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let at = |v: &[(usize, TriMesh)], step: usize| -> TriMesh {
+        v.iter()
+            .rev()
+            .find(|(s, _)| *s == step)
+            .map(|(_, m)| m.clone())
+            .expect("logged")
+    };
+    // Steps: 1 garment, 2 drag, 3 drag, 4 undo, 5 refused drag, 6 undo, 7 undo.
+    assert_ne!(at(&sink.m0, 2), at(&sink.m0, 1));
+    assert_ne!(at(&sink.m0, 3), at(&sink.m0, 2));
+    assert_eq!(at(&sink.m0, 4), at(&sink.m0, 2), "undo of the crotch drag");
+    assert_eq!(at(&sink.responded, 4), at(&sink.responded, 2));
+    assert_eq!(sink.refused.len(), 1);
+    assert!(sink.refused[0].contains("'waist'"), "{}", sink.refused[0]);
+    assert!(!sink.m0.iter().any(|(s, _)| *s == 5), "a refused drag logs no new mesh");
+    assert_eq!(
+        at(&sink.m0, 6),
+        at(&sink.m0, 2),
+        "undo of the refused drag changes nothing"
+    );
+    assert_eq!(at(&sink.m0, 7), at(&sink.m0, 1), "back to the garment as built");
+    assert_eq!(at(&sink.responded, 7), at(&sink.responded, 1));
 }
