@@ -24,17 +24,9 @@ use drape::collision::{
 use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use glam::DVec3;
 
-fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
-}
+#[path = "timing.rs"]
+mod timing;
+use timing::median_ms;
 
 fn jumpsuit(body: &Body, probe: &BodyProbe, waist: f64, height: f64) -> GarmentMesh {
     let mut dims = Dimensions::default();

@@ -17,17 +17,9 @@ use drape::garment::assemble::assemble;
 use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use glam::DVec3;
 
-fn median_ms(runs: usize, mut f: impl FnMut()) -> f64 {
-    let mut t: Vec<f64> = (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed().as_secs_f64() * 1e3
-        })
-        .collect();
-    t.sort_by(f64::total_cmp);
-    t[t.len() / 2]
-}
+#[path = "timing.rs"]
+mod timing;
+use timing::median_ms;
 
 fn main() {
     let mesh = BodyMesh::from_obj_text(drape::body::BUILTIN_BODY_OBJ, "builtin", 1.0).expect("builtin body");

@@ -192,17 +192,7 @@ fn solve_line(
     let violations: Vec<String> = s
         .violations
         .iter()
-        .map(|&(k, r)| {
-            let c = &net.constraints[k];
-            format!(
-                "{} {}/{} {:.2e} {}",
-                c.kind.name(),
-                net.curves[c.i].name,
-                net.curves[c.j].name,
-                r,
-                c.kind.unit()
-            )
-        })
+        .map(|&(k, r)| net.constraints[k].describe(&net.curves, r))
         .collect();
     format!(
         "{edit}: {} iteration(s), {} pass(es), {}; largest residual {worst:.2e}{}",

@@ -96,7 +96,7 @@ pub fn self_crossings(points: &[DVec2], closed: bool) -> Vec<Crossing> {
             }
         }
     }
-    out.sort_by(|a, b| (a.i, a.j).cmp(&(b.i, b.j)));
+    out.sort_by_key(|c| (c.i, c.j));
     out
 }
 

@@ -122,21 +122,29 @@ pub fn mirror(p: DVec3, mid_x: f64) -> DVec3 {
     DVec3::new(2.0 * mid_x - p.x, p.y, p.z)
 }
 
+/// The nearest point of a closed polygon's boundary to `q`, and its distance.
+pub fn nearest_on_polygon(q: DVec2, polygon: &[DVec2]) -> (DVec2, f64) {
+    let n = polygon.len();
+    let mut best = (q, f64::INFINITY);
+    for k in 0..n {
+        let (a, b) = (polygon[k], polygon[(k + 1) % n]);
+        let ab = b - a;
+        let t = if ab.length_squared() > 0.0 {
+            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let p = a + ab * t;
+        if q.distance(p) < best.1 {
+            best = (p, q.distance(p));
+        }
+    }
+    best
+}
+
 /// Signed distance of `q` from a closed polygon's boundary: negative inside.
 pub fn signed_gap(q: DVec2, polygon: &[DVec2]) -> f64 {
-    let n = polygon.len();
-    let d = (0..n)
-        .map(|k| {
-            let (a, b) = (polygon[k], polygon[(k + 1) % n]);
-            let ab = b - a;
-            let t = if ab.length_squared() > 0.0 {
-                ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            q.distance(a + ab * t)
-        })
-        .fold(f64::INFINITY, f64::min);
+    let d = nearest_on_polygon(q, polygon).1;
     if polygon::contains(polygon, q) { -d } else { d }
 }
 
@@ -144,6 +152,21 @@ pub fn signed_gap(q: DVec2, polygon: &[DVec2]) -> f64 {
 pub const SAMPLES_PER_SPAN: usize = 6;
 
 impl Constraint {
+    /// `kind curve[-other] by residual unit`, for messages.
+    pub fn describe(&self, nodes: &[CurveNode], residual: f64) -> String {
+        let other = if self.is_self() {
+            String::new()
+        } else {
+            format!("-{}", nodes[self.j].name)
+        };
+        format!(
+            "{} {}{other} by {residual:.3e} {}",
+            self.kind.name(),
+            nodes[self.i].name,
+            self.kind.unit()
+        )
+    }
+
     /// Whether the constraint ties a curve to itself.
     pub fn is_self(&self) -> bool {
         self.i == self.j

@@ -29,7 +29,7 @@ use thiserror::Error;
 
 use super::crossing::self_crossings;
 use super::curves::{self, CurveKind, CurveNode};
-use super::kinds::{Kind, SAMPLES_PER_SPAN, mirror, signed_gap};
+use super::kinds::{Kind, SAMPLES_PER_SPAN, mirror, nearest_on_polygon, signed_gap};
 use super::network::ConstraintNet;
 use crate::garment::{BodyProbe, Ease, Framework, RingOptions, ease_ring};
 
@@ -638,7 +638,7 @@ impl Run<'_> {
                         for p in control.iter_mut() {
                             let q = plane.project(*p);
                             if signed_gap(q, polygon) > 0.0 {
-                                *p = plane.lift(nearest_on_polygon(q, polygon))
+                                *p = plane.lift(nearest_on_polygon(q, polygon).0)
                                     + plane.normal * plane.signed_distance(*p);
                             }
                         }
@@ -911,26 +911,4 @@ fn set_move(moved: &mut Vec<(usize, DVec3)>, i: usize, d: DVec3) {
     if !moved.iter().any(|m| m.0 == i) {
         moved.push((i, d));
     }
-}
-
-/// The nearest point of a polygon's boundary.
-fn nearest_on_polygon(q: DVec2, polygon: &[DVec2]) -> DVec2 {
-    let n = polygon.len();
-    let mut best = q;
-    let mut best_d = f64::INFINITY;
-    for k in 0..n {
-        let (a, b) = (polygon[k], polygon[(k + 1) % n]);
-        let ab = b - a;
-        let t = if ab.length_squared() > 0.0 {
-            ((q - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let p = a + ab * t;
-        if q.distance(p) < best_d {
-            best_d = q.distance(p);
-            best = p;
-        }
-    }
-    best
 }

@@ -284,21 +284,7 @@ impl RerunLogger {
         let violations: Vec<String> = s
             .violations
             .iter()
-            .map(|&(k, r)| {
-                let c = &net.constraints[k];
-                format!(
-                    "{} {}{} by {:.3e} {}",
-                    c.kind.name(),
-                    net.curves[c.i].name,
-                    if c.is_self() {
-                        String::new()
-                    } else {
-                        format!("-{}", net.curves[c.j].name)
-                    },
-                    r,
-                    c.kind.unit()
-                )
-            })
+            .map(|&(k, r)| net.constraints[k].describe(&net.curves, r))
             .collect();
         let (level, verdict) = if violations.is_empty() {
             (
