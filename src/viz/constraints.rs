@@ -25,11 +25,6 @@ fn centre(fw: &Framework, net: &ConstraintNet, c: usize) -> DVec3 {
     p.iter().sum::<DVec3>() / p.len().max(1) as f64
 }
 
-/// A one-line description of an edit.
-pub fn describe_edit(edit: &Edit) -> String {
-    edit.to_string()
-}
-
 impl RerunLogger {
     /// The network on `fw`, coloured by each constraint's residual.
     pub(super) fn network(&self, fw: &Framework, net: &ConstraintNet, tolerance: f64) -> Result<(), SinkError> {
@@ -127,14 +122,7 @@ impl RerunLogger {
 
     /// Every solver iteration on the `iter` timeline, then the network after the solve, the
     /// dragged point's path and the summary (on the step and stage timelines).
-    pub(super) fn solve(
-        &mut self,
-        edit: &Edit,
-        net: &ConstraintNet,
-        before: &Framework,
-        s: &Solution,
-    ) -> Result<(), SinkError> {
-        let _ = before;
+    pub(super) fn solve(&mut self, edit: &Edit, net: &ConstraintNet, s: &Solution) -> Result<(), SinkError> {
         let tolerance = s.tolerance;
         for it in &s.iterations {
             let iter = self.next_iter();
@@ -312,7 +300,7 @@ impl RerunLogger {
             level,
             format!(
                 "{}: {} curve(s) solved in {} iteration(s), {} pass(es){}{moved}; {verdict}",
-                describe_edit(edit),
+                edit,
                 s.solved.len(),
                 s.iterations.len(),
                 s.passes,

@@ -419,17 +419,11 @@ impl RerunLogger {
             Stage::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
             Stage::Network(fw, net) => self.network_built(fw, net),
             Stage::Solve {
-                edit,
-                net,
-                before,
-                solution,
-            } => self.solve(edit, net, before, solution),
+                edit, net, solution, ..
+            } => self.solve(edit, net, solution),
             Stage::Refused { edit, message } => self.text(
                 TextLogLevel::WARN,
-                format!(
-                    "{} refused: {message}; the garment is as before",
-                    super::constraints::describe_edit(edit)
-                ),
+                format!("{edit} refused: {message}; the garment is as before"),
             ),
             Stage::Undone(fw) => self.text(
                 TextLogLevel::INFO,
