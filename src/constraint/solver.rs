@@ -412,7 +412,8 @@ pub fn solve(
     let clearance_deficit = solved
         .iter()
         .filter(|&&c| net.curves[c].kind != CurveKind::Contour)
-        .map(|&c| run.deficits(c).1)
+        .flat_map(|&c| run.deficits(c))
+        .map(|s| s.deficit)
         .fold(0.0, f64::max);
     Ok(Solution {
         framework: run.fw,
@@ -439,6 +440,39 @@ impl Run<'_> {
     /// was built with where that is less (a ring whose ease is limited next to an arm).
     fn gap_of(&self, c: usize) -> f64 {
         self.gap.min(self.net.clearance[c]).max(0.0)
+    }
+
+    /// The collision gap of each control point of `c`: the curve's gap, or less where the
+    /// point is shared with a curve held to a smaller one (a strap ending on the chest ring
+    /// next to the arm). Curves meeting at a point agree on where it may stand, so one does
+    /// not push it where the other pulls it back.
+    fn point_gaps(&self, c: usize) -> Vec<f64> {
+        let n = curves::points(&self.fw, self.node(c)).len();
+        let mut gaps = vec![self.gap_of(c); n];
+        for &k in &self.net.touching(c) {
+            let con = &self.net.constraints[k];
+            if let Kind::Coincident { a, b } = con.kind
+                && !con.is_self()
+            {
+                let (on_c, o) = if con.i == c { (a, con.j) } else { (b, con.i) };
+                gaps[on_c] = gaps[on_c].min(self.gap_of(o));
+            }
+        }
+        gaps
+    }
+
+    /// The mirrored pairs of `c`'s self symmetry (a point on the mirror plane pairs with
+    /// itself).
+    fn mirror_pairs(&self, c: usize) -> Vec<(usize, usize)> {
+        self.net
+            .touching(c)
+            .iter()
+            .filter_map(|&k| match &self.net.constraints[k].kind {
+                Kind::Symmetry { pairs, .. } if self.net.constraints[k].is_self() => Some(pairs.clone()),
+                _ => None,
+            })
+            .flatten()
+            .collect()
     }
 
     fn residual(&self, k: usize) -> f64 {
@@ -616,37 +650,17 @@ impl Run<'_> {
                 self.fw.open_curves[node.index].plane = crate::geom::Plane::from_point_normal(a, n);
             }
         }
-        // 2. Self constraints: ease, region, symmetry, plane (the last wins).
+        // 2. Self constraints: the plane; symmetry (each pair takes its driven side, or the
+        // side whose pair stands further off the body); then the ease and the design region,
+        // applied as joint pushes of each mirrored pair so that they keep the symmetry; the
+        // plane again.
         if let Some(plane) = curves::plane(&self.fw, &node) {
-            for &k in &touching {
-                let con = &self.net.constraints[k];
-                if !con.is_self() {
-                    continue;
-                }
-                match &con.kind {
-                    Kind::OutsideBody { section, need } => {
-                        let flat: Vec<DVec2> = section.iter().map(|p| plane.project(*p)).collect();
-                        for (p, n) in control.iter_mut().zip(need) {
-                            if signed_gap(plane.project(*p), &flat) < n - tol
-                                && let Ok(q) = ease_ring(&[*p], section, &plane, Ease::Uniform(*n))
-                            {
-                                *p = q[0];
-                            }
-                        }
-                    }
-                    Kind::InsidePolygon { polygon } => {
-                        for p in control.iter_mut() {
-                            let q = plane.project(*p);
-                            if signed_gap(q, polygon) > 0.0 {
-                                *p = plane.lift(nearest_on_polygon(q, polygon).0)
-                                    + plane.normal * plane.signed_distance(*p);
-                            }
-                        }
-                    }
-                    _ => {}
-                }
+            // Into the plane first, so the choices below are made where the points will be.
+            for p in control.iter_mut() {
+                *p = plane.snap(*p);
             }
             let driven: BTreeSet<usize> = moved.iter().map(|m| m.0).collect();
+            let limits = SelfLimits::of(self.net, &touching, &plane, true);
             for &k in &touching {
                 let con = &self.net.constraints[k];
                 if !con.is_self() {
@@ -659,13 +673,33 @@ impl Run<'_> {
                             control[i].x = *mid_x + 0.5 * r.x;
                             continue;
                         }
-                        let from_i = mirror(control[i], *mid_x) + *r;
-                        let from_j = mirror(control[j] - *r, *mid_x);
+                        let from_i = plane.snap(mirror(control[i], *mid_x) + *r);
+                        let from_j = plane.snap(mirror(control[j] - *r, *mid_x));
                         let take_i = match (driven.contains(&i), driven.contains(&j)) {
                             (true, false) => true,
                             (false, true) => false,
-                            // Both or neither driven: keep the side standing further off the body.
-                            _ => self.probe.signed_distance(control[i]) >= self.probe.signed_distance(control[j]),
+                            // Both or neither driven: keep the side that leaves the control
+                            // polygon uncrossed, else the side the ease and region need to
+                            // move less, else the side whose pair stands further off the body
+                            // (the nearer of its two points).
+                            _ => {
+                                let crosses = |k: usize, p: DVec3| {
+                                    let flat: Vec<DVec2> = (0..control.len())
+                                        .map(|m| plane.project(if m == k { p } else { control[m] }))
+                                        .collect();
+                                    !self_crossings(&flat, curves::closed(&node)).is_empty()
+                                };
+                                let fix = |k: usize, p: DVec3| (limits.apply(k, p, tol) - p).length();
+                                let sd = |p: DVec3| self.probe.signed_distance(p);
+                                let (fix_i, fix_j) =
+                                    (fix(i, control[i]) + fix(j, from_i), fix(i, from_j) + fix(j, control[j]));
+                                match (crosses(j, from_i), crosses(i, from_j)) {
+                                    (false, true) => true,
+                                    (true, false) => false,
+                                    _ if (fix_i - fix_j).abs() > tol => fix_i < fix_j,
+                                    _ => sd(control[i]).min(sd(from_i)) >= sd(from_j).min(sd(control[j])),
+                                }
+                            }
                         };
                         if take_i {
                             control[j] = from_i;
@@ -675,6 +709,7 @@ impl Run<'_> {
                     }
                 }
             }
+            limits.hold(&self.mirror_pairs(c), &BTreeSet::new(), &mut control, tol);
             for p in control.iter_mut() {
                 *p = plane.snap(*p);
             }
@@ -761,66 +796,93 @@ impl Run<'_> {
     }
 
     /// Collides every control point of a planar curve (a contour's points belong to the
-    /// rings and open curves, which collide them).
+    /// rings and open curves, which collide them). A symmetric curve is pushed jointly: each
+    /// pair moves by the larger of its two pushes, mirrored, so the response keeps the
+    /// symmetry the self constraints just made; rounds repeat until every point clears.
     fn node_layer(&mut self, c: usize, keep: &BTreeSet<usize>) -> Result<Vec<NodeHit>, EditError> {
-        let node = &self.net.curves[c];
-        let Some(plane) = curves::plane(&self.fw, node) else {
+        let node = self.net.curves[c].clone();
+        let Some(plane) = curves::plane(&self.fw, &node) else {
             return Ok(Vec::new());
         };
-        let gap = self.gap_of(c);
-        let control = curves::points(&self.fw, node).to_vec();
-        let centre = control.iter().sum::<DVec3>() / control.len().max(1) as f64;
-        let mut out = Vec::new();
-        let mut next = control.clone();
-        for (i, p) in control.iter().enumerate() {
-            if keep.contains(&i) {
-                continue;
+        let gaps = self.point_gaps(c);
+        let pairs = self.mirror_pairs(c);
+        let ease = SelfLimits::of(self.net, &self.net.touching(c), &plane, false);
+        let start = curves::points(&self.fw, &node).to_vec();
+        let centre = start.iter().sum::<DVec3>() / start.len().max(1) as f64;
+        let mut now = start.clone();
+        for _ in 0..NODE_ROUNDS {
+            let mut push = vec![DVec3::ZERO; now.len()];
+            for (i, p) in now.iter().enumerate() {
+                if !keep.contains(&i) && self.probe.signed_distance(*p) < gaps[i] * (1.0 - 1e-9) {
+                    push[i] = self.push_out(*p, plane, centre, gaps[i]) - *p;
+                }
             }
-            let d = self.probe.signed_distance(*p);
-            if d >= gap * (1.0 - 1e-9) {
-                continue;
+            if push.iter().all(|d| *d == DVec3::ZERO) {
+                break;
             }
-            let q = self.push_out(*p, plane, centre, gap);
-            next[i] = q;
-            out.push(NodeHit {
-                point: i,
-                distance: d,
-                before: *p,
-                after: q,
-            });
+            mirror_pushes(&pairs, &mut push, keep);
+            for (p, d) in now.iter_mut().zip(&push) {
+                if *d != DVec3::ZERO {
+                    *p = plane.snap(*p + *d);
+                }
+            }
+            ease.hold(&pairs, keep, &mut now, self.options.tolerance);
         }
+        let out: Vec<NodeHit> = (0..start.len())
+            .filter(|&i| now[i] != start[i])
+            .map(|i| NodeHit {
+                point: i,
+                distance: self.probe.signed_distance(start[i]),
+                before: start[i],
+                after: now[i],
+            })
+            .collect();
         if !out.is_empty() {
-            curves::set_points(&mut self.fw, node, next, &self.options.ring).map_err(|m| refit_error(node, m))?;
+            curves::set_points(&mut self.fw, &node, now, &self.options.ring).map_err(|m| refit_error(&node, m))?;
         }
         Ok(out)
     }
 
-    /// Samples short of the gap: `(count, largest shortfall, per-sample (param, shortfall,
-    /// in-plane direction out))`.
-    fn deficits(&self, c: usize) -> (usize, f64, Vec<(f64, f64, DVec3)>) {
+    /// Samples short of the gap. The gap along a span eases linearly between its two
+    /// control points' gaps (see [`Self::point_gaps`]).
+    fn deficits(&self, c: usize) -> Vec<Short> {
         let node = self.node(c);
         let Some(plane) = curves::plane(&self.fw, node) else {
-            return (0, 0.0, Vec::new());
+            return Vec::new();
         };
         let control = curves::points(&self.fw, node);
-        let centre = control.iter().sum::<DVec3>() / control.len().max(1) as f64;
-        let gap = self.gap_of(c);
+        let knots = curves::knots(&self.fw, node);
+        let (m, spans) = (control.len(), knots.len().saturating_sub(1));
+        if m == 0 || spans == 0 {
+            return Vec::new();
+        }
+        let centre = control.iter().sum::<DVec3>() / m as f64;
+        let gaps = self.point_gaps(c);
         let mut out = Vec::new();
-        let mut worst: f64 = 0.0;
         for (l, s) in curves::samples(&self.fw, node, SAMPLES_PER_SPAN) {
             let Some((_, d, normal)) = self.probe.nearest(s) else {
                 continue;
             };
+            let k = knots.partition_point(|&x| x <= l).saturating_sub(1).min(spans - 1);
+            let t = ((l - knots[k]) / (knots[k + 1] - knots[k]).max(1e-300)).clamp(0.0, 1.0);
+            let (a, b) = (k % m, (k + 1) % m);
+            let gap = (1.0 - t) * gaps[a] + t * gaps[b];
             if d < gap * (1.0 - 1e-9) {
                 let mut u = normal - plane.normal * plane.normal.dot(normal);
                 if u.length_squared() < 1e-12 {
                     u = plane.snap(s) - plane.snap(centre);
                 }
-                worst = worst.max(gap - d);
-                out.push((l, gap - d, u.normalize_or_zero()));
+                out.push(Short {
+                    a,
+                    b,
+                    t,
+                    gap,
+                    deficit: gap - d,
+                    out: u.normalize_or_zero(),
+                });
             }
         }
-        (out.len(), worst, out)
+        out
     }
 
     fn curve_layer(&mut self, c: usize, keep: &BTreeSet<usize>) -> Result<CurveHits, EditError> {
@@ -839,52 +901,53 @@ impl Run<'_> {
             hits.deficit_after = worst;
             return Ok(hits);
         }
+        let Some(plane) = curves::plane(&self.fw, &node) else {
+            return Ok(hits);
+        };
+        let pairs = self.mirror_pairs(c);
+        let touching = self.net.touching(c);
+        let ease = SelfLimits::of(self.net, &touching, &plane, false);
         let mut moved: BTreeSet<usize> = BTreeSet::new();
         for round in 0..=self.options.response_rounds {
-            let (n, worst, short) = self.deficits(c);
+            let short = self.deficits(c);
+            let worst = short.iter().map(|s| s.deficit).fold(0.0, f64::max);
             if round == 0 {
-                hits.short_before = n;
+                hits.short_before = short.len();
                 hits.deficit_before = worst;
             }
             hits.deficit_after = worst;
-            if n == 0 || round == self.options.response_rounds {
+            if short.is_empty() || round == self.options.response_rounds {
                 break;
             }
             hits.rounds = round + 1;
             let control = curves::points(&self.fw, &node).to_vec();
-            let knots = curves::knots(&self.fw, &node).to_vec();
-            let m = control.len();
-            let mut push: Vec<DVec3> = vec![DVec3::ZERO; m];
-            for (l, deficit, u) in short {
-                let k = knots
-                    .partition_point(|&x| x <= l)
-                    .saturating_sub(1)
-                    .min(knots.len() - 2);
-                let t = ((l - knots[k]) / (knots[k + 1] - knots[k]).max(1e-300)).clamp(0.0, 1.0);
-                let (a, b) = (k % m, (k + 1) % m);
+            let mut push: Vec<DVec3> = vec![DVec3::ZERO; control.len()];
+            for s in short {
                 let (wa, wb) = (
-                    if keep.contains(&a) { 0.0 } else { 1.0 - t },
-                    if keep.contains(&b) { 0.0 } else { t },
+                    if keep.contains(&s.a) { 0.0 } else { 1.0 - s.t },
+                    if keep.contains(&s.b) { 0.0 } else { s.t },
                 );
                 let norm = wa * wa + wb * wb;
                 if norm < 1e-6 {
                     continue;
                 }
-                let target = deficit + self.options.response_margin * self.gap_of(c);
-                for (i, w) in [(a, wa), (b, wb)] {
-                    let d = u * (target * w / norm);
+                let target = s.deficit + self.options.response_margin * s.gap;
+                for (i, w) in [(s.a, wa), (s.b, wb)] {
+                    let d = s.out * (target * w / norm);
                     if d.length() > push[i].length() {
                         push[i] = d;
                     }
                 }
             }
+            mirror_pushes(&pairs, &mut push, keep);
             let mut next = control.clone();
             for (i, d) in push.iter().enumerate() {
                 if *d != DVec3::ZERO {
-                    next[i] += *d;
+                    next[i] = plane.snap(next[i] + *d);
                     moved.insert(i);
                 }
             }
+            ease.hold(&pairs, keep, &mut next, self.options.tolerance);
             curves::set_points(&mut self.fw, &node, next, &self.options.ring).map_err(|m| refit_error(&node, m))?;
         }
         hits.moved = moved.into_iter().collect();
@@ -902,6 +965,124 @@ impl Run<'_> {
             }
         }
         (n, worst)
+    }
+}
+
+/// A curve's ease and design region, ready to apply point by point in its plane.
+struct SelfLimits<'a> {
+    plane: crate::geom::Plane,
+    /// Section, the section in the plane's frame, least gap per control point.
+    ease: Vec<(&'a [DVec3], Vec<DVec2>, &'a [f64])>,
+    regions: Vec<&'a [DVec2]>,
+}
+
+impl<'a> SelfLimits<'a> {
+    /// The ease of the curve's self constraints, and its design regions when `regions`.
+    fn of(net: &'a ConstraintNet, touching: &[usize], plane: &crate::geom::Plane, regions: bool) -> Self {
+        let mut out = Self {
+            plane: *plane,
+            ease: Vec::new(),
+            regions: Vec::new(),
+        };
+        for &k in touching {
+            let con = &net.constraints[k];
+            match &con.kind {
+                Kind::OutsideBody { section, need } if con.is_self() => {
+                    let flat = section.iter().map(|p| plane.project(*p)).collect();
+                    out.ease.push((section, flat, need));
+                }
+                Kind::InsidePolygon { polygon } if con.is_self() && regions => out.regions.push(polygon),
+                _ => {}
+            }
+        }
+        out
+    }
+
+    /// Control point `i` at `p` moved out of its section by the ease, then into the region
+    /// (the region wins where they conflict).
+    fn apply(&self, i: usize, mut p: DVec3, tol: f64) -> DVec3 {
+        let plane = &self.plane;
+        for (section, flat, need) in &self.ease {
+            let n = need[i];
+            if signed_gap(plane.project(p), flat) < n - tol
+                && let Ok(q) = ease_ring(&[p], section, plane, Ease::Uniform(n))
+            {
+                p = q[0];
+            }
+        }
+        for polygon in &self.regions {
+            let q = plane.project(p);
+            if signed_gap(q, polygon) > 0.0 {
+                p = plane.lift(nearest_on_polygon(q, polygon).0) + plane.normal * plane.signed_distance(p);
+            }
+        }
+        p
+    }
+
+    /// Applies the limits to every point as joint pushes of the mirrored `pairs` (so they
+    /// keep a symmetry already made), for up to [`NODE_ROUNDS`] rounds. Pinned points stay.
+    fn hold(&self, pairs: &[(usize, usize)], keep: &BTreeSet<usize>, control: &mut [DVec3], tol: f64) {
+        if self.ease.is_empty() && self.regions.is_empty() {
+            return;
+        }
+        for _ in 0..NODE_ROUNDS {
+            let mut push: Vec<DVec3> = control
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    if keep.contains(&i) {
+                        DVec3::ZERO
+                    } else {
+                        self.apply(i, *p, tol) - *p
+                    }
+                })
+                .collect();
+            if push.iter().all(|d| *d == DVec3::ZERO) {
+                break;
+            }
+            mirror_pushes(pairs, &mut push, keep);
+            for (p, d) in control.iter_mut().zip(&push) {
+                *p += *d;
+            }
+        }
+    }
+}
+
+/// A curve sample short of its collision gap, on the span from control point `a` to `b`.
+struct Short {
+    a: usize,
+    b: usize,
+    /// Where on the span, 0 at `a` and 1 at `b`.
+    t: f64,
+    /// The gap there, m.
+    gap: f64,
+    /// Shortfall, m.
+    deficit: f64,
+    /// In-plane direction out of the body.
+    out: DVec3,
+}
+
+/// Most rounds of the node layer (a joint push of a symmetric pair can move the partner
+/// where the body is closer; a round or two settles it).
+const NODE_ROUNDS: usize = 8;
+
+/// Makes collision pushes symmetric: each mirrored pair `(i, j)` moves by the longer of
+/// `push[i]` and the mirror image of `push[j]` (and the partner by its image); a point on
+/// the mirror plane moves only along it. Pinned points stay.
+fn mirror_pushes(pairs: &[(usize, usize)], push: &mut [DVec3], keep: &BTreeSet<usize>) {
+    let flip = |d: DVec3| DVec3::new(-d.x, d.y, d.z);
+    for &(i, j) in pairs {
+        if i == j {
+            push[i].x = 0.0;
+            continue;
+        }
+        if keep.contains(&i) || keep.contains(&j) {
+            continue;
+        }
+        let (a, b) = (push[i], flip(push[j]));
+        let d = if a.length_squared() >= b.length_squared() { a } else { b };
+        push[i] = d;
+        push[j] = flip(d);
     }
 }
 

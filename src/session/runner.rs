@@ -89,8 +89,14 @@ pub enum Stage<'a> {
         /// Why.
         message: &'a str,
     },
-    /// `undo`: the garment is back to this state.
-    Undone(&'a Framework),
+    /// `undo`: the garment is back to this state (with its constraint network, once one
+    /// was built).
+    Undone {
+        /// The framework restored.
+        framework: &'a Framework,
+        /// Its constraint network.
+        net: Option<&'a ConstraintNet>,
+    },
     /// A step failed; everything before it stands.
     Failed(&'a RunError),
     /// A step finished with these metrics.
@@ -580,7 +586,16 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
                 Some(previous) => {
                     if let Some(fw) = &previous.framework {
                         m.set("m0_vertices", fw.m0.mesh.positions.len());
-                        driver.emit(step_index, op, "garment.undo", Stage::Undone(fw), &mut m);
+                        driver.emit(
+                            step_index,
+                            op,
+                            "garment.undo",
+                            Stage::Undone {
+                                framework: fw,
+                                net: previous.net.as_ref(),
+                            },
+                            &mut m,
+                        );
                         for part in [GarmentPart::Curves, GarmentPart::Patches, GarmentPart::Mesh] {
                             driver.emit(step_index, op, part.stage_name(), Stage::Garment(fw, part), &mut m);
                         }

@@ -120,6 +120,35 @@ impl RerunLogger {
         )
     }
 
+    /// A refused edit: the garment is as before; the last drag's path (an earlier step's) is
+    /// cleared.
+    pub(super) fn refused(&self, edit: &Edit, message: &str) -> Result<(), SinkError> {
+        self.recording()
+            .log("constraints/drag", &Clear::recursive())
+            .map_err(to_sink)?;
+        self.text(
+            TextLogLevel::WARN,
+            format!("{edit} refused: {message}; the garment is as before"),
+        )
+    }
+
+    /// `undo`: the network redrawn on the restored curves, the last drag's path cleared.
+    pub(super) fn undone(&self, fw: &Framework, net: Option<&ConstraintNet>) -> Result<(), SinkError> {
+        self.recording()
+            .log("constraints/drag", &Clear::recursive())
+            .map_err(to_sink)?;
+        if let Some(net) = net {
+            self.network(fw, net, crate::constraint::SolverOptions::default().tolerance)?;
+        }
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "undo: the garment is back to its state before the last step ({} M0 vertices)",
+                fw.m0.mesh.positions.len()
+            ),
+        )
+    }
+
     /// Every solver iteration on the `iter` timeline, then the network after the solve, the
     /// dragged point's path and the summary (on the step and stage timelines).
     pub(super) fn solve(&mut self, edit: &Edit, net: &ConstraintNet, s: &Solution) -> Result<(), SinkError> {

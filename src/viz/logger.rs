@@ -421,17 +421,8 @@ impl RerunLogger {
             Stage::Solve {
                 edit, net, solution, ..
             } => self.solve(edit, net, solution),
-            Stage::Refused { edit, message } => self.text(
-                TextLogLevel::WARN,
-                format!("{edit} refused: {message}; the garment is as before"),
-            ),
-            Stage::Undone(fw) => self.text(
-                TextLogLevel::INFO,
-                format!(
-                    "undo: the garment is back to its state before the last step ({} M0 vertices)",
-                    fw.m0.mesh.positions.len()
-                ),
-            ),
+            Stage::Refused { edit, message } => self.refused(edit, message),
+            Stage::Undone { framework, net } => self.undone(framework, net),
             Stage::StepDone(metrics) => {
                 if self.options.timings {
                     for (name, ms) in &metrics.timings_ms {

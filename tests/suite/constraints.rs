@@ -25,6 +25,9 @@ fn net() -> &'static ConstraintNet {
 }
 
 const TOL: f64 = 1e-6;
+/// Cases per property test (a sweep of 20 000 per test, perturbations up to 5 cm, passed
+/// on the real body; this bound keeps the suite quick).
+const CASES: u32 = 256;
 
 fn kinds_of(net: &ConstraintNet, name: &str) -> Vec<usize> {
     (0..net.constraints.len())
@@ -107,35 +110,60 @@ fn unit(a: f64, b: f64) -> DVec3 {
     DVec3::new(r * t.cos(), z, r * t.sin())
 }
 
+/// Knocks anchor `anchor` of ring `ring` by `size` m in direction `unit(a, b)` and solves
+/// the ring: coplanarity, symmetry, region and coincident points must be restored (an
+/// edit refused as a self-crossing fails too). `Ok(false)` when the knock broke nothing.
+fn knock_and_restore(ring: usize, anchor: usize, a: f64, b: f64, size: f64) -> Result<bool, String> {
+    let (fw, net) = (real_jumpsuit(), net());
+    let ring = ["chest", "bust", "waist", "hip", "neckline"][ring];
+    let c = net.curve(ring).expect("ring");
+    let r = &fw.rings[net.curves[c].index];
+    let p = r.anchors[anchor % r.anchors.len()].control;
+    let broken = perturbed(fw, net, c, &[(p, unit(a, b) * size)]);
+    let before = residual_of(net, &broken, "coplanar", c).max(residual_of(net, &broken, "symmetry", c));
+    if before <= TOL {
+        return Ok(false);
+    }
+    let s = solve(&broken, net, &touch(ring), real_probe(), &SolverOptions::default())
+        .map_err(|e| format!("{ring} anchor {anchor}: {e}"))?;
+    for kind in ["coplanar", "symmetry", "inside_polygon", "coincident"] {
+        let after = residual_of(net, &s.framework, kind, c);
+        if after > TOL {
+            return Err(format!("{ring} anchor {anchor} {kind}: {before:e} -> {after:e}"));
+        }
+    }
+    Ok(true)
+}
+
+/// The knocks the property test below once found unrestored (the chest next to the arms:
+/// collision pushes that broke its symmetry and ease, a strap end pushed off the chest; the
+/// neckline: a symmetry choice that kept the knocked side and crossed the ring), kept as
+/// fixed cases whatever the strategy draws.
+#[test]
+fn the_knocks_once_left_unrestored_are_restored() {
+    for (ring, anchor, a, b, size) in [
+        (0, 1, 0.0, 0.5173985699790832, 0.0263866662357317),
+        (0, 7, 0.0, 0.5173985699790832, 0.0263866662357317),
+        (0, 2, 0.6870935474950624, 0.4590379132909488, 0.027230126160614064),
+        (0, 2, 0.6997558834510809, 0.2876862727868686, 0.018887805791993284),
+        (0, 6, 0.42452722267309034, 0.09057087539950076, 0.02695562717375281),
+        (4, 3, 0.8822124221329846, 0.42170091412184, 0.04161126367188566),
+    ] {
+        assert_eq!(knock_and_restore(ring, anchor, a, b, size), Ok(true));
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(12))]
+    #![proptest_config(ProptestConfig::with_cases(CASES))]
 
     /// Coplanarity, symmetry and the design region of a ring: its anchors knocked off the
-    /// plane, asymmetric and far out; solving the ring puts them back.
+    /// plane, asymmetric and far out (up to 5 cm); solving the ring puts them back.
     #[test]
     fn the_solver_restores_a_rings_plane_symmetry_and_region(
-        ring in 0usize..5, anchor in 0usize..8, a in 0.0f64..1.0, b in 0.0f64..1.0, size in 0.002f64..0.03,
+        ring in 0usize..5, anchor in 0usize..8, a in 0.0f64..1.0, b in 0.0f64..1.0, size in 0.002f64..0.05,
     ) {
-        let (fw, net) = (real_jumpsuit(), net());
-        let ring = ["chest", "bust", "waist", "hip", "neckline"][ring];
-        let c = net.curve(ring).expect("ring");
-        let r = &fw.rings[net.curves[c].index];
-        let p = r.anchors[anchor % r.anchors.len()].control;
-        let broken = perturbed(fw, net, c, &[(p, unit(a, b) * size)]);
-        let before = residual_of(net, &broken, "coplanar", c).max(residual_of(net, &broken, "symmetry", c));
-        prop_assume!(before > TOL);
-        let s = solve(&broken, net, &touch(ring), real_probe(), &SolverOptions::default()).expect("solves");
-        for kind in ["coplanar", "symmetry", "inside_polygon", "coincident"] {
-            let after = residual_of(net, &s.framework, kind, c);
-            if ring == "chest" && after > TOL {
-                // Known open case (anchors 1 and 7 moved 2.6 cm): the chest, next to the arms
-                // and closing the strap chains, can end a few passes short (symmetry 1.4 mm,
-                // coincident 2.9e-6 m); it must then be reported, not hidden.
-                prop_assert!(!s.converged && s.violations.iter().any(|(k, r)| (r - after).abs() < 1e-12 && net.constraints[*k].i == c));
-                continue;
-            }
-            prop_assert!(after <= TOL, "{ring} {kind}: {before:e} -> {after:e}");
-        }
+        let broke = knock_and_restore(ring, anchor, a, b, size).map_err(TestCaseError::fail)?;
+        prop_assume!(broke);
     }
 
     /// Coincident points and tangents: a contour point (or a strap's end direction) moved
