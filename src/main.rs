@@ -456,8 +456,8 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
             options.layers, options.points, result.polar.points, result.polar.layers, options.subdivisions
         );
         println!(
-            "{:<9} {:>10} {:>10} {:>10} {:>10}   {}",
-            "region", "polar max", "polar rms", "chord max", "chord rms", "better"
+            "{:<9} {:>10} {:>10} {:>10} {:>10}   better",
+            "region", "polar max", "polar rms", "chord max", "chord rms"
         );
         for e in &ordered {
             let better = if e.chord.max_m < e.polar.max_m {

@@ -484,10 +484,12 @@ pub fn detect_landmarks(
         let index = torso.len() - 1;
         // The armpit is fixed once no arm has been seen beside the torso for a while.
         let last_seen = last_arms.iter().flatten().map(|a| a.0).max();
-        if let Some(seen) = last_seen {
-            if index > seen && armpit_level.is_none() && index - seen > levels / 40 {
-                armpit_level = Some(seen);
-            }
+        if let Some(seen) = last_seen
+            && index > seen
+            && armpit_level.is_none()
+            && index - seen > levels / 40
+        {
+            armpit_level = Some(seen);
         }
         if armpit_level.is_some() {
             let g = torso[index].1.tape_girth;

@@ -37,10 +37,10 @@ impl ChordSpline3 {
     /// fail as for [`CubicSpline::try_new`].
     pub fn try_new(points: &[DVec3], ends: CurveEnds) -> Result<Self, SplineError> {
         let mut pts = points.to_vec();
-        if ends == CurveEnds::Closed {
-            if let Some(&first) = points.first() {
-                pts.push(first);
-            }
+        if ends == CurveEnds::Closed
+            && let Some(&first) = points.first()
+        {
+            pts.push(first);
         }
         let mut l = Vec::with_capacity(pts.len());
         let mut acc = 0.0;

@@ -132,14 +132,14 @@ impl CubicSpline {
             }
         }
         for (index, w) in x.windows(2).enumerate() {
-            if let [prev, next] = *w {
-                if next <= prev {
-                    return Err(SplineError::NotIncreasing {
-                        index: index + 1,
-                        prev,
-                        next,
-                    });
-                }
+            if let [prev, next] = *w
+                && next <= prev
+            {
+                return Err(SplineError::NotIncreasing {
+                    index: index + 1,
+                    prev,
+                    next,
+                });
             }
         }
         let n = x.len() - 1; // number of intervals
