@@ -188,12 +188,8 @@ fn solve_line(
     net: &drape::constraint::ConstraintNet,
     s: &drape::constraint::Solution,
 ) -> String {
-    let worst = s.residuals.iter().copied().fold(0.0, f64::max);
-    let violations: Vec<String> = s
-        .violations
-        .iter()
-        .map(|&(k, r)| net.constraints[k].describe(&net.curves, r))
-        .collect();
+    let worst = s.max_residual();
+    let violations = s.violation_lines(net);
     format!(
         "{edit}: {} iteration(s), {} pass(es), {}; largest residual {worst:.2e}{}",
         s.iterations.len(),

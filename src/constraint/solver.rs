@@ -275,6 +275,21 @@ pub struct Solution {
     pub tolerance: f64,
 }
 
+impl Solution {
+    /// The largest residual at the end, m or rad.
+    pub fn max_residual(&self) -> f64 {
+        self.residuals.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// One line per constraint left violated (`kind curve[-other] by residual unit`).
+    pub fn violation_lines(&self, net: &ConstraintNet) -> Vec<String> {
+        self.violations
+            .iter()
+            .map(|&(k, r)| net.constraints[k].describe(&net.curves, r))
+            .collect()
+    }
+}
+
 /// Every draggable point name with its (curve, control point).
 pub fn point_names(fw: &Framework, net: &ConstraintNet) -> Vec<(String, usize, usize)> {
     let mut out = Vec::new();
@@ -810,7 +825,7 @@ impl Run<'_> {
         let start = curves::points(&self.fw, &node).to_vec();
         let centre = start.iter().sum::<DVec3>() / start.len().max(1) as f64;
         let mut now = start.clone();
-        for _ in 0..NODE_ROUNDS {
+        for _ in 0..JOINT_ROUNDS {
             let mut push = vec![DVec3::ZERO; now.len()];
             for (i, p) in now.iter().enumerate() {
                 if !keep.contains(&i) && self.probe.signed_distance(*p) < gaps[i] * (1.0 - 1e-9) {
@@ -1020,12 +1035,12 @@ impl<'a> SelfLimits<'a> {
     }
 
     /// Applies the limits to every point as joint pushes of the mirrored `pairs` (so they
-    /// keep a symmetry already made), for up to [`NODE_ROUNDS`] rounds. Pinned points stay.
+    /// keep a symmetry already made), for up to [`JOINT_ROUNDS`] rounds. Pinned points stay.
     fn hold(&self, pairs: &[(usize, usize)], keep: &BTreeSet<usize>, control: &mut [DVec3], tol: f64) {
         if self.ease.is_empty() && self.regions.is_empty() {
             return;
         }
-        for _ in 0..NODE_ROUNDS {
+        for _ in 0..JOINT_ROUNDS {
             let mut push: Vec<DVec3> = control
                 .iter()
                 .enumerate()
@@ -1062,9 +1077,10 @@ struct Short {
     out: DVec3,
 }
 
-/// Most rounds of the node layer (a joint push of a symmetric pair can move the partner
-/// where the body is closer; a round or two settles it).
-const NODE_ROUNDS: usize = 8;
+/// Most rounds of joint pushes, in the node layer and when holding the ease and region (a
+/// joint push of a mirrored pair can move the partner where the body is closer; a round or
+/// two settles it).
+const JOINT_ROUNDS: usize = 8;
 
 /// Makes collision pushes symmetric: each mirrored pair `(i, j)` moves by the longer of
 /// `push[i]` and the mirror image of `push[j]` (and the partner by its image); a point on

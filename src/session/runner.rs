@@ -700,7 +700,7 @@ fn record_solve(m: &mut StepMetrics, net: &ConstraintNet, s: &Solution, resurfac
         "curves_solved",
         s.solved.iter().map(|&c| net.curves[c].name.clone()).collect::<Vec<_>>(),
     );
-    m.set("max_residual", s.residuals.iter().copied().fold(0.0, f64::max));
+    m.set("max_residual", s.max_residual());
     let violations: Vec<_> = s
         .violations
         .iter()

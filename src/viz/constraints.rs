@@ -297,12 +297,8 @@ impl RerunLogger {
         }
         self.scalar("metrics/solver/passes", s.passes as f64)?;
         self.scalar("metrics/solver/iterations", s.iterations.len() as f64)?;
-        let worst = s.residuals.iter().copied().fold(0.0, f64::max);
-        let violations: Vec<String> = s
-            .violations
-            .iter()
-            .map(|&(k, r)| net.constraints[k].describe(&net.curves, r))
-            .collect();
+        let worst = s.max_residual();
+        let violations = s.violation_lines(net);
         let (level, verdict) = if violations.is_empty() {
             (
                 TextLogLevel::INFO,
