@@ -362,85 +362,45 @@ fn jumpsuit_patches(s: &mut Surfacer<'_>, lines: &[FeatureLine], n: JumpsuitCoun
         let inner_span = s.span(&c("inner"), &thigh, n.inner)?;
         let inner_front = join(&[inner_span.clone(), crotch_front.clone()]);
         let inner_back = join(&[inner_span, crotch_back.clone()]);
-        let specs: Vec<(&str, [Vec<DVec3>; 4])> = if side == "left" {
-            vec![
-                (
-                    "front_inner",
-                    [
-                        arc(fw, &thigh, "inner", "front", k)?,
-                        arc(fw, "hip", "front", "front_left", k)?,
-                        inner_front,
-                        sp(s, &c("front"))?,
-                    ],
-                ),
-                (
-                    "front_outer",
-                    [
-                        arc(fw, &thigh, "front", "outer", k)?,
-                        arc(fw, "hip", "front_left", "left", k)?,
-                        sp(s, &c("front"))?,
-                        sp(s, &c("side"))?,
-                    ],
-                ),
-                (
-                    "back_outer",
-                    [
-                        arc(fw, &thigh, "outer", "back", k)?,
-                        arc(fw, "hip", "left", "back_left", k)?,
-                        sp(s, &c("side"))?,
-                        sp(s, &c("back"))?,
-                    ],
-                ),
-                (
-                    "back_inner",
-                    [
-                        arc(fw, &thigh, "back", "inner", k)?,
-                        arc(fw, "hip", "back_left", "back", k)?,
-                        sp(s, &c("back"))?,
-                        inner_back,
-                    ],
-                ),
-            ]
+        // Around the thigh in ring order: five stops (thigh anchor, hip anchor, the boundary
+        // between bands), the first and last both on the inner seam; a band between each
+        // two. The right leg goes round the other way (the mirror of the left).
+        let (stops, bands) = if side == "left" {
+            (
+                [
+                    ("inner", "front", inner_front),
+                    ("front", "front_left", sp(s, &c("front"))?),
+                    ("outer", "left", sp(s, &c("side"))?),
+                    ("back", "back_left", sp(s, &c("back"))?),
+                    ("inner", "back", inner_back),
+                ],
+                ["front_inner", "front_outer", "back_outer", "back_inner"],
+            )
         } else {
-            vec![
-                (
-                    "back_inner",
-                    [
-                        arc(fw, &thigh, "inner", "back", k)?,
-                        arc(fw, "hip", "back", "back_right", k)?,
-                        inner_back,
-                        sp(s, &c("back"))?,
-                    ],
-                ),
-                (
-                    "back_outer",
-                    [
-                        arc(fw, &thigh, "back", "outer", k)?,
-                        arc(fw, "hip", "back_right", "right", k)?,
-                        sp(s, &c("back"))?,
-                        sp(s, &c("side"))?,
-                    ],
-                ),
-                (
-                    "front_outer",
-                    [
-                        arc(fw, &thigh, "outer", "front", k)?,
-                        arc(fw, "hip", "right", "front_right", k)?,
-                        sp(s, &c("side"))?,
-                        sp(s, &c("front"))?,
-                    ],
-                ),
-                (
-                    "front_inner",
-                    [
-                        arc(fw, &thigh, "front", "inner", k)?,
-                        arc(fw, "hip", "front_right", "front", k)?,
-                        sp(s, &c("front"))?,
-                        inner_front,
-                    ],
-                ),
-            ]
+            (
+                [
+                    ("inner", "back", inner_back),
+                    ("back", "back_right", sp(s, &c("back"))?),
+                    ("outer", "right", sp(s, &c("side"))?),
+                    ("front", "front_right", sp(s, &c("front"))?),
+                    ("inner", "front", inner_front),
+                ],
+                ["back_inner", "back_outer", "front_outer", "front_inner"],
+            )
         };
+        let mut specs: Vec<(&str, [Vec<DVec3>; 4])> = Vec::with_capacity(4);
+        for (band, w) in bands.into_iter().zip(stops.windows(2)) {
+            let ((t0, h0, b0), (t1, h1, b1)) = (&w[0], &w[1]);
+            specs.push((
+                band,
+                [
+                    arc(fw, &thigh, t0, t1, k)?,
+                    arc(fw, "hip", h0, h1, k)?,
+                    b0.clone(),
+                    b1.clone(),
+                ],
+            ));
+        }
         let junction_curves = vec![
             CurveRef::whole(&thigh),
             CurveRef::whole("hip"),
