@@ -5,22 +5,29 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{Context as _, Result};
+use anyhow::Context as _;
 use clap::{Args, Parser, Subcommand};
 
 use drape::mannequin::{DressForm, MannequinOptions, Region, run_mannequin};
 use drape::session::export::ObjExporter;
 use drape::session::metrics::metrics_json;
-use drape::session::runner::{SinkError, Stage, StageInfo, StageSink};
-use drape::session::{DEMO_SESSION, DEMO_SESSION_NAME, RunOptions, Session, parse_session, run_session};
+use drape::session::{
+    CollisionPart, CollisionStage, ConstraintStage, DEMO_SESSION, DEMO_SESSION_NAME, FailureKind, RunOptions,
+    Session, SinkError, Stage, StageInfo, StageSink, StepEnd, parse_session, run_session,
+};
 use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+
+/// Exit codes, for `--help` and the README.
+const EXIT_CODES: &str = "Exit codes: 0 success; 1 a step failed at run time (the recording keeps \
+every stage before it, plus the error); 2 bad input (a malformed session, flag or body file); \
+3 an internal or I/O failure (a file that cannot be written, a viewer that cannot be reached).";
 
 /// Garment edit sessions against a body, every stage logged to Rerun.
 ///
 /// With no command, runs the built-in demo session and writes recordings/demo.rrd
 /// (view it with `rerun recordings/demo.rrd`).
 #[derive(Parser, Debug)]
-#[command(name = "drape", version, about, long_about)]
+#[command(name = "drape", version, about, long_about, after_help = EXIT_CODES)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -108,6 +115,38 @@ struct MannequinArgs {
     save: PathBuf,
 }
 
+/// A command's failure: what kind (the exit code follows it) and the error with its context.
+struct Failure {
+    kind: FailureKind,
+    error: anyhow::Error,
+}
+
+type Result<T> = std::result::Result<T, Failure>;
+
+/// Sorts an error into bad input or drape's own failure.
+trait Classify<T> {
+    /// The input cannot be used (exit 2).
+    fn bad_input(self) -> Result<T>;
+    /// drape's own output failed (exit 3).
+    fn internal(self) -> Result<T>;
+}
+
+impl<T, E: Into<anyhow::Error>> Classify<T> for std::result::Result<T, E> {
+    fn bad_input(self) -> Result<T> {
+        self.map_err(|e| Failure {
+            kind: FailureKind::BadInput,
+            error: e.into(),
+        })
+    }
+
+    fn internal(self) -> Result<T> {
+        self.map_err(|e| Failure {
+            kind: FailureKind::Internal,
+            error: e.into(),
+        })
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -119,27 +158,30 @@ fn main() -> ExitCode {
     };
     match result {
         Ok(code) => code,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(2)
+        Err(Failure { kind, error }) => {
+            eprintln!("error: {error:#}");
+            ExitCode::from(kind.exit_code())
         }
     }
 }
 
-/// Reads and parses a session file, or the demo.
-fn load_session(path: Option<&Path>) -> Result<std::result::Result<Session, drape::session::ParseError>> {
-    Ok(match path {
+/// Reads and parses a session file, or the demo; a parse error is bad input.
+fn load_session(path: Option<&Path>) -> Result<Session> {
+    match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p).with_context(|| format!("cannot read session {}", p.display()))?;
+            let text = std::fs::read_to_string(p)
+                .with_context(|| format!("cannot read session {}", p.display()))
+                .bad_input()?;
             let base = p.parent().unwrap_or(Path::new("."));
             parse_session(&text, &p.display().to_string(), base)
         }
         None => parse_session(DEMO_SESSION, DEMO_SESSION_NAME, Path::new(".")),
-    })
+    }
+    .bad_input()
 }
 
 fn check(path: &Path) -> Result<ExitCode> {
-    match load_session(Some(path))? {
+    match load_session(Some(path)) {
         Ok(s) => {
             println!(
                 "{}: ok, body {} ({}), {} landmark override(s), {} step(s): {}",
@@ -152,10 +194,7 @@ fn check(path: &Path) -> Result<ExitCode> {
             );
             Ok(ExitCode::SUCCESS)
         }
-        Err(e) => {
-            eprintln!("error: {e}");
-            Ok(ExitCode::from(2))
-        }
+        Err(e) => Err(e),
     }
 }
 
@@ -163,21 +202,27 @@ fn check(path: &Path) -> Result<ExitCode> {
 struct NetworkPrinter;
 
 impl StageSink for NetworkPrinter {
-    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> std::result::Result<(), SinkError> {
+    fn constraints(&mut self, info: &StageInfo, stage: ConstraintStage<'_>) -> std::result::Result<(), SinkError> {
         match stage {
-            Stage::Network(fw, net) => {
+            ConstraintStage::Network(fw, net) => {
                 println!("step {} ({}):", info.step, info.op);
                 println!(
                     "{}",
                     net.describe(fw, drape::constraint::SolverOptions::default().tolerance)
                 );
             }
-            Stage::Solve {
+            ConstraintStage::Solve {
                 edit, net, solution, ..
             } => println!("step {}: {}", info.step, solve_line(edit, net, solution)),
-            Stage::Refused { message, .. } => println!("step {}: refused: {message}", info.step),
-            Stage::Failed(e) => println!("step {} FAILED: {}", info.step, e.message),
+            ConstraintStage::Refused { message, .. } => println!("step {}: refused: {message}", info.step),
             _ => {}
+        }
+        Ok(())
+    }
+
+    fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> std::result::Result<(), SinkError> {
+        if let StepEnd::Failed(e) = end {
+            println!("step {} FAILED: {}", info.step, e.message());
         }
         Ok(())
     }
@@ -204,29 +249,21 @@ fn solve_line(
 }
 
 fn constraints(path: Option<&Path>) -> Result<ExitCode> {
-    let session = match load_session(path)? {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
-        }
-    };
+    let session = load_session(path)?;
     let mut printer = NetworkPrinter;
     let report = run_session(&session, &RunOptions::default(), &mut [&mut printer]);
-    Ok(if report.error.is_some() {
-        ExitCode::FAILURE
-    } else {
-        ExitCode::SUCCESS
-    })
+    Ok(report
+        .error
+        .map_or(ExitCode::SUCCESS, |e| ExitCode::from(e.kind().exit_code())))
 }
 
 /// Prints each stage as it completes, so long runs show progress.
 struct Progress;
 
 impl StageSink for Progress {
-    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> std::result::Result<(), SinkError> {
-        match stage {
-            Stage::StepDone(m) => {
+    fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> std::result::Result<(), SinkError> {
+        match end {
+            StepEnd::Done(m) => {
                 let compute: f64 = m
                     .timings_ms
                     .iter()
@@ -246,50 +283,60 @@ impl StageSink for Progress {
                     info.step, info.op
                 );
             }
-            Stage::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message),
-            Stage::Solve {
+            StepEnd::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message()),
+        }
+        Ok(())
+    }
+
+    fn constraints(&mut self, info: &StageInfo, stage: ConstraintStage<'_>) -> std::result::Result<(), SinkError> {
+        match stage {
+            ConstraintStage::Solve {
                 edit, net, solution, ..
-            } => {
-                eprintln!("  step {} solve: {}", info.step, solve_line(edit, net, solution));
-            }
-            Stage::Refused { message, .. } => eprintln!("  step {} drag REFUSED: {message}", info.step),
-            Stage::Collision(outcome, _, drape::session::CollisionPart::Respond) => {
-                let c = &outcome.collision;
-                let d = &c.detection;
-                eprintln!(
-                    "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges",
-                    info.step,
-                    d.tested,
-                    d.skipped_inert,
-                    d.skipped_patch,
-                    d.hits.len(),
-                    c.responses.len(),
-                    c.quality.penetrating_vertices,
-                    c.quality.crossing_edges
-                );
-                if let Some(v) = &outcome.verify {
-                    eprintln!(
-                        "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",
-                        info.step,
-                        v.inside_before,
-                        v.missed,
-                        v.missed_line_line,
-                        v.false_hits,
-                        v.false_line_line,
-                        v.inside_after,
-                        v.crossing_after,
-                        v.quality_agrees
-                    );
-                }
-            }
+            } => eprintln!("  step {} solve: {}", info.step, solve_line(edit, net, solution)),
+            ConstraintStage::Refused { message, .. } => eprintln!("  step {} drag REFUSED: {message}", info.step),
             _ => {}
+        }
+        Ok(())
+    }
+
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> std::result::Result<(), SinkError> {
+        if stage.part != CollisionPart::Respond {
+            return Ok(());
+        }
+        let outcome = stage.outcome;
+        let c = &outcome.collision;
+        let d = &c.detection;
+        eprintln!(
+            "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges",
+            info.step,
+            d.tested,
+            d.skipped_inert,
+            d.skipped_patch,
+            d.hits.len(),
+            c.responses.len(),
+            c.quality.penetrating_vertices,
+            c.quality.crossing_edges
+        );
+        if let Some(v) = &outcome.verify {
+            eprintln!(
+                "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",
+                info.step,
+                v.inside_before,
+                v.missed,
+                v.missed_line_line,
+                v.false_hits,
+                v.false_line_line,
+                v.inside_after,
+                v.crossing_after,
+                v.quality_agrees
+            );
         }
         Ok(())
     }
 }
 
 /// Writes `bytes` to `path` through a temporary file and a rename.
-fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
@@ -302,6 +349,13 @@ fn partial_path(path: &Path) -> PathBuf {
     let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
     name.push(".partial");
     path.with_file_name(name)
+}
+
+fn create_parent(path: &Path) -> anyhow::Result<()> {
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    }
+    Ok(())
 }
 
 fn session_stem(session: &Session) -> String {
@@ -320,15 +374,11 @@ fn host_name() -> String {
 }
 
 fn run(args: RunArgs) -> Result<ExitCode> {
-    let session = match load_session(args.session.as_deref())? {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return Ok(ExitCode::from(2));
-        }
-    };
-    if let Some(body) = &args.body {
-        anyhow::ensure!(body.is_file(), "--body {}: no such file", body.display());
+    let session = load_session(args.session.as_deref())?;
+    if let Some(body) = &args.body
+        && !body.is_file()
+    {
+        return Err(anyhow::anyhow!("--body {}: no such file", body.display())).bad_input();
     }
     let stem = session_stem(&session);
     // A file recording is written beside its final name and renamed at the end, so a run
@@ -342,19 +392,19 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     } else if args.serve {
         RecordingTarget::Serve(args.port)
     } else {
-        if let Some(dir) = final_path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-        }
+        create_parent(&final_path).internal()?;
         RecordingTarget::File(partial_path(&final_path))
     };
-    let rec = open_recording(&target, &stem).context("cannot open the recording")?;
+    let rec = open_recording(&target, &stem)
+        .context("cannot open the recording")
+        .internal()?;
     if args.serve {
         println!("serving on port {}; open it from any machine with:", args.port);
         println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.port);
     }
     eprintln!("running {} ({} step(s))", session.name, session.steps.len());
-    let mut logger = RerunLogger::new(rec, LogOptions::default().with_timings(args.log_timings))?;
-    let mut exporter = args.export.clone().map(ObjExporter::new).transpose()?;
+    let mut logger = RerunLogger::new(rec, LogOptions::default().with_timings(args.log_timings)).internal()?;
+    let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
     let mut progress = Progress;
     let mut options = RunOptions {
         body_override: args.body.clone(),
@@ -377,8 +427,8 @@ fn run(args: RunArgs) -> Result<ExitCode> {
         run_session(&session, &options, &mut sinks)
     };
     if let Some(path) = &args.metrics {
-        let text = serde_json::to_string_pretty(&metrics_json(&report.steps))?;
-        write_atomic(path, text.as_bytes())?;
+        let text = serde_json::to_string_pretty(&metrics_json(&report.steps)).internal()?;
+        write_atomic(path, text.as_bytes()).internal()?;
         eprintln!("metrics: {}", path.display());
     }
     if let Some(e) = &exporter {
@@ -405,14 +455,15 @@ fn run(args: RunArgs) -> Result<ExitCode> {
             eprintln!("error: the recording could not be delivered to {url}: {e}");
             // Dropping a gRPC stream that never connected waits on its sender thread for
             // good; metrics and exports are written already, so leave without it.
-            std::process::exit(1);
+            std::process::exit(i32::from(FailureKind::Internal.exit_code()));
         }
         eprintln!("recording sent to {url}");
     }
     drop(logger); // closes the file sink (writes its footer)
     if let RecordingTarget::File(partial) = &target {
         std::fs::rename(partial, &final_path)
-            .with_context(|| format!("cannot rename {} to {}", partial.display(), final_path.display()))?;
+            .with_context(|| format!("cannot rename {} to {}", partial.display(), final_path.display()))
+            .internal()?;
         eprintln!(
             "recording: {} (view: rerun {})",
             final_path.display(),
@@ -422,7 +473,7 @@ fn run(args: RunArgs) -> Result<ExitCode> {
     match report.error {
         Some(e) => {
             eprintln!("error: {e}");
-            Ok(ExitCode::from(1))
+            Ok(ExitCode::from(e.kind().exit_code()))
         }
         None => Ok(ExitCode::SUCCESS),
     }
@@ -431,7 +482,7 @@ fn run(args: RunArgs) -> Result<ExitCode> {
 fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
     let options = MannequinOptions::grid(usize::from(args.layers), usize::from(args.points))
         .with_subdivisions(usize::from(args.subdivisions));
-    let result = run_mannequin(&DressForm::default(), &options)?;
+    let result = run_mannequin(&DressForm::default(), &options).bad_input()?;
     let ordered: Vec<_> = Region::REPORT_ORDER
         .iter()
         .filter_map(|r| result.regions.iter().find(|e| e.region == r.name()))
@@ -445,7 +496,7 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
             })
             .collect();
         let out = serde_json::json!({"layers": options.layers, "points": options.points, "regions": regions});
-        println!("{}", serde_json::to_string_pretty(&out)?);
+        println!("{}", serde_json::to_string_pretty(&out).internal()?);
     } else {
         println!(
             "dress form {} layers x {} points, refined to {} x {} (k = {}); deviation from the true surface, mm",
@@ -465,25 +516,23 @@ fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
             println!("{:<9} {pm:>10.3} {pr:>10.3} {cm:>10.3} {cr:>10.3}   {better}", e.region);
         }
     }
+    let path = &args.save;
+    let partial = partial_path(path);
+    create_parent(path).internal()?;
     {
-        let path = &args.save;
-        let partial = partial_path(path);
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir)?;
-        }
-        {
-            let rec = open_recording(&RecordingTarget::File(partial.clone()), "mannequin")?;
-            let mut logger = RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3))?;
-            let info = StageInfo {
-                step: 1,
-                op: "mannequin",
-                stage: 0,
-                name: "mannequin.refine",
-            };
-            logger.stage(&info, Stage::Mannequin(&result))?;
-        }
-        std::fs::rename(&partial, path)?;
-        eprintln!("recording: {}", path.display());
+        let rec = open_recording(&RecordingTarget::File(partial.clone()), "mannequin").internal()?;
+        let mut logger = RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3)).internal()?;
+        let info = StageInfo {
+            step: 1,
+            op: "mannequin",
+            stage: 0,
+            name: "mannequin.refine",
+        };
+        logger.stage(&info, Stage::Mannequin(&result)).internal()?;
     }
+    std::fs::rename(&partial, path)
+        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
+        .internal()?;
+    eprintln!("recording: {}", path.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -4,7 +4,8 @@
 
 use std::path::PathBuf;
 
-use super::runner::{SinkError, Stage, StageInfo, StageSink};
+use super::stage::{BodyStage, CollisionPart, CollisionStage, SinkError, StageInfo, StageSink};
+use crate::mannequin::MannequinResult;
 use crate::mesh::{TriMesh, write_obj};
 
 /// Writes OBJ files into a folder.
@@ -17,7 +18,11 @@ pub struct ObjExporter {
 impl ObjExporter {
     /// Exports into `dir` (created if missing).
     pub fn new(dir: PathBuf) -> Result<Self, SinkError> {
-        std::fs::create_dir_all(&dir).map_err(|e| SinkError(format!("{}: cannot create: {e}", dir.display())))?;
+        std::fs::create_dir_all(&dir).map_err(|source| SinkError::Io {
+            path: dir.clone(),
+            action: "create",
+            source,
+        })?;
         Ok(Self {
             dir,
             written: Vec::new(),
@@ -34,30 +39,42 @@ impl ObjExporter {
         let tmp = path.with_extension("obj.partial");
         std::fs::write(&tmp, write_obj(mesh, &header))
             .and_then(|()| std::fs::rename(&tmp, &path))
-            .map_err(|e| SinkError(format!("{}: {e}", path.display())))?;
+            .map_err(|source| SinkError::Io {
+                path: path.clone(),
+                action: "write",
+                source,
+            })?;
         self.written.push(path);
         Ok(())
     }
 }
 
 impl StageSink for ObjExporter {
-    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
+    fn body(&mut self, info: &StageInfo, stage: BodyStage<'_>) -> Result<(), SinkError> {
         match stage {
-            Stage::BodyMesh(body) => self.write(info, "body", &body.mesh),
-            Stage::Mannequin(result) => {
-                for (name, grid) in [("mannequin_polar", &result.polar), ("mannequin_chord", &result.chord)] {
-                    let mesh = TriMesh {
-                        positions: grid.positions.clone(),
-                        triangles: grid.triangles(),
-                    };
-                    self.write(info, name, &mesh)?;
-                }
-                Ok(())
-            }
-            Stage::Collision(outcome, _, crate::session::runner::CollisionPart::Respond) => {
+            BodyStage::Mesh(body) => self.write(info, "body", &body.mesh),
+            _ => Ok(()),
+        }
+    }
+
+    fn mannequin(&mut self, info: &StageInfo, result: &MannequinResult) -> Result<(), SinkError> {
+        for (name, grid) in [("mannequin_polar", &result.polar), ("mannequin_chord", &result.chord)] {
+            let mesh = TriMesh {
+                positions: grid.positions.clone(),
+                triangles: grid.triangles(),
+            };
+            self.write(info, name, &mesh)?;
+        }
+        Ok(())
+    }
+
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        match stage.part {
+            CollisionPart::Respond => {
+                let outcome = stage.outcome;
                 self.write(info, &format!("{}_m0", outcome.template), &outcome.collision.mesh)
             }
-            _ => Ok(()),
+            CollisionPart::Detect => Ok(()),
         }
     }
 }

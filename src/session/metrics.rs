@@ -1,7 +1,12 @@
 //! Per-step metrics: timings and every figure a step measured, for `--metrics`.
+//!
+//! Each step records its figures as typed structs (`#[derive(Serialize)]`, one per group of
+//! figures, beside the step's code in [`super::steps`]); their fields become the keys of the
+//! step's JSON object.
 
 use std::collections::BTreeMap;
 
+use serde::Serialize;
 use serde_json::{Map, Value};
 
 /// What one step measured. Serialized flat: `step`, `op`, `timings_ms`, then the figures.
@@ -11,7 +16,7 @@ pub struct StepMetrics {
     pub step: usize,
     /// Operation keyword (`scene` for step 0).
     pub op: String,
-    /// Stage name to milliseconds of compute (not logging).
+    /// Stage name to milliseconds of compute (not logging); the sinks' time under `log.*`.
     pub timings_ms: BTreeMap<String, f64>,
     /// Counts and figures, by name (sorted).
     pub figures: Map<String, Value>,
@@ -20,9 +25,23 @@ pub struct StepMetrics {
 }
 
 impl StepMetrics {
-    /// Records a figure.
-    pub fn set(&mut self, key: &str, value: impl Into<Value>) {
-        self.figures.insert(key.to_string(), value.into());
+    /// Empty metrics of a step.
+    pub fn new(step: usize, op: &str) -> Self {
+        Self {
+            step,
+            op: op.to_string(),
+            ..Self::default()
+        }
+    }
+
+    /// Records a group of figures: each field of `figures` (a struct serialized as a JSON
+    /// object) becomes a key, replacing an earlier value of the same name.
+    pub fn record<T: Serialize + ?Sized>(&mut self, figures: &T) {
+        match serde_json::to_value(figures) {
+            Ok(Value::Object(fields)) => self.figures.extend(fields),
+            // Figures are plain structs; anything else is a bug in the caller.
+            other => debug_assert!(false, "figures must serialize to an object: {other:?}"),
+        }
     }
 
     /// The flat JSON object.

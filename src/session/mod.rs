@@ -1,15 +1,30 @@
-//! Sessions: the text format, its parser, and the runner that turns steps into stages.
+//! Sessions: the text format and its parser, the stage contract, and the runner that turns
+//! steps into stages.
+//!
+//! * [`format`]: the session text (syntax tree, lexer, parser).
+//! * [`stage`]: what steps emit and the [`StageSink`] trait of whoever takes it.
+//! * [`runner`]: [`run_session`], a short driver over the steps in `steps/` (one file per
+//!   step kind), with the session's state and undo history in `state`.
+//! * [`metrics`]: per-step figures for `--metrics`; [`error`]: why a run stopped.
+//! * [`export`]: the OBJ exporter, a sink.
 
+mod emit;
+pub mod error;
 pub mod export;
 pub mod format;
 pub mod metrics;
 pub mod runner;
+pub mod stage;
+mod state;
+mod steps;
 
+pub use error::{DragRefusal, FailureKind, RunError, StepError};
 pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
-pub use runner::{
-    CollisionOutcome, CollisionPart, GarmentPart, RingStep, RunError, RunOptions, RunReport, Stage, StageInfo,
-    StageSink, run_session,
+pub use runner::{RunOptions, RunReport, run_session};
+pub use stage::{
+    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage,
+    RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

@@ -7,15 +7,11 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 use super::colors::{partition_color, rule_color};
 use super::logger::{RerunLogger, f32s, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
-use crate::session::runner::{CollisionOutcome, CollisionPart, SinkError};
+use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
 impl RerunLogger {
-    pub(super) fn collision(
-        &self,
-        outcome: &CollisionOutcome,
-        index: &BodyIndex,
-        part: CollisionPart,
-    ) -> Result<(), SinkError> {
+    pub(super) fn log_collision(&self, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        let CollisionStage { outcome, index, part } = stage;
         match part {
             CollisionPart::Detect => self.collision_detect(outcome, index),
             CollisionPart::Respond => self.collision_respond(outcome),

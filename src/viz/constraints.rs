@@ -10,7 +10,7 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 use super::logger::{RerunLogger, closed, f32s, to_sink};
 use crate::constraint::{ConstraintNet, CurveKind, Edit, Solution};
 use crate::garment::Framework;
-use crate::session::runner::SinkError;
+use crate::session::SinkError;
 
 const MET: [u8; 3] = [60, 200, 90];
 const VIOLATED: [u8; 3] = [235, 40, 40];
@@ -101,7 +101,7 @@ impl RerunLogger {
     }
 
     /// The network as built.
-    pub(super) fn network_built(&self, fw: &Framework, net: &ConstraintNet) -> Result<(), SinkError> {
+    pub(super) fn log_network_built(&self, fw: &Framework, net: &ConstraintNet) -> Result<(), SinkError> {
         self.network(fw, net, crate::constraint::SolverOptions::default().tolerance)?;
         let mut by_kind = std::collections::BTreeMap::<&str, usize>::new();
         for c in &net.constraints {
@@ -122,7 +122,7 @@ impl RerunLogger {
 
     /// A refused edit: the garment is as before; the last drag's path (an earlier step's) is
     /// cleared.
-    pub(super) fn refused(&self, edit: &Edit, message: &str) -> Result<(), SinkError> {
+    pub(super) fn log_refused(&self, edit: &Edit, message: &str) -> Result<(), SinkError> {
         self.recording()
             .log("constraints/drag", &Clear::recursive())
             .map_err(to_sink)?;
@@ -133,7 +133,7 @@ impl RerunLogger {
     }
 
     /// `undo`: the network redrawn on the restored curves, the last drag's path cleared.
-    pub(super) fn undone(&self, fw: &Framework, net: Option<&ConstraintNet>) -> Result<(), SinkError> {
+    pub(super) fn log_undone(&self, fw: &Framework, net: Option<&ConstraintNet>) -> Result<(), SinkError> {
         self.recording()
             .log("constraints/drag", &Clear::recursive())
             .map_err(to_sink)?;
@@ -151,7 +151,7 @@ impl RerunLogger {
 
     /// Every solver iteration on the `iter` timeline, then the network after the solve, the
     /// dragged point's path and the summary (on the step and stage timelines).
-    pub(super) fn solve(&mut self, edit: &Edit, net: &ConstraintNet, s: &Solution) -> Result<(), SinkError> {
+    pub(super) fn log_solve(&mut self, edit: &Edit, net: &ConstraintNet, s: &Solution) -> Result<(), SinkError> {
         let tolerance = s.tolerance;
         for it in &s.iterations {
             let iter = self.next_iter();

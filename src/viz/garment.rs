@@ -7,7 +7,7 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 use super::logger::{RerunLogger, closed, f32s, to_sink};
 use crate::garment::{Framework, GarmentRing, RingStages};
 use crate::mesh::TriMesh;
-use crate::session::runner::{GarmentPart, RingStep, SinkError};
+use crate::session::{GarmentPart, RingStep, SinkError};
 
 /// Colour of a ring sub-step.
 fn step_color(step: RingStep) -> [u8; 3] {
@@ -62,7 +62,7 @@ fn girth_note(r: &GarmentRing) -> String {
 }
 
 impl RerunLogger {
-    pub(super) fn garment(&self, fw: &Framework, part: GarmentPart) -> Result<(), SinkError> {
+    pub(super) fn log_garment_part(&self, fw: &Framework, part: GarmentPart) -> Result<(), SinkError> {
         let rec = self.recording();
         match part {
             GarmentPart::Planes => {
@@ -328,7 +328,7 @@ impl RerunLogger {
             .map_err(to_sink)
     }
 
-    pub(super) fn garment_edit(&self, name: &str, before: &Framework, after: &Framework) -> Result<(), SinkError> {
+    pub(super) fn log_garment_edit(&self, name: &str, before: &Framework, after: &Framework) -> Result<(), SinkError> {
         let (a, b) = (&before.m0.mesh.positions, &after.m0.mesh.positions);
         let (mut origins, mut vectors) = (Vec::new(), Vec::new());
         let mut largest: f64 = 0.0;

@@ -16,11 +16,13 @@
 //! Timelines: `step`, `stage`, and `iter` (solver iterations over the session).
 
 pub mod blueprint;
+mod body;
 mod collision;
 pub mod colors;
 mod constraints;
 mod garment;
 pub mod logger;
+mod mannequin;
 pub mod target;
 
 pub use blueprint::default_blueprint;

@@ -11,7 +11,9 @@ use drape::collision::{
 };
 use drape::garment::{Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mesh::TriMesh;
-use drape::session::{CollisionPart, RunOptions, Stage, StageInfo, StageSink, parse_session, run_session};
+use drape::session::{
+    CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session,
+};
 use glam::DVec3;
 
 use super::common::{Lcg, real_body, real_jumpsuit, real_probe};
@@ -270,8 +272,9 @@ fn every_response_rule_keeps_its_direction_on_a_garment_pushed_in_everywhere() {
 struct Meshes(Vec<(TriMesh, usize, usize, usize)>, Vec<TriMesh>);
 
 impl StageSink for Meshes {
-    fn stage(&mut self, _: &StageInfo, stage: Stage<'_>) -> Result<(), drape::session::runner::SinkError> {
-        if let Stage::Collision(o, _, CollisionPart::Respond) = stage {
+    fn collision(&mut self, _: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            let o = stage.outcome;
             let d = &o.collision.detection;
             self.0
                 .push((o.collision.mesh.clone(), d.tested, d.skipped_inert, d.skipped_patch));

@@ -12,8 +12,10 @@ use drape::constraint::{
 use drape::garment::assemble::assemble;
 use drape::garment::{Ease, Framework, ease_ring};
 use drape::mesh::TriMesh;
-use drape::session::runner::{GarmentPart, Stage, StageInfo, StageSink};
-use drape::session::{CollisionPart, RunOptions, parse_session, run_session};
+use drape::session::{
+    CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, RunOptions, SinkError, StageInfo,
+    StageSink, parse_session, run_session,
+};
 use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 
@@ -458,14 +460,23 @@ struct Steps {
 }
 
 impl StageSink for Steps {
-    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), drape::session::runner::SinkError> {
-        match stage {
-            Stage::Garment(fw, GarmentPart::Mesh) => self.m0.push((info.step, fw.m0.mesh.clone())),
-            Stage::Collision(o, _, CollisionPart::Respond) => {
-                self.responded.push((info.step, o.collision.mesh.clone()));
-            }
-            Stage::Refused { message, .. } => self.refused.push(message.to_string()),
-            _ => {}
+    fn garment(&mut self, info: &StageInfo, stage: GarmentStage<'_>) -> Result<(), SinkError> {
+        if let GarmentStage::Part(fw, GarmentPart::Mesh) = stage {
+            self.m0.push((info.step, fw.m0.mesh.clone()));
+        }
+        Ok(())
+    }
+
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            self.responded.push((info.step, stage.outcome.collision.mesh.clone()));
+        }
+        Ok(())
+    }
+
+    fn constraints(&mut self, _: &StageInfo, stage: ConstraintStage<'_>) -> Result<(), SinkError> {
+        if let ConstraintStage::Refused { message, .. } = stage {
+            self.refused.push(message.to_string());
         }
         Ok(())
     }

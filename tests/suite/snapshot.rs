@@ -4,8 +4,7 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use drape::session::runner::StageSink;
-use drape::session::{DEMO_SESSION, RunOptions, parse_session, run_session};
+use drape::session::{DEMO_SESSION, RunOptions, StageSink, parse_session, run_session};
 use drape::viz::{LogOptions, RerunLogger};
 use rerun::external::re_log_encoding::DecoderApp;
 use rerun::log::{Chunk, LogMsg};

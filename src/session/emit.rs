@@ -1,0 +1,107 @@
+//! The emitter: hands every stage to every sink, counts the stages, and times a step's
+//! compute and its sinks apart.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::error::{RunError, StepError};
+use super::metrics::StepMetrics;
+use super::stage::{SinkError, Stage, StageInfo, StepEnd};
+
+/// The sinks of a run, the global stage counter and the sinks' failures.
+pub(crate) struct Emitter<'k, 's> {
+    sinks: &'k mut [&'s mut dyn super::stage::StageSink],
+    stage: u64,
+    /// Sink failures, with the stage each happened at; the run goes on and reports them.
+    pub(crate) errors: Vec<(&'static str, SinkError)>,
+}
+
+impl<'k, 's> Emitter<'k, 's> {
+    /// An emitter over `sinks`, starting at stage 0.
+    pub(crate) fn new(sinks: &'k mut [&'s mut dyn super::stage::StageSink]) -> Self {
+        Self {
+            sinks,
+            stage: 0,
+            errors: Vec::new(),
+        }
+    }
+
+    /// A scope for step `step` with keyword `op`.
+    pub(crate) fn step(&mut self, step: usize, op: &'static str) -> StepScope<'_, 'k, 's> {
+        StepScope {
+            out: self,
+            step,
+            op,
+            metrics: StepMetrics::new(step, op),
+        }
+    }
+}
+
+/// One step's view of the run: emits its stages, times its compute, records its figures.
+pub(crate) struct StepScope<'e, 'k, 's> {
+    out: &'e mut Emitter<'k, 's>,
+    /// Step index (0 is the scene).
+    pub(crate) step: usize,
+    /// The step's keyword.
+    pub(crate) op: &'static str,
+    /// The step's metrics so far.
+    pub(crate) metrics: StepMetrics,
+}
+
+impl StepScope<'_, '_, '_> {
+    /// Hands stage `name` to every sink; the time the sinks take goes to `log.<name>`.
+    pub(crate) fn emit(&mut self, name: &'static str, stage: Stage<'_>) {
+        let info = StageInfo {
+            step: self.step,
+            op: self.op,
+            stage: self.out.stage,
+            name,
+        };
+        self.out.stage += 1;
+        let start = Instant::now();
+        for sink in self.out.sinks.iter_mut() {
+            if let Err(e) = sink.stage(&info, stage) {
+                self.out.errors.push((name, e));
+            }
+        }
+        *self.metrics.timings_ms.entry(format!("log.{name}")).or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
+    }
+
+    /// Runs `f`, recording its wall time as the compute time of stage `name`.
+    pub(crate) fn timed<T>(&mut self, name: &str, f: impl FnOnce() -> T) -> T {
+        let start = Instant::now();
+        let out = f();
+        self.metrics
+            .timings_ms
+            .insert(name.to_string(), start.elapsed().as_secs_f64() * 1e3);
+        out
+    }
+
+    /// Records a group of figures (see [`StepMetrics::record`]).
+    pub(crate) fn record<T: Serialize + ?Sized>(&mut self, figures: &T) {
+        self.metrics.record(figures);
+    }
+
+    /// Ends the step: its `done` stage, then its metrics.
+    pub(crate) fn done(mut self) -> StepMetrics {
+        let done = self.metrics.clone();
+        self.emit("done", Stage::Step(StepEnd::Done(&done)));
+        self.metrics
+    }
+
+    /// Ends the step with `error`: its `failed` stage, then its metrics (with the message)
+    /// and the error placed at `line` of `session`.
+    pub(crate) fn fail(mut self, session: &str, line: usize, source: StepError) -> (StepMetrics, RunError) {
+        let error = RunError {
+            session: session.to_string(),
+            line,
+            step: self.step,
+            op: self.op,
+            source,
+        };
+        self.metrics.error = Some(error.message());
+        self.emit("failed", Stage::Step(StepEnd::Failed(&error)));
+        (self.metrics, error)
+    }
+}

@@ -1,0 +1,142 @@
+//! Why a session stopped, typed: the step that failed and its cause, told apart by kind so
+//! the command line can exit with the right code (see [`FailureKind::exit_code`]).
+
+use thiserror::Error;
+
+use super::stage::SinkError;
+use crate::body::BodyError;
+use crate::constraint::EditError;
+use crate::garment::FrameworkError;
+use crate::mannequin::MannequinError;
+
+/// What kind of failure stopped a run. The command line's exit codes follow it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FailureKind {
+    /// The input cannot be used as given: a malformed session, flag or body file. Exit 2.
+    BadInput,
+    /// A valid step failed at run time (a section that misses the body, a dimension out of
+    /// its range, nothing to undo). Exit 1.
+    StepFailed,
+    /// drape's own output failed: a file that cannot be written, a viewer that cannot be
+    /// reached. Exit 3.
+    Internal,
+}
+
+impl FailureKind {
+    /// The process exit code: 2 bad input, 1 a step failed, 3 internal or I/O failure
+    /// (0 is success).
+    pub fn exit_code(self) -> u8 {
+        match self {
+            Self::BadInput => 2,
+            Self::StepFailed => 1,
+            Self::Internal => 3,
+        }
+    }
+}
+
+/// Why a drag or a replayed drag could not be made; the garment stays as it was.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum DragRefusal {
+    /// The constraint solver refused the edit (an unknown point, a self-crossing curve).
+    #[error(transparent)]
+    Solve(#[from] EditError),
+    /// The solved curves cannot be surfaced.
+    #[error("the edited curves cannot be surfaced: {0}")]
+    Surface(#[source] FrameworkError),
+}
+
+/// Why a step failed.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum StepError {
+    /// The body cannot be loaded or analysed.
+    #[error(transparent)]
+    Body(#[from] BodyError),
+    /// The mannequin study failed.
+    #[error(transparent)]
+    Mannequin(#[from] MannequinError),
+    /// A section plane misses the body.
+    #[error("section '{name}' at y = {y:.4} m cuts nothing: the body spans {lo:.4}..{hi:.4} m")]
+    SectionMisses {
+        /// The section's name.
+        name: String,
+        /// Its height, m.
+        y: f64,
+        /// The body's lowest point, m.
+        lo: f64,
+        /// The body's highest point, m.
+        hi: f64,
+    },
+    /// The garment's framework cannot be solved (a dimension out of range, a ring that
+    /// cannot be cut).
+    #[error(transparent)]
+    Framework(#[from] FrameworkError),
+    /// A drag made before a dimension change cannot be made again after it.
+    #[error("replaying drag {index} of {count} after the change: {source}")]
+    Replay {
+        /// Which drag (1-based).
+        index: usize,
+        /// Of how many.
+        count: usize,
+        /// Why it was refused.
+        #[source]
+        source: DragRefusal,
+    },
+    /// A garment step came before any garment was built.
+    #[error("no garment to {verb}: a 'garment' step must come first")]
+    NoGarment {
+        /// What the step wanted to do (`change`, `drag`).
+        verb: &'static str,
+    },
+    /// `undo` with nothing to take back.
+    #[error("nothing to undo: no drag or set step of the current garment ran")]
+    NothingToUndo,
+    /// Sinks failed (the recording, the export), at these stages.
+    #[error("{}", join(.0))]
+    Sinks(Vec<(&'static str, SinkError)>),
+}
+
+fn join(errors: &[(&'static str, SinkError)]) -> String {
+    let each: Vec<String> = errors.iter().map(|(stage, e)| format!("{stage}: {e}")).collect();
+    each.join("; ")
+}
+
+impl StepError {
+    /// Bad input, a failed step, or drape's own failure.
+    pub fn kind(&self) -> FailureKind {
+        match self {
+            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) => FailureKind::BadInput,
+            Self::Sinks(_) => FailureKind::Internal,
+            _ => FailureKind::StepFailed,
+        }
+    }
+}
+
+/// A step that failed at run time, where it was written, and why.
+#[derive(Debug, Error)]
+#[error("{session}:{line}: step {step} ({op}) failed: {source}")]
+pub struct RunError {
+    /// Session name.
+    pub session: String,
+    /// Line of the step (1 for the scene).
+    pub line: usize,
+    /// Step index (0 is the scene).
+    pub step: usize,
+    /// Operation keyword (`log` for the sinks' failures, reported after the last step).
+    pub op: &'static str,
+    /// The cause.
+    #[source]
+    pub source: StepError,
+}
+
+impl RunError {
+    /// What went wrong, without the place.
+    pub fn message(&self) -> String {
+        self.source.to_string()
+    }
+
+    /// Bad input, a failed step, or drape's own failure.
+    pub fn kind(&self) -> FailureKind {
+        self.source.kind()
+    }
+}

@@ -1,0 +1,352 @@
+//! The stage contract: what a step hands on, and the trait of whoever takes it.
+//!
+//! A step computes plain data and emits it stage by stage: a [`Stage`] (the data, borrowed)
+//! with a [`StageInfo`] (its step, the step's operation, a global stage counter and the
+//! stage's name). Whoever wants the stages implements [`StageSink`]: the Rerun logger in
+//! [`crate::viz`], the OBJ exporter in [`super::export`], the command line's progress
+//! lines, tests. The sink trait has one method per family of stages, each doing nothing by
+//! default, so a sink implements only the families it cares about and a new family (a new
+//! step kind's stages) changes no existing sink.
+//!
+//! This module is the only thing the sinks import from the session; they never see the
+//! runner.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+use super::error::RunError;
+use super::metrics::StepMetrics;
+use crate::body::{BodyMesh, BodyRing, Landmarks, Partition};
+use crate::collision::{BodyIndex, Collision, GarmentMesh, VerifyReport};
+use crate::constraint::{ConstraintNet, Edit, Solution};
+use crate::garment::Framework;
+use crate::geom::SectionLoop;
+use crate::mannequin::MannequinResult;
+
+/// Where a stage sits: its step and its global stage number.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct StageInfo {
+    /// Step index (0 is the scene).
+    pub step: usize,
+    /// The step's operation keyword (`scene`, `garment`, `drag`, ...).
+    pub op: &'static str,
+    /// Global stage counter, one per stage over the whole session (the `stage` timeline).
+    pub stage: u64,
+    /// Stage name (`body.load`, `garment.m0`, `collision.response`, ...).
+    pub name: &'static str,
+}
+
+/// The data of one stage, by family.
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub enum Stage<'a> {
+    /// The scene's body: mesh, landmarks, rings, partitions.
+    Body(BodyStage<'a>),
+    /// The mannequin refined and measured against its true surface.
+    Mannequin(&'a MannequinResult),
+    /// A horizontal section of the body.
+    Section(SectionCut<'a>),
+    /// The garment framework and its mesh M0.
+    Garment(GarmentStage<'a>),
+    /// The mesh-layer collision of a step's M0.
+    Collision(CollisionStage<'a>),
+    /// The constraint layer: the network, a solve, a refusal.
+    Constraints(ConstraintStage<'a>),
+    /// The end of a step: done with its metrics, or failed.
+    Step(StepEnd<'a>),
+}
+
+/// The scene's body stages, in the order they are emitted.
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub enum BodyStage<'a> {
+    /// The body mesh, loaded and validated.
+    Mesh(&'a BodyMesh),
+    /// Its landmarks.
+    Landmarks(&'a BodyMesh, &'a Landmarks),
+    /// The rings cut at the landmarks.
+    Rings(&'a [BodyRing]),
+    /// The partitions A-G.
+    Partitions(&'a BodyMesh, &'a [Partition]),
+}
+
+/// A horizontal section of the body (the `section` step).
+#[derive(Clone, Copy, Debug)]
+pub struct SectionCut<'a> {
+    /// The name given in the session.
+    pub name: &'a str,
+    /// Height of the plane, m (world frame, y up).
+    pub y: f64,
+    /// The loops the plane cuts.
+    pub loops: &'a [SectionLoop],
+}
+
+/// The garment stages.
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub enum GarmentStage<'a> {
+    /// One part of the framework, as solved or re-surfaced.
+    Part(&'a Framework, GarmentPart),
+    /// A dimension edit: the framework before and after.
+    Edit {
+        /// The dimension changed.
+        name: &'a str,
+        /// Before.
+        before: &'a Framework,
+        /// After.
+        after: &'a Framework,
+    },
+    /// `undo`: the garment is back to this state (with its constraint network, once one was
+    /// built).
+    Undone {
+        /// The framework restored.
+        framework: &'a Framework,
+        /// Its constraint network.
+        net: Option<&'a ConstraintNet>,
+    },
+}
+
+/// The parts of a garment, in the order they are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GarmentPart {
+    /// The section planes.
+    Planes,
+    /// Every ring at one sub-step.
+    Rings(RingStep),
+    /// Open curves, contours, seams (and the loose-fit straightening).
+    Curves,
+    /// The Coons patches.
+    Patches,
+    /// The stitched mesh M0.
+    Mesh,
+}
+
+/// A ring sub-step ([frame] section 2.2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RingStep {
+    /// The body section.
+    Raw,
+    /// Convexified.
+    Convex,
+    /// Resampled at equal chords.
+    Resampled,
+    /// Eased.
+    Eased,
+    /// Spline fitted through the control points and resampled.
+    Fitted,
+}
+
+impl RingStep {
+    /// In order.
+    pub const ALL: [Self; 5] = [Self::Raw, Self::Convex, Self::Resampled, Self::Eased, Self::Fitted];
+
+    /// Short name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Raw => "raw",
+            Self::Convex => "convex",
+            Self::Resampled => "resampled",
+            Self::Eased => "eased",
+            Self::Fitted => "fitted",
+        }
+    }
+}
+
+impl GarmentPart {
+    /// Every part in emission order.
+    pub fn all() -> Vec<Self> {
+        let mut out = vec![Self::Planes];
+        out.extend(RingStep::ALL.map(Self::Rings));
+        out.extend([Self::Curves, Self::Patches, Self::Mesh]);
+        out
+    }
+
+    /// The parts an edit re-surfaces (the rings' sub-steps and planes stay as built).
+    pub const RESURFACED: [Self; 3] = [Self::Curves, Self::Patches, Self::Mesh];
+
+    /// Stage name.
+    pub fn stage_name(self) -> &'static str {
+        match self {
+            Self::Planes => "garment.planes",
+            Self::Rings(RingStep::Raw) => "garment.rings.raw",
+            Self::Rings(RingStep::Convex) => "garment.rings.convex",
+            Self::Rings(RingStep::Resampled) => "garment.rings.resampled",
+            Self::Rings(RingStep::Eased) => "garment.rings.eased",
+            Self::Rings(RingStep::Fitted) => "garment.rings.fitted",
+            Self::Curves => "garment.curves",
+            Self::Patches => "garment.patches",
+            Self::Mesh => "garment.m0",
+        }
+    }
+}
+
+/// A collision stage: the step's collision, the body index it ran against, and which part.
+#[derive(Clone, Copy, Debug)]
+pub struct CollisionStage<'a> {
+    /// M0 as collided, the result, the ground-truth check.
+    pub outcome: &'a CollisionOutcome,
+    /// The body index (partitions, slices).
+    pub index: &'a BodyIndex,
+    /// Detection or response.
+    pub part: CollisionPart,
+}
+
+/// The parts of a collision, in the order they are emitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CollisionPart {
+    /// Detection: the penetrating vertices by partition.
+    Detect,
+    /// Response: the moved vertices and M0 after it.
+    Respond,
+}
+
+impl CollisionPart {
+    /// Both parts, in emission order.
+    pub const ALL: [Self; 2] = [Self::Detect, Self::Respond];
+
+    /// Stage name.
+    pub fn stage_name(self) -> &'static str {
+        match self {
+            Self::Detect => "collision.detect",
+            Self::Respond => "collision.response",
+        }
+    }
+}
+
+/// A step's collision: M0 as collided, the result, and the ground-truth check.
+#[derive(Clone, Debug)]
+pub struct CollisionOutcome {
+    /// The garment mesh before response, with its roles.
+    pub garment: GarmentMesh,
+    /// Detection, response, quality.
+    pub collision: Collision,
+    /// With `--verify`: the brute-force check.
+    pub verify: Option<VerifyReport>,
+    /// Template name (for file names).
+    pub template: &'static str,
+}
+
+/// The constraint-layer stages.
+#[derive(Clone, Copy, Debug)]
+#[non_exhaustive]
+pub enum ConstraintStage<'a> {
+    /// The constraint network of a garment as built.
+    Network(&'a Framework, &'a ConstraintNet),
+    /// An edit solved: the framework before, the solution (its framework is re-surfaced in
+    /// the garment stages that follow).
+    Solve {
+        /// The edit.
+        edit: &'a Edit,
+        /// The network.
+        net: &'a ConstraintNet,
+        /// Before the edit.
+        before: &'a Framework,
+        /// The solve.
+        solution: &'a Solution,
+    },
+    /// An edit was refused; the garment is as before the step.
+    Refused {
+        /// The edit.
+        edit: &'a Edit,
+        /// Why.
+        message: &'a str,
+    },
+}
+
+/// The end of a step.
+#[derive(Clone, Copy, Debug)]
+pub enum StepEnd<'a> {
+    /// The step finished with these metrics.
+    Done(&'a StepMetrics),
+    /// The step failed; everything before it stands.
+    Failed(&'a RunError),
+}
+
+/// Why a sink could not take a stage. These are failures of drape's own output (a file that
+/// cannot be written, a viewer that went away), never of the session's input.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum SinkError {
+    /// A file or folder could not be written.
+    #[error("{}: cannot {action}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What was attempted (`write`, `create`, `rename`).
+        action: &'static str,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The logging backend (Rerun) failed.
+    #[error("{what}: {source}")]
+    Backend {
+        /// What was being done (`rerun`, `rerun flush`).
+        what: &'static str,
+        /// The backend's error.
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
+}
+
+/// Takes stages as a session produces them. Every method has a default that does nothing:
+/// implement the families you need.
+pub trait StageSink {
+    /// Takes one stage. The default hands it to the method of its family; a sink that acts
+    /// on every stage (the Rerun logger sets its timelines) overrides this and calls
+    /// [`Stage::dispatch`] itself.
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
+        stage.dispatch(info, self)
+    }
+
+    /// The scene's body stages.
+    fn body(&mut self, _info: &StageInfo, _stage: BodyStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The mannequin study.
+    fn mannequin(&mut self, _info: &StageInfo, _result: &MannequinResult) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// A body section.
+    fn section(&mut self, _info: &StageInfo, _cut: SectionCut<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The garment stages.
+    fn garment(&mut self, _info: &StageInfo, _stage: GarmentStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The collision stages.
+    fn collision(&mut self, _info: &StageInfo, _stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The constraint-layer stages.
+    fn constraints(&mut self, _info: &StageInfo, _stage: ConstraintStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The end of a step.
+    fn step_end(&mut self, _info: &StageInfo, _end: StepEnd<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+impl Stage<'_> {
+    /// Hands the stage to the sink's method for its family.
+    pub fn dispatch<S: StageSink + ?Sized>(self, info: &StageInfo, sink: &mut S) -> Result<(), SinkError> {
+        match self {
+            Self::Body(s) => sink.body(info, s),
+            Self::Mannequin(r) => sink.mannequin(info, r),
+            Self::Section(c) => sink.section(info, c),
+            Self::Garment(s) => sink.garment(info, s),
+            Self::Collision(s) => sink.collision(info, s),
+            Self::Constraints(s) => sink.constraints(info, s),
+            Self::Step(e) => sink.step_end(info, e),
+        }
+    }
+}

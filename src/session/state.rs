@@ -1,0 +1,93 @@
+//! What a session carries from step to step: the body with its index, the current garment
+//! and the undo history of its edits.
+
+use crate::body::Body;
+use crate::collision::DetectState;
+use crate::constraint::{ConstraintNet, Edit};
+use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind};
+
+use super::stage::CollisionOutcome;
+
+/// The state between steps.
+pub(crate) struct SessionState {
+    /// The scene's body.
+    pub(crate) body: Body,
+    /// The body's one index (curve clearance and collision), built by the first garment.
+    pub(crate) probe: Option<BodyProbe>,
+    /// The current garment.
+    pub(crate) garment: Option<GarmentState>,
+    /// Garment states before each drag or set of the current garment, for `undo`.
+    pub(crate) history: Vec<GarmentState>,
+}
+
+impl SessionState {
+    /// The state after the scene: a body, no garment yet.
+    pub(crate) fn new(body: Body) -> Self {
+        Self {
+            body,
+            probe: None,
+            garment: None,
+            history: Vec::new(),
+        }
+    }
+
+    /// Makes `next` the current garment; the one it replaces can be restored by `undo`.
+    pub(crate) fn advance(&mut self, next: GarmentState) {
+        if let Some(previous) = self.garment.replace(next) {
+            self.history.push(previous);
+        }
+    }
+}
+
+/// The current garment: its template, settings, the dimensions set so far, the solve, the
+/// drags made since, its constraint network, and what collision remembers between steps.
+#[derive(Clone)]
+pub(crate) struct GarmentState {
+    /// Template.
+    pub(crate) template: TemplateKind,
+    /// Framework settings (fit, resolution).
+    pub(crate) options: FrameworkOptions,
+    /// Dimensions the session set.
+    pub(crate) dims: Dimensions,
+    /// The solved framework and M0 (before collision response).
+    pub(crate) framework: Option<Framework>,
+    /// What detection remembers between steps (inert points, patch skipping).
+    pub(crate) detect: DetectState,
+    /// The last collision of M0.
+    pub(crate) collision: Option<CollisionOutcome>,
+    /// The constraint network.
+    pub(crate) net: Option<ConstraintNet>,
+    /// Drags made since the last dimension change, replayed after the next one.
+    pub(crate) edits: Vec<Edit>,
+}
+
+impl GarmentState {
+    /// A new garment, not yet solved.
+    pub(crate) fn new(template: TemplateKind, options: FrameworkOptions) -> Self {
+        Self {
+            template,
+            options,
+            dims: Dimensions::default(),
+            framework: None,
+            detect: DetectState::default(),
+            collision: None,
+            net: None,
+            edits: Vec::new(),
+        }
+    }
+
+    /// The same garment with its dimensions, detection memory and drags, to be solved again
+    /// (its framework, collision and network cleared).
+    pub(crate) fn unsolved(&self) -> Self {
+        Self {
+            template: self.template,
+            options: self.options,
+            dims: self.dims.clone(),
+            framework: None,
+            detect: self.detect.clone(),
+            collision: None,
+            net: None,
+            edits: self.edits.clone(),
+        }
+    }
+}

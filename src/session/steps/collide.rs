@@ -1,0 +1,154 @@
+//! The mesh-layer collision every step that makes an M0 ends with (garment, set, drag),
+//! its figures, and its stages (which `undo` emits again for the state it restores).
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::runner::RunOptions;
+use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, Stage};
+use super::super::state::GarmentState;
+use crate::body::Body;
+use crate::collision::{self, AppliedRule, BodyIndex, Collision, GarmentMesh, VerifyReport};
+
+/// The figures of a collision.
+#[derive(Serialize)]
+struct CollisionFigures<'a> {
+    /// Vertices inside the body after response (exact check over the whole body).
+    penetrating_vertices: usize,
+    /// Edges crossing the body after response.
+    crossing_edges: usize,
+    /// Deepest vertex left inside, m.
+    max_depth_m: f64,
+    /// Mean depth of the vertices left inside, m.
+    mean_depth_m: f64,
+    /// Vertices tested by detection.
+    tested_vertices: usize,
+    /// Vertices skipped as inert.
+    skipped_inert: usize,
+    /// Vertices skipped with their patches.
+    skipped_patch: usize,
+    /// Patches skipped.
+    patches_skipped: usize,
+    /// Vertices detection found inside.
+    hits: usize,
+    /// Deepest hit before response, m.
+    depth_before_max_m: f64,
+    /// Hits per partition letter.
+    hits_by_partition: BTreeMap<&'static str, usize>,
+    /// Vertices tested point-face and line-line.
+    tested_by_method: TestedByMethod,
+    /// Vertices moved by the vertex response.
+    responses: usize,
+    /// Moves made by the edge rounds.
+    edge_responses: usize,
+    /// Moves per response rule (rules that moved nothing left out).
+    responses_by_rule: BTreeMap<&'static str, usize>,
+    /// Edges crossing at the start of each edge round.
+    crossing_edges_by_round: &'a [usize],
+    /// The gap responses stand off at, m.
+    response_ease_m: f64,
+    /// Largest and mean ease error of the moved vertices, m.
+    max_ease_error_m: f64,
+    mean_ease_error_m: f64,
+    /// With `--verify`: the brute-force check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    verify: Option<&'a VerifyReport>,
+}
+
+#[derive(Serialize)]
+struct TestedByMethod {
+    point_face: usize,
+    line_line: usize,
+}
+
+impl<'a> CollisionFigures<'a> {
+    fn new(index: &BodyIndex, c: &'a Collision, verify: Option<&'a VerifyReport>) -> Self {
+        let d = &c.detection;
+        let q = &c.quality;
+        let hits_by_partition = index
+            .partitions
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (p.id.letter(), d.hits.iter().filter(|h| h.partition == k).count()))
+            .collect();
+        let responses_by_rule = AppliedRule::ALL
+            .into_iter()
+            .map(|rule| (rule.name(), c.responses.iter().filter(|r| r.rule == rule).count()))
+            .filter(|(_, n)| *n > 0)
+            .collect();
+        Self {
+            penetrating_vertices: q.penetrating_vertices,
+            crossing_edges: q.crossing_edges,
+            max_depth_m: q.max_depth_m,
+            mean_depth_m: q.mean_depth_m,
+            tested_vertices: d.tested,
+            skipped_inert: d.skipped_inert,
+            skipped_patch: d.skipped_patch,
+            patches_skipped: d.patches_skipped,
+            hits: d.hits.len(),
+            depth_before_max_m: d.hits.iter().map(|h| h.depth).fold(0.0, f64::max),
+            hits_by_partition,
+            tested_by_method: TestedByMethod {
+                point_face: d.by_method[0],
+                line_line: d.by_method[1],
+            },
+            responses: c.responses.iter().filter(|r| r.edge_round == 0).count(),
+            edge_responses: c.responses.iter().filter(|r| r.edge_round > 0).count(),
+            responses_by_rule,
+            crossing_edges_by_round: &c.edge_rounds,
+            response_ease_m: c.ease,
+            max_ease_error_m: q.max_ease_error_m,
+            mean_ease_error_m: q.mean_ease_error_m,
+            verify,
+        }
+    }
+}
+
+/// Collides the state's M0 with the body, recording the figures in the step's metrics.
+pub(super) fn collide_garment(
+    scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
+    index: &BodyIndex,
+    state: &mut GarmentState,
+    options: &RunOptions,
+) {
+    let Some(fw) = &state.framework else {
+        return;
+    };
+    let garment = GarmentMesh::from_framework(fw, index.height);
+    let collision = collision::collide(index, &garment, fw.ease(), &options.collision, &mut state.detect);
+    let t = collision.timings;
+    for (name, ms) in [
+        ("collision.detect", t.detect),
+        ("collision.respond", t.respond),
+        ("collision.respond_edges", t.respond_edges),
+        ("collision.quality", t.quality),
+    ] {
+        scope.metrics.timings_ms.insert(name.to_string(), ms);
+    }
+    let verify = options.verify.then(|| {
+        scope.timed("collision.verify", || {
+            let before = collision::ground_truth(&body.mesh.mesh, &garment.mesh.positions, &garment.edges);
+            let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges);
+            collision::compare(&before, &collision.detection, &after, &collision.quality)
+        })
+    });
+    scope.record(&CollisionFigures::new(index, &collision, verify.as_ref()));
+    state.collision = Some(CollisionOutcome {
+        garment,
+        collision,
+        verify,
+        template: state.template.name(),
+    });
+}
+
+/// Emits the state's collision (detection, then response), if it has one.
+pub(super) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState, index: &BodyIndex) {
+    if let Some(outcome) = &state.collision {
+        for part in CollisionPart::ALL {
+            scope.emit(part.stage_name(), Stage::Collision(CollisionStage { outcome, index, part }));
+        }
+    }
+}

@@ -1,0 +1,137 @@
+//! `garment`: a garment built from its template: the framework solved against the body
+//! (planes, rings through their sub-steps, open curves, contours, patches, M0), its
+//! constraint network, and the collision of M0.
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::error::StepError;
+use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
+use super::super::state::{GarmentState, SessionState};
+use super::StepContext;
+use super::collide::{collide_garment, emit_collision};
+use crate::body::Body;
+use crate::collision::BodyIndex;
+use crate::constraint::{ConstraintNet, NetworkOptions};
+use crate::garment::{
+    BodyProbe, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework, framework::DimensionValue,
+};
+
+/// The figures of a solved framework.
+#[derive(Serialize)]
+struct FrameworkFigures<'a> {
+    /// Template name.
+    template: &'static str,
+    /// Contour fit.
+    fit: &'static str,
+    /// Segments per anchor arc.
+    resolution: usize,
+    /// M0 vertices, faces and undirected edges.
+    m0_vertices: usize,
+    m0_faces: usize,
+    m0_edges: usize,
+    /// Coons patches.
+    patches: usize,
+    /// What welding did.
+    stitch: StitchReport,
+    /// Each ring's girth against its target and the body's tape girth.
+    girths: Vec<Girth<'a>>,
+    /// Every dimension's value after the solve.
+    dimensions: &'a [DimensionValue],
+    /// Constraints and curves of the network.
+    constraints: usize,
+    curves: usize,
+}
+
+/// A ring's girth, m.
+#[derive(Serialize)]
+struct Girth<'a> {
+    ring: &'a str,
+    girth_m: f64,
+    target_m: Option<f64>,
+    body_tape_m: f64,
+    /// (girth - target) / target.
+    relative_error: Option<f64>,
+}
+
+pub(super) fn run(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    cx: &StepContext<'_>,
+    template: TemplateKind,
+    fit: Fit,
+    resolution: usize,
+) -> Result<(), StepError> {
+    let options = FrameworkOptions::default().with_fit(fit).with_resolution(resolution);
+    state.history.clear();
+    let mut next = solve_garment(
+        scope,
+        &state.body,
+        &mut state.probe,
+        cx,
+        GarmentState::new(template, options),
+    )?;
+    if let (Some(fw), Some(net)) = (&next.framework, &next.net) {
+        for part in GarmentPart::all() {
+            scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
+        }
+        scope.emit("constraints.network", Stage::Constraints(ConstraintStage::Network(fw, net)));
+    }
+    if let Some(probe) = &state.probe {
+        collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);
+        emit_collision(scope, &next, probe.index());
+    }
+    state.garment = Some(next);
+    Ok(())
+}
+
+/// Solves the framework of `garment` and builds its constraint network, recording the
+/// figures. The body's index is built on first use.
+pub(super) fn solve_garment(
+    scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
+    probe: &mut Option<BodyProbe>,
+    cx: &StepContext<'_>,
+    mut garment: GarmentState,
+) -> Result<GarmentState, StepError> {
+    // The body's one index (clearance here, collision after), built once per body.
+    let probe = match probe {
+        Some(p) => p,
+        slot @ None => slot.insert(scope.timed("body.index", || {
+            BodyProbe::from_index(BodyIndex::new(body, &cx.options.collision.slices))
+        })),
+    };
+    let fw = scope.timed("garment.solve", || {
+        build_framework(body, probe, garment.template, &garment.dims, &garment.options)
+    })?;
+    let net = scope.timed("constraints.network", || {
+        ConstraintNet::for_framework(&fw, probe, &NetworkOptions::default())
+    });
+    scope.record(&FrameworkFigures {
+        template: garment.template.name(),
+        fit: fw.fit.name(),
+        resolution: garment.options.resolution,
+        m0_vertices: fw.m0.mesh.positions.len(),
+        m0_faces: fw.m0.mesh.triangles.len(),
+        m0_edges: fw.m0.edges.len(),
+        patches: fw.patches.len(),
+        stitch: fw.m0.report,
+        girths: fw
+            .rings
+            .iter()
+            .map(|r| Girth {
+                ring: &r.name,
+                girth_m: r.girth,
+                target_m: r.target,
+                body_tape_m: r.body_girth,
+                relative_error: r.target.map(|t| (r.girth - t) / t),
+            })
+            .collect(),
+        dimensions: &fw.dimensions,
+        constraints: net.constraints.len(),
+        curves: net.curves.len(),
+    });
+    garment.net = Some(net);
+    garment.framework = Some(fw);
+    Ok(garment)
+}

@@ -1,0 +1,42 @@
+//! `mannequin`: the [spline] study. The analytic dress form is sampled as a ring grid,
+//! refined by polar and by chord-length cubic splines, and both are measured against the
+//! true surface, region by region.
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::error::StepError;
+use super::super::stage::Stage;
+use crate::mannequin::{DressForm, MannequinOptions, RegionErrors, Region, run_mannequin};
+
+/// The figures of a mannequin step.
+#[derive(Serialize)]
+struct MannequinFigures<'a> {
+    /// Measured layers (rings).
+    layers: usize,
+    /// Measured points per layer.
+    points: usize,
+    /// Layers of the refined grids.
+    dense_layers: usize,
+    /// Points per layer of the refined grids.
+    dense_points: usize,
+    /// Max and RMS deviation (m) of both methods per region, hip to neck.
+    regions: Vec<&'a RegionErrors>,
+}
+
+pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, options: &MannequinOptions) -> Result<(), StepError> {
+    let form = DressForm::default();
+    let result = scope.timed("mannequin.refine", || run_mannequin(&form, options))?;
+    scope.record(&MannequinFigures {
+        layers: options.layers,
+        points: options.points,
+        dense_layers: result.polar.layers,
+        dense_points: result.polar.points,
+        regions: Region::REPORT_ORDER
+            .iter()
+            .filter_map(|r| result.regions.iter().find(|e| e.region == r.name()))
+            .collect(),
+    });
+    scope.emit("mannequin.refine", Stage::Mannequin(&result));
+    Ok(())
+}

@@ -1,0 +1,49 @@
+//! One file per step kind: each holds the step's compute, the stages it emits and the
+//! figures it records. [`run_step`] is the table that sends a step to its file.
+//!
+//! A new step kind is a new file here with a `run` function, its [`super::Op`] variant and
+//! parser arm, and one line in [`run_step`].
+
+mod collide;
+mod drag;
+mod garment;
+mod mannequin;
+pub(super) mod scene;
+mod section;
+mod set;
+mod undo;
+
+use super::emit::StepScope;
+use super::error::StepError;
+use super::format::{Op, Session};
+use super::runner::RunOptions;
+use super::state::SessionState;
+
+/// What every step may read: the session and the run's settings.
+pub(super) struct StepContext<'a> {
+    /// The session (its scene settings: the solver).
+    pub(super) session: &'a Session,
+    /// Run settings from the command line.
+    pub(super) options: &'a RunOptions,
+}
+
+/// Runs one step of the session on `state`.
+pub(super) fn run_step(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    cx: &StepContext<'_>,
+    op: &Op,
+) -> Result<(), StepError> {
+    match op {
+        Op::Mannequin(options) => mannequin::run(scope, options),
+        Op::Section { name, y } => section::run(scope, state, name, *y),
+        Op::Garment {
+            template,
+            fit,
+            resolution,
+        } => garment::run(scope, state, cx, *template, *fit, *resolution),
+        Op::Set { name, change } => set::run(scope, state, cx, name, *change),
+        Op::Drag(edit) => drag::run(scope, state, cx, edit),
+        Op::Undo => undo::run(scope, state),
+    }
+}

@@ -1,0 +1,83 @@
+//! `set`: one dimension of the current garment changed. The framework is solved again
+//! with it, the drags made since the last change are replayed on it, and M0 is rebuilt
+//! with the same topology and collided.
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::error::StepError;
+use super::super::format::Change;
+use super::super::stage::{GarmentPart, GarmentStage, Stage};
+use super::super::state::SessionState;
+use super::StepContext;
+use super::collide::{collide_garment, emit_collision};
+use super::drag::replay_edits;
+use super::garment::solve_garment;
+
+/// The change asked for.
+#[derive(Serialize)]
+struct SetFigures<'a> {
+    /// Dimension name.
+    dimension: &'a str,
+    /// Its value before (m, or a fraction for `strap_position`).
+    before: f64,
+    /// The value set.
+    value: f64,
+}
+
+/// How far the change moved M0.
+#[derive(Serialize)]
+struct MoveFigures {
+    /// Largest distance between a vertex of M0 before and after, m.
+    max_vertex_move_m: f64,
+}
+
+pub(super) fn run(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    cx: &StepContext<'_>,
+    name: &str,
+    change: Change,
+) -> Result<(), StepError> {
+    let Some((current_state, before)) = state
+        .garment
+        .as_ref()
+        .and_then(|g| g.framework.as_ref().map(|f| (g, f)))
+    else {
+        return Err(StepError::NoGarment { verb: "change" });
+    };
+    let current = before.dimension(name).unwrap_or(0.0);
+    let value = change.apply(current);
+    scope.record(&SetFigures {
+        dimension: name,
+        before: current,
+        value,
+    });
+    let mut next = current_state.unsolved();
+    next.dims.values.insert(name.to_string(), value);
+    let next = solve_garment(scope, &state.body, &mut state.probe, cx, next)?;
+    let mut next = replay_edits(scope, next, state.probe.as_ref(), &cx.session.scene.solver)?;
+    if let Some(after) = &next.framework {
+        let moved = before
+            .m0
+            .mesh
+            .positions
+            .iter()
+            .zip(&after.m0.mesh.positions)
+            .map(|(a, b)| a.distance(*b))
+            .fold(0.0, f64::max);
+        scope.record(&MoveFigures {
+            max_vertex_move_m: moved,
+        });
+        scope.emit("garment.edit", Stage::Garment(GarmentStage::Edit { name, before, after }));
+        for part in GarmentPart::all() {
+            scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
+        }
+    }
+    if let Some(probe) = &state.probe {
+        collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);
+        emit_collision(scope, &next, probe.index());
+    }
+    state.advance(next);
+    Ok(())
+}

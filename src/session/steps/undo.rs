@@ -1,0 +1,42 @@
+//! `undo`: the garment back to its state before the last `set` or `drag` (a refused drag
+//! counts: undoing it changes nothing). The restored curves, patches, M0 and collision are
+//! emitted again, so a viewer shows the state the session is now in.
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::error::StepError;
+use super::super::stage::{GarmentPart, GarmentStage, Stage};
+use super::super::state::SessionState;
+use super::collide::emit_collision;
+
+/// The state restored.
+#[derive(Serialize)]
+struct UndoFigures {
+    /// M0 vertices of the restored garment.
+    m0_vertices: usize,
+}
+
+pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
+    let previous = state.history.pop().ok_or(StepError::NothingToUndo)?;
+    if let Some(fw) = &previous.framework {
+        scope.record(&UndoFigures {
+            m0_vertices: fw.m0.mesh.positions.len(),
+        });
+        scope.emit(
+            "garment.undo",
+            Stage::Garment(GarmentStage::Undone {
+                framework: fw,
+                net: previous.net.as_ref(),
+            }),
+        );
+        for part in GarmentPart::RESURFACED {
+            scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
+        }
+    }
+    if let Some(probe) = &state.probe {
+        emit_collision(scope, &previous, probe.index());
+    }
+    state.garment = Some(previous);
+    Ok(())
+}
