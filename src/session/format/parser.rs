@@ -1,0 +1,430 @@
+//! The parser: statements into the syntax tree, one method per statement. Scene statements
+//! come first; steps are checked against what came before them (a `set` names a dimension
+//! of the garment built before it, an `undo` needs something to take back).
+
+use std::path::{Path, PathBuf};
+
+use super::args::{Args, integer_in, number, one_argument, vector};
+use super::lexer::{Line, Token, tokenize};
+use super::syntax::{Change, Op, ParseError, Scene, Session, Step, Units};
+use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
+use crate::constraint::{Chains, Edit, SolverOptions, Target};
+use crate::garment::{Fit, TemplateKind};
+use crate::mannequin::MannequinOptions;
+
+const SCENE_KEYWORDS: [&str; 5] = ["drape", "body", "units", "landmark", "solver"];
+const STEP_KEYWORDS: [&str; 6] = ["mannequin", "section", "garment", "set", "drag", "undo"];
+
+/// Parses and validates a session. `name` is used in messages; `base_dir` resolves
+/// relative body paths.
+///
+/// # Failures
+/// The first problem found, as a [`ParseError`] at its line and column.
+pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session, ParseError> {
+    let mut p = Parser {
+        base_dir,
+        version_seen: false,
+        body: None,
+        units: None,
+        landmarks: Vec::new(),
+        landmark_lines: Vec::new(),
+        solver: None,
+        steps: Vec::new(),
+        garment: None,
+        undoable: 0,
+    };
+    for (index, raw) in text.lines().enumerate() {
+        let line = tokenize(name, index + 1, raw)?;
+        p.statement(&line)?;
+    }
+    if !p.version_seen {
+        return Err(ParseError {
+            file: name.into(),
+            line: 1,
+            column: 1,
+            message: "empty session: expected 'drape 1' as the first statement".into(),
+        });
+    }
+    Ok(Session {
+        name: name.to_string(),
+        scene: Scene {
+            body: p.body.map_or(BodySource::Builtin, |b| b.0),
+            units: p.units.map_or(Units::Metres, |u| u.0),
+            landmarks: p.landmarks,
+            solver: p.solver.map_or_else(SolverOptions::default, |s| s.0),
+        },
+        steps: p.steps,
+    })
+}
+
+/// What the statements so far have set, each with the line that set it.
+struct Parser<'p> {
+    base_dir: &'p Path,
+    version_seen: bool,
+    body: Option<(BodySource, usize)>,
+    units: Option<(Units, usize)>,
+    landmarks: Vec<(LandmarkKind, LandmarkOverride)>,
+    landmark_lines: Vec<(LandmarkKind, usize)>,
+    solver: Option<(SolverOptions, usize)>,
+    steps: Vec<Step>,
+    /// The template of the last `garment` step.
+    garment: Option<TemplateKind>,
+    /// Garment steps that `undo` can take back.
+    undoable: usize,
+}
+
+impl Parser<'_> {
+    fn statement(&mut self, line: &Line<'_>) -> Result<(), ParseError> {
+        let Some((head, rest)) = line.tokens.split_first() else {
+            return Ok(());
+        };
+        let keyword = head.text;
+        if !self.version_seen {
+            return self.version(line, head, rest);
+        }
+        if SCENE_KEYWORDS.contains(&keyword) && !self.steps.is_empty() {
+            return Err(line.error(
+                head.column,
+                format!("'{keyword}' belongs to the scene and must come before the first step"),
+            ));
+        }
+        let op = match keyword {
+            "drape" => {
+                return Err(line.error(head.column, "'drape' may appear only once, as the first statement"));
+            }
+            "body" => return self.body(line, head, rest),
+            "units" => return self.units(line, head, rest),
+            "landmark" => return self.landmark(line, rest),
+            "solver" => return self.solver(line, head, rest),
+            "drag" => self.drag(line, head, rest)?,
+            "undo" => self.undo(line, head, rest)?,
+            "mannequin" => mannequin(line, rest)?,
+            "section" => section(line, rest)?,
+            "garment" => self.garment(line, rest)?,
+            "set" => self.set(line, head, rest)?,
+            other => {
+                return Err(line.error(
+                    head.column,
+                    format!(
+                        "unknown statement '{other}': expected a scene statement ({}) or a step ({})",
+                        SCENE_KEYWORDS.join(", "),
+                        STEP_KEYWORDS.join(", ")
+                    ),
+                ));
+            }
+        };
+        self.steps.push(Step {
+            line: line.number,
+            op,
+        });
+        Ok(())
+    }
+
+    /// `drape 1`, the required first statement.
+    fn version(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if head.text != "drape" || head.quoted {
+            return Err(line.error(
+                head.column,
+                format!("expected 'drape 1' as the first statement, found '{}'", head.text),
+            ));
+        }
+        let v = one_argument(line, rest, ("drape", "version"), "a format version (drape 1)")?;
+        if v.text != "1" {
+            return Err(line.error(
+                v.column,
+                format!("unsupported format version '{}': this drape reads version 1", v.text),
+            ));
+        }
+        self.version_seen = true;
+        Ok(())
+    }
+
+    /// `body builtin` or `body "path.obj"`.
+    fn body(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if let Some((_, first)) = self.body {
+            return Err(line.error(head.column, format!("the body is already set on line {first}")));
+        }
+        let t = one_argument(line, rest, ("body", "body"), "'builtin' or a quoted OBJ path")?;
+        let source = match t {
+            t if !t.quoted && t.text == "builtin" => BodySource::Builtin,
+            t if t.quoted => {
+                let p = PathBuf::from(t.text);
+                BodySource::File(if p.is_absolute() { p } else { self.base_dir.join(p) })
+            }
+            t => {
+                return Err(line.error(
+                    t.column,
+                    format!("expected 'builtin' or a quoted OBJ path, found '{}'", t.text),
+                ));
+            }
+        };
+        self.body = Some((source, line.number));
+        Ok(())
+    }
+
+    /// `units m|cm|mm`.
+    fn units(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if let Some((_, first)) = self.units {
+            return Err(line.error(head.column, format!("units are already set on line {first}")));
+        }
+        let t = one_argument(line, rest, ("units", "units"), "m, cm or mm")?;
+        let u = match t.text {
+            "m" => Units::Metres,
+            "cm" => Units::Centimetres,
+            "mm" => Units::Millimetres,
+            other => return Err(line.error(t.column, format!("unknown units '{other}': expected m, cm or mm"))),
+        };
+        self.units = Some((u, line.number));
+        Ok(())
+    }
+
+    /// `landmark NAME y=H` or `landmark NAME at=x,y,z`.
+    fn landmark(&mut self, line: &Line<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        let Some((which, args)) = rest.split_first() else {
+            return Err(line.error(line.end_column, "expected a landmark name after 'landmark'"));
+        };
+        let names: Vec<&str> = LandmarkKind::ALL.iter().map(|k| k.name()).collect();
+        let kind = LandmarkKind::from_name(which.text).ok_or_else(|| {
+            line.error(
+                which.column,
+                format!(
+                    "unknown landmark '{}': expected one of {}",
+                    which.text,
+                    names.join(", ")
+                ),
+            )
+        })?;
+        if let Some((_, first)) = self.landmark_lines.iter().find(|(k, _)| *k == kind) {
+            return Err(line.error(
+                which.column,
+                format!("landmark '{}' is already set on line {first}", which.text),
+            ));
+        }
+        let a = Args::parse(line, args, &["y", "at"], "landmark")?;
+        let correction = match (a.get("y"), a.get("at")) {
+            (Some(y), None) => LandmarkOverride::Height(number(line, y, "y")?),
+            (None, Some(at)) => LandmarkOverride::Point(vector(line, at, "at")?),
+            (Some(_), Some(at)) => {
+                return Err(line.error(at.column, "give either y= or at=, not both"));
+            }
+            (None, None) => {
+                return Err(line.error(line.end_column, "expected y=<height> or at=<x,y,z>"));
+            }
+        };
+        self.landmarks.push((kind, correction));
+        self.landmark_lines.push((kind, line.number));
+        Ok(())
+    }
+
+    /// `solver chains=iterate|split passes=N`.
+    fn solver(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if let Some((_, first)) = self.solver {
+            return Err(line.error(head.column, format!("the solver is already set on line {first}")));
+        }
+        let a = Args::parse(line, rest, &["chains", "passes"], "solver")?;
+        let mut options = SolverOptions::default();
+        if let Some(t) = a.get("chains") {
+            options.chains = Chains::from_name(t.text).ok_or_else(|| {
+                line.error(
+                    t.column,
+                    format!("unknown chains '{}': expected iterate or split", t.text),
+                )
+            })?;
+        }
+        if let Some(t) = a.get("passes") {
+            options.passes = integer_in(line, t, "passes", 1..=100)?;
+        }
+        self.solver = Some((options, line.number));
+        Ok(())
+    }
+
+    /// `drag POINT by=dx,dy,dz | to=x,y,z` or `drag CURVE by=dx,dy,dz`.
+    fn drag(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        if self.garment.is_none() {
+            return Err(line.error(head.column, "'drag' needs a garment: put a 'garment' step before it"));
+        }
+        let Some((which, args)) = rest.split_first() else {
+            return Err(line.error(
+                line.end_column,
+                "expected a control point (waist.front) or a curve (left_knee) after 'drag'",
+            ));
+        };
+        if which.quoted
+            || !which
+                .text
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '.')
+        {
+            return Err(line.error(
+                which.column,
+                format!("expected a point or curve name, found '{}'", which.text),
+            ));
+        }
+        let a = Args::parse(line, args, &["by", "to"], "drag")?;
+        let point = which.text.contains('.');
+        let name = which.text.to_string();
+        let edit = match (a.get("by"), a.get("to")) {
+            (Some(by), None) => {
+                let v = vector(line, by, "by")?;
+                if point {
+                    Edit::Point {
+                        name,
+                        target: Target::By(v),
+                    }
+                } else {
+                    Edit::Curve { name, by: v }
+                }
+            }
+            (None, Some(to)) if point => Edit::Point {
+                name,
+                target: Target::To(vector(line, to, "to")?),
+            },
+            (None, Some(to)) => {
+                return Err(line.error(
+                    to.column,
+                    "a whole curve is dragged by a vector (by=dx,dy,dz), not to a point",
+                ));
+            }
+            (Some(_), Some(to)) => return Err(line.error(to.column, "give either by= or to=, not both")),
+            (None, None) => {
+                return Err(line.error(line.end_column, "expected by=dx,dy,dz or to=x,y,z (metres)"));
+            }
+        };
+        self.undoable += 1;
+        Ok(Op::Drag(edit))
+    }
+
+    /// `undo`.
+    fn undo(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        if let Some(extra) = rest.first() {
+            return Err(line.error(extra.column, format!("unexpected '{}' after 'undo'", extra.text)));
+        }
+        if self.undoable == 0 {
+            return Err(line.error(
+                head.column,
+                "nothing to undo: 'undo' takes back a drag or set step of the garment",
+            ));
+        }
+        self.undoable -= 1;
+        Ok(Op::Undo)
+    }
+
+    /// `garment jumpsuit|dress fit=tight|loose resolution=N`.
+    fn garment(&mut self, line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        let Some((which, args)) = rest.split_first() else {
+            return Err(line.error(
+                line.end_column,
+                "expected a template after 'garment' (jumpsuit or dress)",
+            ));
+        };
+        let names: Vec<&str> = TemplateKind::ALL.iter().map(|t| t.name()).collect();
+        let template = TemplateKind::from_name(which.text).ok_or_else(|| {
+            line.error(
+                which.column,
+                format!(
+                    "unknown template '{}': expected one of {}",
+                    which.text,
+                    names.join(", ")
+                ),
+            )
+        })?;
+        let a = Args::parse(line, args, &["fit", "resolution"], "garment")?;
+        let fit = match a.get("fit") {
+            None => Fit::Tight,
+            Some(t) => Fit::from_name(t.text).ok_or_else(|| {
+                line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text))
+            })?,
+        };
+        let resolution = match a.get("resolution") {
+            None => 6,
+            Some(t) => integer_in(line, t, "resolution", 2..=24)?,
+        };
+        self.garment = Some(template);
+        self.undoable = 0;
+        Ok(Op::Garment {
+            template,
+            fit,
+            resolution,
+        })
+    }
+
+    /// `set NAME +d | -d | value`.
+    fn set(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        let Some(template) = self.garment else {
+            return Err(line.error(head.column, "'set' needs a garment: put a 'garment' step before it"));
+        };
+        let (which, value) = match rest {
+            [w, v] => (*w, *v),
+            [] | [_] => {
+                return Err(line.error(
+                    line.end_column,
+                    "expected a dimension and a value: set NAME +0.04 (or -0.04, or 0.74)",
+                ));
+            }
+            [_, _, extra, ..] => {
+                return Err(line.error(extra.column, format!("unexpected '{}' after the value", extra.text)));
+            }
+        };
+        let known = template.dimension_names();
+        if !known.iter().any(|k| k == which.text) {
+            return Err(line.error(
+                which.column,
+                format!(
+                    "unknown dimension '{}' for the {}: expected one of {}",
+                    which.text,
+                    template.name(),
+                    known.join(", ")
+                ),
+            ));
+        }
+        let v = number(line, value, "the value")?;
+        let change = if value.text.starts_with(['+', '-']) {
+            Change::By(v)
+        } else {
+            Change::To(v)
+        };
+        self.undoable += 1;
+        Ok(Op::Set {
+            name: which.text.to_string(),
+            change,
+        })
+    }
+}
+
+/// `mannequin layers=L points=P subdivisions=K`.
+fn mannequin(line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+    let a = Args::parse(line, rest, &["layers", "points", "subdivisions"], "mannequin")?;
+    let mut options = MannequinOptions::default();
+    if let Some(t) = a.get("layers") {
+        options.layers = integer_in(line, t, "layers", 4..=200)?;
+    }
+    if let Some(t) = a.get("points") {
+        options.points = integer_in(line, t, "points", 6..=360)?;
+    }
+    if let Some(t) = a.get("subdivisions") {
+        options.subdivisions = integer_in(line, t, "subdivisions", 1..=20)?;
+    }
+    Ok(Op::Mannequin(options))
+}
+
+/// `section y=H name=NAME`.
+fn section(line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+    let a = Args::parse(line, rest, &["y", "name"], "section")?;
+    let y = match a.get("y") {
+        Some(t) => number(line, t, "y")?,
+        None => {
+            return Err(line.error(line.end_column, "expected y=<height> for 'section'"));
+        }
+    };
+    let name = match a.get("name") {
+        Some(t) if t.text.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') => t.text.to_string(),
+        Some(t) => {
+            return Err(line.error(
+                t.column,
+                format!("a name may hold letters, digits and '_' only, found '{}'", t.text),
+            ));
+        }
+        None => format!("y{:.0}mm", y * 1000.0),
+    };
+    Ok(Op::Section { name, y })
+}

@@ -1,0 +1,154 @@
+//! The syntax tree of a session: what a parse produces and the runner reads.
+
+use thiserror::Error;
+
+use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
+use crate::constraint::{Edit, SolverOptions};
+use crate::garment::{Fit, TemplateKind};
+use crate::mannequin::MannequinOptions;
+
+/// A parse or validation error at a place in the session text.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{file}:{line}:{column}: {message}")]
+pub struct ParseError {
+    /// Session file name.
+    pub file: String,
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column.
+    pub column: usize,
+    /// What was expected.
+    pub message: String,
+}
+
+/// Units of the body file's coordinates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Units {
+    /// Metres.
+    Metres,
+    /// Centimetres.
+    Centimetres,
+    /// Millimetres.
+    Millimetres,
+}
+
+impl Units {
+    /// Factor to metres.
+    pub fn scale(self) -> f64 {
+        match self {
+            Self::Metres => 1.0,
+            Self::Centimetres => 0.01,
+            Self::Millimetres => 0.001,
+        }
+    }
+
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Metres => "m",
+            Self::Centimetres => "cm",
+            Self::Millimetres => "mm",
+        }
+    }
+}
+
+/// The scene header.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// The body.
+    pub body: BodySource,
+    /// Units of the body file.
+    pub units: Units,
+    /// Landmark corrections, in file order.
+    pub landmarks: Vec<(LandmarkKind, LandmarkOverride)>,
+    /// Constraint solver settings (`solver chains=iterate|split passes=N`).
+    pub solver: SolverOptions,
+}
+
+/// One operation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Op {
+    /// Refine the analytic dress form both ways and measure against its true surface.
+    Mannequin(MannequinOptions),
+    /// Cut the body with a horizontal plane.
+    Section {
+        /// Name for the viewer.
+        name: String,
+        /// Height, m.
+        y: f64,
+    },
+    /// Build a garment from a template: framework and M0.
+    Garment {
+        /// Template.
+        template: TemplateKind,
+        /// Contour fit.
+        fit: Fit,
+        /// Segments per anchor arc in M0.
+        resolution: usize,
+    },
+    /// Change a dimension of the current garment and solve again.
+    Set {
+        /// Dimension name.
+        name: String,
+        /// The change.
+        change: Change,
+    },
+    /// Drag a control point or a whole curve of the current garment.
+    Drag(Edit),
+    /// Go back to the state before the last garment step.
+    Undo,
+}
+
+/// A dimension change.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Change {
+    /// Add to the current value (`+0.04`, `-0.02`).
+    By(f64),
+    /// Set the value (`0.74`).
+    To(f64),
+}
+
+impl Change {
+    /// The new value from the current one.
+    pub fn apply(self, current: f64) -> f64 {
+        match self {
+            Self::By(d) => current + d,
+            Self::To(v) => v,
+        }
+    }
+}
+
+impl Op {
+    /// The operation's keyword.
+    pub fn keyword(&self) -> &'static str {
+        match self {
+            Self::Mannequin(_) => "mannequin",
+            Self::Section { .. } => "section",
+            Self::Garment { .. } => "garment",
+            Self::Set { .. } => "set",
+            Self::Drag(_) => "drag",
+            Self::Undo => "undo",
+        }
+    }
+}
+
+/// A step and where it was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Step {
+    /// 1-based line in the session file.
+    pub line: usize,
+    /// What to do.
+    pub op: Op,
+}
+
+/// A parsed, validated session.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Session {
+    /// File name (for messages and the recording's name).
+    pub name: String,
+    /// Scene header.
+    pub scene: Scene,
+    /// Steps in order.
+    pub steps: Vec<Step>,
+}
+
