@@ -10,7 +10,7 @@ use glam::{DVec2, DVec3};
 
 use super::curves::{self, CurveKind, CurveNode, curve_nodes};
 use super::kinds::{Constraint, Kind, SAMPLES_PER_SPAN, mirror, signed_gap};
-use crate::garment::assemble::{QUAD, TORSO};
+use crate::garment::template::{self, CurveRoles};
 use crate::garment::{BodyProbe, Framework};
 
 /// Settings of the network built for a template.
@@ -43,12 +43,14 @@ pub struct ConstraintNet {
 }
 
 impl ConstraintNet {
-    /// The network of a framework's template.
+    /// The network of a framework's template: the template says which curves mirror each
+    /// other, which rings are centred, where open curves end and what drives a tangent.
     pub fn for_framework(fw: &Framework, probe: &BodyProbe, options: &NetworkOptions) -> Self {
+        let roles = template::of(fw.template).roles();
         let curves = curve_nodes(fw);
         let id = |name: &str| curves.iter().position(|c| c.name == name);
         let mut out: Vec<Constraint> = Vec::new();
-        let mid_x = mid_plane(fw);
+        let mid_x = mid_plane(fw, &roles);
         let h = fw.layout.height;
         // Self constraints of the planar curves.
         for (k, c) in curves.iter().enumerate() {
@@ -97,7 +99,7 @@ impl ConstraintNet {
                 // points between eased samples sit a sagitta inside the eased polyline).
                 let need = flat.iter().map(|q| signed_gap(*q, &sflat).min(most)).collect();
                 own(Kind::OutsideBody { section, need });
-                if let Some(pairs) = self_pairs(fw, c) {
+                if let Some(pairs) = centred_pairs(fw, c, &roles) {
                     let rest = pairs.iter().map(|&(a, b)| pts[b] - mirror(pts[a], mid_x)).collect();
                     own(Kind::Symmetry { mid_x, pairs, rest });
                 }
@@ -105,10 +107,10 @@ impl ConstraintNet {
         }
         // Left-right pairs: leg rings by anchor name, straps point by point.
         for (k, c) in curves.iter().enumerate() {
-            let Some(partner) = c.name.strip_prefix("left_").map(|rest| format!("right_{rest}")) else {
+            let Some(partner) = roles.right_of(&c.name) else {
                 continue;
             };
-            let Some(m) = id(&partner) else {
+            let Some(m) = id(partner) else {
                 continue;
             };
             if c.kind == CurveKind::Contour {
@@ -164,20 +166,12 @@ impl ConstraintNet {
                 continue;
             }
             let n = curves::points(fw, c).len();
-            let ends: [(&str, String, String); 1] = match c.name.as_str() {
-                "crotch" => [("hip", "front".into(), "back".into())],
-                s => match s.strip_suffix("_strap") {
-                    Some(side) => [("chest", format!("front_{side}"), format!("back_{side}"))],
-                    None => continue,
-                },
-            };
-            for (ring, front, back) in ends {
-                let Some(r) = id(ring) else {
-                    continue;
-                };
+            if let Some(joint) = roles.ends_of(&c.name)
+                && let Some(r) = id(joint.ring)
+            {
                 let ring_ref = &fw.rings[curves[r].index];
-                for (name, end) in [(front, 0), (back, n - 1)] {
-                    if let Some(a) = ring_ref.anchor(&name) {
+                for (name, end) in joint.anchors.into_iter().zip([0, n - 1]) {
+                    if let Some(a) = ring_ref.anchor(name) {
                         out.push(Constraint {
                             kind: Kind::Coincident { a: a.control, b: end },
                             i: r,
@@ -187,17 +181,16 @@ impl ConstraintNet {
                     }
                 }
             }
-            // The princess contours run on into the straps.
-            if let Some(side) = c.name.strip_suffix("_strap") {
-                for (part, front) in [("front", true), ("back", false)] {
-                    if let Some(j) = id(&format!("{part}_{side}")) {
-                        out.push(Constraint {
-                            kind: Kind::Tangent { front },
-                            i,
-                            j,
-                            directed: true,
-                        });
-                    }
+            // Contours that run on from the curve's ends (the princess lines into the
+            // straps).
+            for t in roles.tangents.iter().filter(|t| t.curve == c.name) {
+                if let Some(j) = id(t.contour) {
+                    out.push(Constraint {
+                        kind: Kind::Tangent { front: t.front },
+                        i,
+                        j,
+                        directed: true,
+                    });
                 }
             }
         }
@@ -335,10 +328,13 @@ impl ConstraintNet {
     }
 }
 
-/// The body's mid-plane `x` as the framework sees it: the crotch curve's plane, or the
-/// mean of the centre-front anchors.
-fn mid_plane(fw: &Framework) -> f64 {
-    if let Some(c) = fw.open_curves.iter().find(|c| c.name == "crotch") {
+/// The body's mid-plane `x` as the framework sees it: the plane of the template's mirror
+/// curve (the jumpsuit's crotch curve), or the mean of the rings' `front` anchors.
+fn mid_plane(fw: &Framework, roles: &CurveRoles) -> f64 {
+    if let Some(c) = roles
+        .mirror_plane
+        .and_then(|name| fw.open_curves.iter().find(|c| c.name == name))
+    {
         return c.plane.offset * c.plane.normal.x.signum();
     }
     let xs: Vec<f64> = fw
@@ -349,35 +345,18 @@ fn mid_plane(fw: &Framework) -> f64 {
     xs.iter().sum::<f64>() / xs.len().max(1) as f64
 }
 
-/// The mirror pairs of a centred ring's anchors (`front_left` with `front_right`, `front`
-/// with itself, ...); `None` for a ring off the centre (a leg).
-fn self_pairs(fw: &Framework, c: &CurveNode) -> Option<Vec<(usize, usize)>> {
+/// The mirror pairs of a centred ring's control points (`front_left` with `front_right`,
+/// `front` with itself, ...), as the template names them; `None` for a ring off the centre
+/// (a leg).
+fn centred_pairs(fw: &Framework, c: &CurveNode, roles: &CurveRoles) -> Option<Vec<(usize, usize)>> {
     let r = &fw.rings[c.index];
-    let names: Vec<&str> = r.anchors.iter().map(|a| a.name).collect();
-    let centred = names == TORSO || names == QUAD;
-    if !centred || c.name.starts_with("left_") || c.name.starts_with("right_") {
-        return None;
-    }
-    let partner = |n: &str| -> String {
-        if let Some(x) = n.strip_suffix("left") {
-            format!("{x}right")
-        } else if let Some(x) = n.strip_suffix("right") {
-            format!("{x}left")
-        } else {
-            n.to_string()
-        }
-    };
-    let mut out = Vec::new();
-    for a in &r.anchors {
-        // Each pair once: the left member (or a centre point) first.
-        if a.name.ends_with("right") {
-            continue;
-        }
-        if let Some(b) = r.anchor(&partner(a.name)) {
-            out.push((a.control, b.control));
-        }
-    }
-    Some(out)
+    let names = roles.centred_pairs(&c.name)?;
+    Some(
+        names
+            .iter()
+            .filter_map(|(a, b)| Some((r.anchor(a)?.control, r.anchor(b)?.control)))
+            .collect(),
+    )
 }
 
 /// A displacement mirrored about a plane `x = const`.

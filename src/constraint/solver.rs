@@ -301,7 +301,7 @@ pub fn point_names(fw: &Framework, net: &ConstraintNet) -> Vec<(String, usize, u
                 }
             }
             CurveKind::Open => {
-                let apex = if c.name == "crotch" { "point" } else { "top" };
+                let apex = fw.open_curves[c.index].apex_name;
                 out.push((format!("{}.{apex}", c.name), k, curves::points(fw, c).len() / 2));
             }
             CurveKind::Contour => {}

@@ -1,24 +1,37 @@
 //! The garment feature-line framework ([frame]): ring processing, open curves, contours,
 //! templates, Coons surfacing and the stitched mesh M0.
+//!
+//! Layers, lowest first: the data model ([`model`]); the curve algorithms (ring sub-steps
+//! in [`ring`], [`convexify`], [`resample`], [`ease`]; [`open_curve`], [`contour`],
+//! [`adjust`]; anchors in [`anchors`]); surfacing ([`surface`], [`m0`]); the templates
+//! ([`template`]), which say what a garment's curves and patches are; and the two entry
+//! points, [`build_framework`] (solve on a body) and [`assemble::assemble`] (surface after
+//! an edit).
 
 pub mod adjust;
+pub mod anchors;
 pub mod assemble;
+pub mod build;
 pub mod contour;
 pub mod convexify;
 pub mod ease;
-pub mod framework;
 pub mod m0;
+pub mod model;
 pub mod open_curve;
 pub mod probe;
 pub mod resample;
 pub mod ring;
+pub mod surface;
 pub mod template;
 
+pub use build::{FrameworkOptions, build_framework};
 pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, convexify_open, extremes};
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};
-pub use framework::{Framework, FrameworkError, FrameworkOptions, build_framework};
 pub use m0::{CurveRef, M0, PatchGrid, StitchReport, stitch, weld};
+pub use model::{
+    DimensionValue, Dimensions, FeatureLine, Fit, Framework, FrameworkError, NamedPlane, Straightened, TemplateKind,
+};
 pub use probe::BodyProbe;
 pub use resample::{ResampleError, resample_closed, resample_open, resample_open_at};
 pub use ring::{GarmentRing, RingOptions, RingStages};
-pub use template::{Dimensions, Fit, TemplateKind};
+pub use template::Template;

@@ -36,6 +36,8 @@ pub struct OpenCurve {
     pub apex_param: f64,
     /// Apex position.
     pub apex: DVec3,
+    /// The name of the apex as a control point (`crotch.point`, `left_strap.top`).
+    pub apex_name: &'static str,
 }
 
 /// The part of a closed section loop beyond height `cut` around its apex, from the end with
@@ -94,6 +96,8 @@ pub fn section_part(section: &SectionLoop, cut: f64, apex: Apex) -> Option<(Vec<
 pub struct OpenInput<'a> {
     /// Name.
     pub name: &'a str,
+    /// The apex's name as a control point (`point`, `top`).
+    pub apex_name: &'static str,
     /// Plane (the curve lies in it).
     pub plane: Plane,
     /// The section part, front end first, and its apex index.
@@ -160,6 +164,7 @@ impl OpenCurve {
         let apex = control[c + 1];
         let mut curve = Self {
             name,
+            apex_name: input.apex_name,
             plane,
             stages: RingStages {
                 raw: vec![raw.clone()],

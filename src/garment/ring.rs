@@ -6,35 +6,11 @@
 use glam::{DVec2, DVec3};
 use thiserror::Error;
 
+use super::anchors::{AnchorSpec, locate};
 use super::convexify::convex_ring;
 use super::ease::{Ease, EaseError, ease_ring};
 use super::resample::{ResampleError, resample_closed};
 use crate::geom::{ChordSpline3, CurveEnds, Plane, SplineError, polygon};
-
-/// Where a ring's anchor (a named control point shared with a contour) sits.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum AnchorRule {
-    /// The ring point farthest along a world direction (`+z` front, `+x` left, ...).
-    Extreme(DVec3),
-    /// Where the ring crosses the vertical plane `x = mid + f (x_extreme - mid)` with
-    /// `x_extreme` the ring's extreme on that side (`f > 0` left, `f < 0` right, `0` the
-    /// centre line), on the front (`true`) or back half.
-    Across {
-        /// Signed fraction of the half width.
-        fraction: f64,
-        /// Front half (larger `z`) or back.
-        front: bool,
-    },
-}
-
-/// A named anchor and how to find it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AnchorSpec {
-    /// `front`, `front_left`, `outer`, ...
-    pub name: &'static str,
-    /// Where it is.
-    pub rule: AnchorRule,
-}
 
 /// Settings of ring processing.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -230,47 +206,6 @@ pub fn spline_length(spline: &ChordSpline3, closed: bool) -> f64 {
     } else {
         samples.windows(2).map(|w| w[0].distance(w[1])).sum()
     }
-}
-
-/// Where the closed polyline crosses `x = c` on the front (larger z) or back side.
-fn crossing(points: &[DVec3], c: f64, front: bool) -> Option<(usize, f64, DVec3)> {
-    let n = points.len();
-    let mut best: Option<(usize, f64, DVec3)> = None;
-    for i in 0..n {
-        let (a, b) = (points[i], points[(i + 1) % n]);
-        let (da, db) = (a.x - c, b.x - c);
-        if (da <= 0.0 && db > 0.0) || (da > 0.0 && db <= 0.0) {
-            let t = da / (da - db);
-            let p = a.lerp(b, t);
-            let better = best.is_none_or(|(_, _, q)| if front { p.z > q.z } else { p.z < q.z });
-            if better {
-                best = Some((i, t, p));
-            }
-        }
-    }
-    best
-}
-
-/// Locates anchors on a closed polyline: `(segment, t, point)` per anchor.
-fn locate(points: &[DVec3], anchors: &[AnchorSpec], mid_x: f64) -> Result<Vec<(usize, f64, DVec3)>, &'static str> {
-    let xmax = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
-    let xmin = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
-    anchors
-        .iter()
-        .map(|a| match a.rule {
-            AnchorRule::Extreme(d) => {
-                let i = (0..points.len()).fold(0, |b, i| if points[i].dot(d) > points[b].dot(d) { i } else { b });
-                Ok((i, 0.0, points[i]))
-            }
-            AnchorRule::Across { fraction, front } => {
-                let edge = if fraction >= 0.0 { xmax } else { xmin };
-                let c = mid_x + fraction.abs() * (edge - mid_x);
-                // Stay a hair inside the extreme so the plane really crosses.
-                let c = c.clamp(xmin + 1e-9 * (xmax - xmin), xmax - 1e-9 * (xmax - xmin));
-                crossing(points, c, front).ok_or(a.name)
-            }
-        })
-        .collect()
 }
 
 /// Control points on the closed polyline: the anchors plus evenly spaced points (by length)

@@ -365,7 +365,7 @@ impl Parser<'_> {
                 return Err(line.error(extra.column, format!("unexpected '{}' after the value", extra.text)));
             }
         };
-        let known = template.dimension_names();
+        let known = crate::garment::template::of(template).dimension_names();
         if !known.iter().any(|k| k == which.text) {
             return Err(line.error(
                 which.column,

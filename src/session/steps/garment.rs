@@ -14,7 +14,7 @@ use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::constraint::{ConstraintNet, NetworkOptions};
 use crate::garment::{
-    BodyProbe, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework, framework::DimensionValue,
+    BodyProbe, DimensionValue, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework,
 };
 
 /// The figures of a solved framework.

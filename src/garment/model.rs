@@ -1,0 +1,288 @@
+//! The data model of a garment framework: which template and fit, the dimensions set, and
+//! the solved framework itself (planes, rings, open curves, seams and junction lines,
+//! contours, patches, the stitched mesh M0, the dimensions reached, and the layout of sample
+//! counts fixed for the garment's life). The algorithms that make and edit it live beside
+//! it: [`super::build`] solves it, [`super::assemble`] surfaces it, and each template in
+//! [`super::template`] says what its curves and patches are.
+//!
+//! Units: metres, world frame (y up, the body faces +z, its left is +x).
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+use thiserror::Error;
+
+use super::contour::Contour;
+use super::m0::{M0, PatchError, PatchGrid};
+use super::open_curve::OpenCurve;
+use super::ring::{GarmentRing, RingBuildError};
+use crate::geom::{Plane, SplineError};
+
+/// The garments drape can build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+pub enum TemplateKind {
+    /// Sleeveless jumpsuit.
+    Jumpsuit,
+    /// Skirt or dress from the waist.
+    Dress,
+}
+
+impl TemplateKind {
+    /// Every template.
+    pub const ALL: [Self; 2] = [Self::Jumpsuit, Self::Dress];
+
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Jumpsuit => "jumpsuit",
+            Self::Dress => "dress",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|t| t.name() == name)
+    }
+}
+
+/// How contours run below the top ring of a loose part.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Fit {
+    /// Contours follow the rings' anchors (splines through them).
+    Tight,
+    /// Contours below a fixed ring are straightened (trouser legs, an A-line skirt).
+    Loose,
+}
+
+impl Fit {
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Tight => "tight",
+            Self::Loose => "loose",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::Tight, Self::Loose].into_iter().find(|f| f.name() == name)
+    }
+}
+
+/// Dimension values a session has set (the rest come from the body).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Dimensions {
+    /// Name to value (m, or a fraction for `strap_position`).
+    pub values: BTreeMap<String, f64>,
+}
+
+impl Dimensions {
+    /// A value if set.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.values.get(name).copied()
+    }
+}
+
+/// Why a framework cannot be solved.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum FrameworkError {
+    /// A ring or open curve failed.
+    #[error(transparent)]
+    Ring(#[from] RingBuildError),
+    /// A plane cuts no usable section.
+    #[error("{curve}: {what}")]
+    Section {
+        /// Curve.
+        curve: String,
+        /// What is missing.
+        what: String,
+    },
+    /// A contour could not be fitted.
+    #[error("contour '{0}': {1}")]
+    Contour(String, SplineError),
+    /// A patch failed.
+    #[error(transparent)]
+    Patch(#[from] PatchError),
+    /// A dimension is out of range.
+    #[error("dimension {name} = {value}: {reason}")]
+    Dimension {
+        /// Name.
+        name: String,
+        /// Value.
+        value: f64,
+        /// Allowed range.
+        reason: String,
+    },
+    /// The body mesh cannot be queried.
+    #[error("the body mesh cannot be prepared for distance queries")]
+    Probe,
+}
+
+/// A named plane with where to draw it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NamedPlane {
+    /// Name.
+    pub name: String,
+    /// The plane.
+    pub plane: Plane,
+    /// A point of it near the body (the centre of the drawn square).
+    pub centre: DVec3,
+    /// Half the drawn square's side, m.
+    pub extent: f64,
+}
+
+/// A short feature line (seam, junction).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FeatureLine {
+    /// Name.
+    pub name: String,
+    /// Samples, ends exact.
+    pub points: Vec<DVec3>,
+}
+
+/// A dimension's value after the solve.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct DimensionValue {
+    /// Name.
+    pub name: String,
+    /// Value reached (m, or a fraction).
+    pub value: f64,
+    /// The value set by the session, if any.
+    pub target: Option<f64>,
+}
+
+/// A contour straightened by the loose fit: its control points before and after.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Straightened {
+    /// Contour.
+    pub contour: String,
+    /// Before.
+    pub before: Vec<DVec3>,
+    /// After.
+    pub after: Vec<DVec3>,
+}
+
+/// A solved framework and its mesh.
+#[derive(Clone, Debug)]
+pub struct Framework {
+    /// Template.
+    pub template: TemplateKind,
+    /// Fit.
+    pub fit: Fit,
+    /// Planes used.
+    pub planes: Vec<NamedPlane>,
+    /// Rings, top to bottom.
+    pub rings: Vec<GarmentRing>,
+    /// Open curves.
+    pub open_curves: Vec<OpenCurve>,
+    /// Seams and junctions.
+    pub lines: Vec<FeatureLine>,
+    /// Contours.
+    pub contours: Vec<Contour>,
+    /// Loose-fit straightening.
+    pub straightened: Vec<Straightened>,
+    /// Patches.
+    pub patches: Vec<PatchGrid>,
+    /// The stitched mesh.
+    pub m0: M0,
+    /// Dimensions reached.
+    pub dimensions: Vec<DimensionValue>,
+    /// Sample counts of the patches and lines (fixed for the garment's life).
+    pub layout: Layout,
+}
+
+impl Framework {
+    /// A ring by name.
+    pub fn ring(&self, name: &str) -> Option<&GarmentRing> {
+        self.rings.iter().find(|r| r.name == name)
+    }
+
+    /// Every named control point (`waist.front`, `left_knee.outer`, `crotch.point`,
+    /// `left_strap.top`, ...), in a fixed order.
+    pub fn control_points(&self) -> Vec<(String, DVec3)> {
+        let mut out: Vec<(String, DVec3)> = self
+            .rings
+            .iter()
+            .flat_map(|r| {
+                r.anchors
+                    .iter()
+                    .map(move |a| (format!("{}.{}", r.name, a.name), a.point))
+            })
+            .collect();
+        for c in &self.open_curves {
+            out.push((format!("{}.{}", c.name, c.apex_name), c.apex));
+        }
+        out
+    }
+
+    /// The control points of every feature curve by name: rings and open curves (their
+    /// spline control points), contours (the points they pass), seams and junction lines
+    /// (their samples).
+    pub fn curve_controls(&self) -> BTreeMap<String, Vec<DVec3>> {
+        let mut out = BTreeMap::new();
+        for r in &self.rings {
+            out.insert(r.name.clone(), r.stages.control.clone());
+        }
+        for c in &self.open_curves {
+            out.insert(c.name.clone(), c.stages.control.clone());
+        }
+        for c in &self.contours {
+            out.insert(c.name.clone(), c.points.clone());
+        }
+        for l in &self.lines {
+            out.insert(l.name.clone(), l.points.clone());
+        }
+        out
+    }
+
+    /// The ease (the `ease` dimension), m.
+    pub fn ease(&self) -> f64 {
+        self.dimension("ease").unwrap_or(0.0)
+    }
+
+    /// A dimension's value.
+    pub fn dimension(&self, name: &str) -> Option<f64> {
+        self.dimensions.iter().find(|d| d.name == name).map(|d| d.value)
+    }
+}
+
+/// Sample counts of a template's patches and lines, fixed when the garment is built.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layout {
+    /// Body height, m.
+    pub height: f64,
+    /// Clearance of contour spans and seams from the body, m.
+    pub clearance: f64,
+    /// Weld threshold, m.
+    pub weld: f64,
+    /// Segments per anchor arc of a ring.
+    pub k: usize,
+    /// Per-template counts.
+    pub counts: Counts,
+}
+
+/// Segment counts along the contours of each band.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Counts {
+    /// The jumpsuit.
+    Jumpsuit {
+        /// Shoulder seam.
+        seam: usize,
+        /// Neckline arcs of the panels.
+        neck: usize,
+        /// Thigh-to-hip junction.
+        junction: usize,
+        /// Inner contour part of the junction.
+        inner: usize,
+        /// Crotch-curve part of the junction.
+        crotch: usize,
+        /// Strap halves.
+        strap: usize,
+        /// Torso bands hip-waist, waist-bust, bust-chest.
+        torso: [usize; 3],
+        /// Leg bands hem-knee, knee-thigh.
+        leg: [usize; 2],
+    },
+    /// The dress: bands hem-thigh, thigh-hip, hip-waist.
+    Dress([usize; 3]),
+}

@@ -1,0 +1,201 @@
+//! Surfacing: each four-sided region of a framework as a bilinearly blended Coons patch on
+//! the layout's fixed grid ([frame] section 4), kept from the previous framework when none
+//! of its boundary curves changed; and the lookups a template's patches use.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+use super::contour::Contour;
+use super::m0::{CurveRef, PatchGrid};
+use super::model::{FeatureLine, Framework, FrameworkError, Layout};
+use super::open_curve::OpenCurve;
+use super::probe::BodyProbe;
+use super::ring::GarmentRing;
+
+/// A framework error: `what` is wrong with curve `curve`.
+pub fn missing(curve: &str, what: &str) -> FrameworkError {
+    FrameworkError::Section {
+        curve: curve.to_string(),
+        what: what.to_string(),
+    }
+}
+
+/// Ring `name` of `fw`.
+pub fn ring<'r>(fw: &'r Framework, name: &str) -> Result<&'r GarmentRing, FrameworkError> {
+    fw.ring(name)
+        .ok_or_else(|| missing(name, "ring missing from the framework"))
+}
+
+/// `n + 1` samples of ring `name` from anchor `from` to anchor `to` (see
+/// [`GarmentRing::arc`]).
+pub fn arc(fw: &Framework, name: &str, from: &str, to: &str, n: usize) -> Result<Vec<DVec3>, FrameworkError> {
+    ring(fw, name)?
+        .arc(from, to, n)
+        .ok_or_else(|| missing(name, &format!("anchors {from} and {to} missing")))
+}
+
+/// Anchor `a` of ring `name`, m.
+pub fn anchor(fw: &Framework, name: &str, a: &str) -> Result<DVec3, FrameworkError> {
+    ring(fw, name)?
+        .anchor(a)
+        .map(|x| x.point)
+        .ok_or_else(|| missing(name, &format!("anchor {a} missing")))
+}
+
+/// Joins sample runs that share their end points.
+pub fn join(parts: &[Vec<DVec3>]) -> Vec<DVec3> {
+    let mut out: Vec<DVec3> = Vec::new();
+    for p in parts {
+        if out.is_empty() {
+            out.extend_from_slice(p);
+        } else {
+            out.extend_from_slice(&p[1..]);
+        }
+    }
+    out
+}
+
+/// `v` in reverse order.
+pub fn reversed(mut v: Vec<DVec3>) -> Vec<DVec3> {
+    v.reverse();
+    v
+}
+
+/// Contour `name` of `fw`.
+pub fn contour<'c>(fw: &'c Framework, name: &str) -> Result<&'c Contour, FrameworkError> {
+    fw.contours
+        .iter()
+        .find(|c| c.name == name)
+        .ok_or_else(|| missing(name, "contour missing from the framework"))
+}
+
+/// Where contour `name` passes ring `from`.
+pub fn through_at(c: &Contour, from: &str) -> Result<usize, FrameworkError> {
+    c.through
+        .iter()
+        .position(|t| t.split('.').next() == Some(from))
+        .ok_or_else(|| missing(&c.name, &format!("does not pass ring {from}")))
+}
+
+/// Open curve `name` of `fw`.
+pub fn open<'c>(fw: &'c Framework, name: &str) -> Result<&'c OpenCurve, FrameworkError> {
+    fw.open_curves
+        .iter()
+        .find(|c| c.name == name)
+        .ok_or_else(|| missing(name, "open curve missing from the framework"))
+}
+
+
+/// The samples of line `name` among `lines`.
+pub fn line<'l>(lines: &'l [FeatureLine], name: &str) -> Result<&'l [DVec3], FrameworkError> {
+    lines
+        .iter()
+        .find(|l| l.name == name)
+        .map(|l| l.points.as_slice())
+        .ok_or_else(|| missing(name, "line missing"))
+}
+
+/// The patch-surfacing context: clearance for contour spans, and the previous framework
+/// whose unchanged patches are kept.
+pub struct Surfacer<'a> {
+    fw: &'a Framework,
+    probe: &'a BodyProbe,
+    layout: &'a Layout,
+    previous: Option<(&'a Framework, BTreeMap<String, Vec<DVec3>>)>,
+    shapes: BTreeMap<String, Vec<DVec3>>,
+    patches: Vec<PatchGrid>,
+    resurfaced: Vec<String>,
+}
+
+impl<'a> Surfacer<'a> {
+    /// Surfaces `fw` (with its `lines`); with `previous`, patches none of whose curves
+    /// changed are taken from it.
+    pub fn new(fw: &'a Framework, lines: &[FeatureLine], probe: &'a BodyProbe, previous: Option<&'a Framework>) -> Self {
+        Self {
+            fw,
+            probe,
+            layout: &fw.layout,
+            previous: previous.map(|p| (p, curve_shapes(p, &p.lines))),
+            shapes: curve_shapes(fw, lines),
+            patches: Vec::new(),
+            resurfaced: Vec::new(),
+        }
+    }
+
+    /// The framework being surfaced.
+    pub fn framework(&self) -> &'a Framework {
+        self.fw
+    }
+
+    /// Its layout (sample counts).
+    pub fn layout(&self) -> &'a Layout {
+        self.layout
+    }
+
+    /// The patches made (or kept), and the names of those surfaced anew.
+    pub fn finish(self) -> (Vec<PatchGrid>, Vec<String>) {
+        (self.patches, self.resurfaced)
+    }
+
+    /// Samples of contour `name` from its point on ring `from` up to the next one, inner
+    /// samples cleared off the body.
+    pub fn span(&self, name: &str, from: &str, n: usize) -> Result<Vec<DVec3>, FrameworkError> {
+        let c = contour(self.fw, name)?;
+        Ok(c.span(through_at(c, from)?, n, Some((self.probe, self.layout.clearance))))
+    }
+
+    /// The control points of contour `name` that shape its span from ring `from`.
+    pub fn span_ref(&self, name: &str, from: &str) -> Result<CurveRef, FrameworkError> {
+        let c = contour(self.fw, name)?;
+        let k = through_at(c, from)?;
+        Ok(CurveRef {
+            curve: name.to_string(),
+            first: k.saturating_sub(1),
+            last: k + 2,
+        })
+    }
+
+    /// Surfaces one patch, or keeps the previous one when none of its curves changed.
+    pub fn patch(&mut self, name: &str, sides: [&[DVec3]; 4], curves: Vec<CurveRef>) -> Result<(), FrameworkError> {
+        if let Some((old, shapes)) = &self.previous {
+            let same = curves.iter().all(|c| shapes.get(&c.curve) == self.shapes.get(&c.curve));
+            if same && let Some(p) = old.patches.iter().find(|p| p.name == name) {
+                self.patches.push(p.clone());
+                return Ok(());
+            }
+        }
+        let grid = PatchGrid::coons(name, sides, 1e-9 * self.layout.height)?.with_curves(curves);
+        self.patches.push(grid);
+        self.resurfaced.push(name.to_string());
+        Ok(())
+    }
+}
+
+/// Every curve's shape by name: rings and open curves (control points), contours (points
+/// and end tangents), lines (samples). Two frameworks whose curve has the same shape
+/// give that curve the same samples.
+pub fn curve_shapes(fw: &Framework, lines: &[FeatureLine]) -> BTreeMap<String, Vec<DVec3>> {
+    let mut out = BTreeMap::new();
+    for r in &fw.rings {
+        out.insert(r.name.clone(), r.stages.control.clone());
+    }
+    for c in &fw.open_curves {
+        out.insert(c.name.clone(), c.stages.control.clone());
+    }
+    for c in &fw.contours {
+        let mut key = c.points.clone();
+        key.extend([c.tangents[0], c.tangents[1]].map(|t| t.unwrap_or(DVec3::splat(f64::NAN))));
+        // NaN != NaN would call every natural end changed: use a sentinel instead.
+        for p in &mut key {
+            if p.is_nan() {
+                *p = DVec3::splat(f64::MAX);
+            }
+        }
+        out.insert(c.name.clone(), key);
+    }
+    for l in lines {
+        out.insert(l.name.clone(), l.points.clone());
+    }
+    out
+}

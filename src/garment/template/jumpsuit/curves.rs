@@ -1,0 +1,347 @@
+//! The jumpsuit's curves on a body: the neckline in the neck-base plane, the straps in
+//! vertical planes across the shoulders, the torso rings (chest, bust, waist, hip) with the
+//! princess anchors in the strap planes, the leg rings (thigh, knee, hem), the crotch curve
+//! in the vertical crotch plane, and the contours through the anchors ([frame] sections
+//! 2.1-2.5).
+
+use glam::DVec3;
+
+use super::super::THIGH_DROP;
+use crate::body::{LandmarkKind, Side};
+use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
+use crate::garment::build::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
+use crate::garment::ease::Ease;
+use crate::garment::model::{Counts, Fit, FrameworkError};
+use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
+use crate::geom::{Plane, SectionLoop, section_mesh};
+
+/// Solves the jumpsuit's curves on the body.
+pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, FrameworkError> {
+    let body = ctx.body;
+    let lm = &body.landmarks;
+    let h = ctx.height;
+    let (floor, _) = body.mesh.mesh.bounds().map_or((DVec3::ZERO, DVec3::ZERO), |b| b);
+    let eps = 2e-3 * h;
+    let y_of = |k: LandmarkKind| lm.height(k);
+    let chest_y = y_of(LandmarkKind::Armpit) - eps;
+    let crotch_y = y_of(LandmarkKind::Crotch);
+    let thigh_y = crotch_y - THIGH_DROP * h;
+    let knee_y = y_of(LandmarkKind::Knee);
+    let ankle_y = y_of(LandmarkKind::Ankle);
+    let inseam = ctx.value(
+        "inseam",
+        crotch_y - ankle_y,
+        (crotch_y - knee_y + 0.05 * h, crotch_y - floor.y - 0.02 * h),
+        "the hem must lie between the knee and the foot",
+    )?;
+    let hem_y = crotch_y - inseam;
+    let neck_rise = ctx.value(
+        "neck_rise",
+        0.0,
+        (-0.02 * h, 0.03 * h),
+        "the neckline must stay near the neck base",
+    )?;
+    let strap_position = ctx.value("strap_position", 0.5, (0.1, 0.9), "the strap must lie on the shoulder")?;
+    let mut planes = Vec::new();
+
+    // Neckline: the neck-base plane, shifted up by the rise.
+    let base = lm
+        .neck_plane()
+        .ok_or_else(|| section_error("neckline", "the neck landmarks do not span a plane".into()))?;
+    let neck_plane = Plane {
+        normal: base.normal,
+        offset: base.offset + neck_rise,
+    };
+    let neck_centre = [
+        landmark(body, LandmarkKind::FrontNeck, Side::Centre)?,
+        landmark(body, LandmarkKind::SideNeck, Side::Left)?,
+        landmark(body, LandmarkKind::SideNeck, Side::Right)?,
+    ]
+    .iter()
+    .sum::<DVec3>()
+        / 3.0;
+    let upper_neck = Plane {
+        normal: base.normal,
+        offset: base.offset + 0.03 * h,
+    };
+    planes.push(ctx.plane_for("neck_base", base, neck_centre));
+    planes.push(ctx.plane_for("neck_upper", upper_neck, neck_centre + base.normal * 0.03 * h));
+    let neck_loops = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &neck_plane);
+    let neck_loop = neck_loops
+        .iter()
+        .filter(|l| l.closed)
+        .min_by(|a, b| {
+            let c = |l: &SectionLoop| l.points.iter().sum::<DVec3>() / l.points.len() as f64;
+            c(a).distance(neck_centre).total_cmp(&c(b).distance(neck_centre))
+        })
+        .ok_or_else(|| section_error("neckline", "the neck plane cuts no closed loop".into()))?;
+    let e = ctx.ring_ease("neckline")?;
+    let neckline = ctx.ring(
+        "neckline",
+        neck_plane,
+        vec![neck_loop.points.clone()],
+        &quad_anchors(),
+        Ease::Uniform(e),
+    )?;
+
+    // Straps: vertical planes across each shoulder.
+    let strap_x = |side: Side| -> Result<f64, FrameworkError> {
+        let sn = landmark(body, LandmarkKind::SideNeck, side)?;
+        let sh = landmark(body, LandmarkKind::Shoulder, side)?;
+        Ok(sn.x + strap_position * (sh.x - sn.x))
+    };
+    let (xl, xr) = (strap_x(Side::Left)?, strap_x(Side::Right)?);
+    let shoulder_y = y_of(LandmarkKind::Shoulder);
+
+    // Chest ring first: its princess anchors lie in the strap planes.
+    let mut rings = vec![neckline];
+    let chest_raw = ctx.torso_loop("chest", chest_y)?;
+    let e = ctx.ring_ease("chest")?;
+    let chest_anchors = {
+        let (xmax, xmin) = chest_raw
+            .iter()
+            .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| (a.max(p.x), b.min(p.x)));
+        let (hl, hr) = (xmax + e - ctx.mid_x, ctx.mid_x - (xmin - e));
+        if !(xl - ctx.mid_x < 0.95 * hl && ctx.mid_x - xr < 0.95 * hr) {
+            return Err(section_error(
+                "straps",
+                format!("the strap planes (x = {xl:.4}, {xr:.4} m) miss the chest ring; lower strap_position"),
+            ));
+        }
+        // Fractions of the eased half width; refined below on the eased ring itself.
+        torso_anchors((xl - ctx.mid_x) / hl, (ctx.mid_x - xr) / hr)
+    };
+    let chest_ease = ctx.limited_ease(chest_y, std::slice::from_ref(&chest_raw), e);
+    let chest = ctx.ring(
+        "chest",
+        Plane::horizontal(chest_y),
+        vec![chest_raw.clone()],
+        &chest_anchors,
+        chest_ease,
+    )?;
+    // The princess fractions that put the chest anchors exactly in the strap planes.
+    let (cxmax, cxmin) = chest
+        .stages
+        .eased
+        .iter()
+        .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| (a.max(p.x), b.min(p.x)));
+    let (fl, fr) = (
+        (xl - ctx.mid_x) / (cxmax - ctx.mid_x),
+        (ctx.mid_x - xr) / (ctx.mid_x - cxmin),
+    );
+    ctx.dimensions.retain(|d| d.name != "chest_girth");
+    let chest = ctx.ring(
+        "chest",
+        Plane::horizontal(chest_y),
+        vec![chest_raw],
+        &torso_anchors(fl, fr),
+        chest_ease,
+    )?;
+    rings.push(chest);
+    for (name, kind) in [
+        ("bust", LandmarkKind::Bust),
+        ("waist", LandmarkKind::Waist),
+        ("hip", LandmarkKind::Hip),
+    ] {
+        let y = y_of(kind);
+        let raw = ctx.torso_loop(name, y)?;
+        let e = ctx.ring_ease(name)?;
+        let ease = ctx.limited_ease(y, std::slice::from_ref(&raw), e);
+        let r = ctx.ring(name, Plane::horizontal(y), vec![raw], &torso_anchors(fl, fr), ease)?;
+        rings.push(r);
+    }
+    for (level, y) in [("thigh", thigh_y), ("knee", knee_y), ("hem", hem_y)] {
+        let loops = ctx.leg_loops(level, y)?;
+        for side in [Side::Left, Side::Right] {
+            let name = format!("{}_{level}", if side == Side::Left { "left" } else { "right" });
+            let raw = loops
+                .iter()
+                .find(|(s, _)| *s == side)
+                .map(|(_, p)| p.clone())
+                .ok_or_else(|| section_error(&name, "no leg loop on this side".into()))?;
+            let e = ctx.ring_ease(&name)?;
+            let ease = ctx.limited_ease(y, std::slice::from_ref(&raw), e);
+            let r = ctx.ring(&name, Plane::horizontal(y), vec![raw], &leg_anchors(side), ease)?;
+            rings.push(r);
+        }
+    }
+    for (name, y) in [
+        ("chest", chest_y),
+        ("bust", y_of(LandmarkKind::Bust)),
+        ("waist", y_of(LandmarkKind::Waist)),
+        ("hip", y_of(LandmarkKind::Hip)),
+        ("thigh", thigh_y),
+        ("knee", knee_y),
+        ("hem", hem_y),
+    ] {
+        let centre = lm
+            .torso_at(y)
+            .map_or(DVec3::new(ctx.mid_x, y, 0.0), |t| DVec3::new(t.x, y, t.y));
+        planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
+    }
+
+    // The crotch curve in the vertical crotch plane, from the hip's centre front down
+    // through the crotch and up to its centre back.
+    let hip_y = y_of(LandmarkKind::Hip);
+    let crotch_plane = Plane::from_point_normal(DVec3::new(ctx.mid_x, 0.0, 0.0), DVec3::X);
+    let crotch_ref = landmark(body, LandmarkKind::Crotch, Side::Centre)?;
+    planes.push(ctx.plane_for(
+        "crotch",
+        crotch_plane,
+        DVec3::new(ctx.mid_x, crotch_ref.y, crotch_ref.z),
+    ));
+    let crotch_part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &crotch_plane)
+        .iter()
+        .filter_map(|l| section_part(l, hip_y, Apex::Lowest))
+        .min_by(|a, b| a.0[a.1].distance(crotch_ref).total_cmp(&b.0[b.1].distance(crotch_ref)))
+        .ok_or_else(|| section_error("crotch", "the crotch plane cuts no curve below the hip".into()))?;
+    let per_half = ctx.options.ring.resample_per_arc;
+    let crotch = OpenCurve::build(&OpenInput {
+        name: "crotch",
+        apex_name: "point",
+        plane: crotch_plane,
+        raw: crotch_part,
+        ease: Ease::Uniform(ctx.ease),
+        ends: [point(&rings, "hip", "front")?, point(&rings, "hip", "back")?],
+        per_half,
+        control_per_half: 4,
+        fitted_per_half: ctx.options.ring.fitted_points / 4,
+    })?;
+    let mut open_curves = vec![crotch];
+    for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
+        let (name, suffix) = if side == Side::Left {
+            ("left_strap", "left")
+        } else {
+            ("right_strap", "right")
+        };
+        let plane = Plane::from_point_normal(DVec3::new(x, 0.0, 0.0), DVec3::X);
+        let reference = landmark(body, LandmarkKind::Shoulder, side)?;
+        let reference = DVec3::new(x, shoulder_y, reference.z);
+        planes.push(ctx.plane_for(name, plane, DVec3::new(x, shoulder_y - 0.04 * h, reference.z)));
+        let part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &plane)
+            .iter()
+            .filter_map(|l| section_part(l, chest_y, Apex::Highest))
+            .min_by(|a, b| a.0[a.1].distance(reference).total_cmp(&b.0[b.1].distance(reference)))
+            .ok_or_else(|| section_error(name, "the strap plane cuts no curve over the shoulder".into()))?;
+        let e = find(&rings, "chest")?.ease;
+        let e = match e {
+            Ease::Uniform(v) => v,
+            Ease::PerDirection { front, .. } => front,
+        };
+        let strap = OpenCurve::build(&OpenInput {
+            name,
+            apex_name: "top",
+            plane,
+            raw: part,
+            ease: Ease::Uniform(e),
+            ends: [
+                point(&rings, "chest", &format!("front_{suffix}"))?,
+                point(&rings, "chest", &format!("back_{suffix}"))?,
+            ],
+            per_half,
+            control_per_half: 4,
+            fitted_per_half: ctx.options.ring.fitted_points / 4,
+        })?;
+        open_curves.push(strap);
+    }
+
+    // Contours, lowest point first.
+    let side_names = [(Side::Left, "left"), (Side::Right, "right")];
+    let mut specs: Vec<ContourSpec> = Vec::new();
+    let torso_levels = ["hip", "waist", "bust", "chest"];
+    let pts = |levels: &[&str], anchor: &str| -> Vec<(String, String)> {
+        levels.iter().map(|l| (l.to_string(), anchor.to_string())).collect()
+    };
+    specs.push(("centre_front".into(), pts(&torso_levels, "front")));
+    specs.push(("centre_back".into(), pts(&torso_levels, "back")));
+    for (_, s) in side_names {
+        let leg = |a: &str| -> Vec<(String, String)> {
+            ["hem", "knee", "thigh"]
+                .iter()
+                .map(|l| (format!("{s}_{l}"), a.to_string()))
+                .collect()
+        };
+        let mut front = leg("front");
+        front.extend(pts(&torso_levels, &format!("front_{s}")));
+        let mut side = leg("outer");
+        side.extend(pts(&torso_levels, s));
+        let mut back = leg("back");
+        back.extend(pts(&torso_levels, &format!("back_{s}")));
+        let mut inner = leg("inner");
+        inner.push(("crotch".into(), "point".into()));
+        specs.push((format!("front_{s}"), front));
+        specs.push((format!("side_{s}"), side));
+        specs.push((format!("back_{s}"), back));
+        specs.push((format!("inner_{s}"), inner));
+    }
+    let mut straightened = Vec::new();
+    if fit == Fit::Loose {
+        let leg_specs: Vec<ContourSpec> = specs
+            .iter()
+            .map(|(n, p)| {
+                (
+                    n.clone(),
+                    p.iter()
+                        .filter(|(r, _)| r.ends_with("hem") || r.ends_with("knee") || r.ends_with("thigh"))
+                        .cloned()
+                        .collect(),
+                )
+            })
+            .collect();
+        for (_, s) in side_names {
+            let fixed = format!("{s}_thigh");
+            let mine: Vec<ContourSpec> = leg_specs
+                .iter()
+                .filter(|(_, p)| p.first().is_some_and(|(r, _)| r.starts_with(s)))
+                .cloned()
+                .collect();
+            // `loosen` reads points lowest first and straightens below the fixed ring.
+            straightened.extend(loosen(&mut rings, &mine, &fixed, &ctx.options.ring)?);
+        }
+    }
+    let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
+    let mut contours = fit_contours(&specs, &rings, &crotch_point)?;
+    // The princess lines run on into the straps: each meets its strap's end tangent.
+    for c in &mut contours {
+        let strap = match c.name.split_once('_') {
+            Some((part @ ("front" | "back"), side @ ("left" | "right"))) => Some((part == "front", side)),
+            _ => None,
+        };
+        if let Some((front, side)) = strap {
+            let i = if side == "left" { 1 } else { 2 };
+            let t = open_curves[i].end_tangent(front);
+            c.refit(c.points.clone(), [None, Some(t)])
+                .map_err(|e| FrameworkError::Contour(c.name.clone(), e))?;
+        }
+    }
+
+    let k = ctx.options.resolution.max(2);
+    let seam = (k / 3).max(1);
+    let junction = ctx.segments(hip_y - thigh_y, 1.0);
+    let inner = (junction / 3).max(1);
+    let mut torso = [0; 3];
+    for (n, (lo, hi)) in torso.iter_mut().zip([("hip", "waist"), ("waist", "bust"), ("bust", "chest")]) {
+        let (ylo, yhi) = (find(&rings, lo)?.plane.offset, find(&rings, hi)?.plane.offset);
+        *n = ctx.segments(yhi - ylo, 1.0);
+    }
+    // Counts from the landmarks, not the hem dimension: the topology stays fixed.
+    let leg = [knee_y - ankle_y, thigh_y - knee_y].map(|dy| ctx.segments(dy, 1.0));
+    let layout = ctx.layout(Counts::Jumpsuit {
+        seam,
+        neck: k - seam,
+        junction,
+        inner,
+        crotch: junction - inner,
+        strap: ctx.segments(shoulder_y - chest_y, 1.5),
+        torso,
+        leg,
+    });
+    Ok(Parts {
+        planes,
+        rings,
+        open_curves,
+        contours,
+        straightened,
+        layout,
+    })
+}

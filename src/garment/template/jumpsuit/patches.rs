@@ -1,0 +1,255 @@
+//! The jumpsuit's seams, junction lines and patches, from its curves ([frame] section 4).
+
+use glam::DVec3;
+
+use crate::garment::anchors::{LEFT_LEG, RIGHT_LEG, TORSO};
+use crate::garment::contour::clear_line;
+use crate::garment::m0::CurveRef;
+use crate::garment::model::{Counts, FeatureLine, Framework, FrameworkError};
+use crate::garment::open_curve::OpenCurve;
+use crate::garment::probe::BodyProbe;
+use crate::garment::surface::{Surfacer, anchor, arc, contour, join, line, missing, open, reversed, through_at};
+
+/// Segment counts of the bands, from the layout.
+struct Bands {
+    neck: usize,
+    junction: usize,
+    inner: usize,
+    crotch: usize,
+    strap: usize,
+    torso: [usize; 3],
+    leg: [usize; 2],
+}
+
+/// Shoulder seams (neckline side to strap top) and crotch junctions (the inner contours'
+/// span from the thigh).
+pub(super) fn lines(fw: &Framework, probe: &BodyProbe) -> Result<Vec<FeatureLine>, FrameworkError> {
+    let Counts::Jumpsuit {
+        seam: n_seam,
+        inner: n_inner,
+        ..
+    } = fw.layout.counts
+    else {
+        return Err(missing("layout", "not a jumpsuit's"));
+    };
+    let gap = fw.layout.clearance;
+    let mut lines = Vec::new();
+    for (s, strap) in [("left", "left_strap"), ("right", "right_strap")] {
+        lines.push(FeatureLine {
+            name: format!("seam_{s}"),
+            points: clear_line(anchor(fw, "neckline", s)?, open(fw, strap)?.apex, n_seam, probe, gap),
+        });
+    }
+    for s in ["left", "right"] {
+        let c = contour(fw, &format!("inner_{s}"))?;
+        let k = through_at(c, &format!("{s}_thigh"))?;
+        lines.push(FeatureLine {
+            name: format!("junction_{s}"),
+            points: c.span(k, n_inner, Some((probe, gap))),
+        });
+    }
+    Ok(lines)
+}
+
+
+/// Every patch of the jumpsuit: 24 around the torso, 8 at the crotch junction, 16 on the
+/// legs, and the front and back panels up to the neckline.
+pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    let Counts::Jumpsuit {
+        neck,
+        junction,
+        inner,
+        crotch,
+        strap,
+        torso,
+        leg,
+        ..
+    } = s.layout().counts
+    else {
+        return Err(missing("layout", "not a jumpsuit's"));
+    };
+    let n = Bands {
+        neck,
+        junction,
+        inner,
+        crotch,
+        strap,
+        torso,
+        leg,
+    };
+    let k = s.layout().k;
+    let torso_contours = [
+        "centre_front",
+        "front_left",
+        "side_left",
+        "back_left",
+        "centre_back",
+        "back_right",
+        "side_right",
+        "front_right",
+    ];
+    let torso_spans = [("hip", "waist"), ("waist", "bust"), ("bust", "chest")];
+    for ((lo, hi), nv) in torso_spans.into_iter().zip(n.torso) {
+        for i in 0..8 {
+            let (a, b) = (TORSO[i], TORSO[(i + 1) % 8]);
+            let bottom = arc(fw, lo, a, b, k)?;
+            let top = arc(fw, hi, a, b, k)?;
+            let left = s.span(torso_contours[i], lo, nv)?;
+            let right = s.span(torso_contours[(i + 1) % 8], lo, nv)?;
+            let curves = vec![
+                CurveRef::whole(lo),
+                CurveRef::whole(hi),
+                s.span_ref(torso_contours[i], lo)?,
+                s.span_ref(torso_contours[(i + 1) % 8], lo)?,
+            ];
+            s.patch(&format!("torso.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], curves)?;
+        }
+    }
+    let crotch = open(fw, "crotch")?;
+    let crotch_front = reversed(crotch.half(true, n.crotch));
+    let crotch_back = crotch.half(false, n.crotch);
+    for side in ["left", "right"] {
+        let thigh = format!("{side}_thigh");
+        let c = |name: &str| format!("{name}_{side}");
+        let sp = |s: &Surfacer<'_>, name: &str| s.span(name, &thigh, n.junction);
+        let inner_span = s.span(&c("inner"), &thigh, n.inner)?;
+        let inner_front = join(&[inner_span.clone(), crotch_front.clone()]);
+        let inner_back = join(&[inner_span, crotch_back.clone()]);
+        // Around the thigh in ring order: five stops (thigh anchor, hip anchor, the boundary
+        // between bands), the first and last both on the inner seam; a band between each
+        // two. The right leg goes round the other way (the mirror of the left).
+        let (stops, bands) = if side == "left" {
+            (
+                [
+                    ("inner", "front", inner_front),
+                    ("front", "front_left", sp(s, &c("front"))?),
+                    ("outer", "left", sp(s, &c("side"))?),
+                    ("back", "back_left", sp(s, &c("back"))?),
+                    ("inner", "back", inner_back),
+                ],
+                ["front_inner", "front_outer", "back_outer", "back_inner"],
+            )
+        } else {
+            (
+                [
+                    ("inner", "back", inner_back),
+                    ("back", "back_right", sp(s, &c("back"))?),
+                    ("outer", "right", sp(s, &c("side"))?),
+                    ("front", "front_right", sp(s, &c("front"))?),
+                    ("inner", "front", inner_front),
+                ],
+                ["back_inner", "back_outer", "front_outer", "front_inner"],
+            )
+        };
+        let mut specs: Vec<(&str, [Vec<DVec3>; 4])> = Vec::with_capacity(4);
+        for (band, w) in bands.into_iter().zip(stops.windows(2)) {
+            let ((t0, h0, b0), (t1, h1, b1)) = (&w[0], &w[1]);
+            specs.push((
+                band,
+                [
+                    arc(fw, &thigh, t0, t1, k)?,
+                    arc(fw, "hip", h0, h1, k)?,
+                    b0.clone(),
+                    b1.clone(),
+                ],
+            ));
+        }
+        let junction_curves = vec![
+            CurveRef::whole(&thigh),
+            CurveRef::whole("hip"),
+            s.span_ref(&c("front"), &thigh)?,
+            s.span_ref(&c("side"), &thigh)?,
+            s.span_ref(&c("back"), &thigh)?,
+            s.span_ref(&c("inner"), &thigh)?,
+            CurveRef::whole("crotch"),
+        ];
+        for (name, [bottom, top, left, right]) in specs {
+            s.patch(
+                &format!("junction.{side}.{name}"),
+                [&bottom, &top, &left, &right],
+                junction_curves.clone(),
+            )?;
+        }
+        let (order, cont) = if side == "left" {
+            (LEFT_LEG, ["front", "side", "back", "inner"])
+        } else {
+            (RIGHT_LEG, ["front", "inner", "back", "side"])
+        };
+        for ((lo, hi), nv) in [("hem", "knee"), ("knee", "thigh")].into_iter().zip(n.leg) {
+            let (lo_ring, hi_ring) = (format!("{side}_{lo}"), format!("{side}_{hi}"));
+            for i in 0..4 {
+                let (a, b) = (order[i], order[(i + 1) % 4]);
+                let bottom = arc(fw, &lo_ring, a, b, k)?;
+                let top = arc(fw, &hi_ring, a, b, k)?;
+                let left = s.span(&c(cont[i]), &lo_ring, nv)?;
+                let right = s.span(&c(cont[(i + 1) % 4]), &lo_ring, nv)?;
+                let curves = vec![
+                    CurveRef::whole(&lo_ring),
+                    CurveRef::whole(&hi_ring),
+                    s.span_ref(&c(cont[i]), &lo_ring)?,
+                    s.span_ref(&c(cont[(i + 1) % 4]), &lo_ring)?,
+                ];
+                s.patch(
+                    &format!("leg.{side}.{lo}_{hi}.{a}"),
+                    [&bottom, &top, &left, &right],
+                    curves,
+                )?;
+            }
+        }
+    }
+    // Front and back panels between the chest ring, the straps and the neckline.
+    let (left_strap, right_strap) = (open(fw, "left_strap")?, open(fw, "right_strap")?);
+    let strap = |c: &OpenCurve, front: bool| c.half(front, n.strap);
+    let (seam_left, seam_right) = (line(lines, "seam_left")?, line(lines, "seam_right")?);
+    let front_bottom = join(&[
+        arc(fw, "chest", "front_right", "front", k)?,
+        arc(fw, "chest", "front", "front_left", k)?,
+    ]);
+    let front_top = join(&[
+        reversed(seam_right.to_vec()),
+        arc(fw, "neckline", "right", "front", n.neck)?,
+        arc(fw, "neckline", "front", "left", n.neck)?,
+        seam_left.to_vec(),
+    ]);
+    let panel_curves: Vec<CurveRef> = [
+        "chest",
+        "neckline",
+        "left_strap",
+        "right_strap",
+        "seam_left",
+        "seam_right",
+    ]
+    .map(CurveRef::whole)
+    .to_vec();
+    s.patch(
+        "panel.front",
+        [
+            &front_bottom,
+            &front_top,
+            &strap(right_strap, true),
+            &strap(left_strap, true),
+        ],
+        panel_curves.clone(),
+    )?;
+    let back_bottom = join(&[
+        arc(fw, "chest", "back_left", "back", k)?,
+        arc(fw, "chest", "back", "back_right", k)?,
+    ]);
+    let back_top = join(&[
+        reversed(seam_left.to_vec()),
+        arc(fw, "neckline", "left", "back", n.neck)?,
+        arc(fw, "neckline", "back", "right", n.neck)?,
+        seam_right.to_vec(),
+    ]);
+    s.patch(
+        "panel.back",
+        [
+            &back_bottom,
+            &back_top,
+            &reversed(strap(left_strap, false)),
+            &reversed(strap(right_strap, false)),
+        ],
+        panel_curves,
+    )
+}
