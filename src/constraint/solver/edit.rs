@@ -1,0 +1,123 @@
+//! Edits of the framework's curves (a control point or a whole curve dragged), the names
+//! that can be dragged, and why an edit is refused.
+
+use glam::DVec3;
+use thiserror::Error;
+
+use crate::constraint::curves::{self, CurveKind};
+use crate::constraint::network::ConstraintNet;
+use crate::garment::Framework;
+
+/// Where a drag goes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// Move by this vector, m.
+    By(DVec3),
+    /// Move to this point, m.
+    To(DVec3),
+}
+
+/// An edit of the framework's curves.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Edit {
+    /// Drag a named control point (`waist.front`, `crotch.point`, `left_strap.top`).
+    Point {
+        /// Point name.
+        name: String,
+        /// Where to.
+        target: Target,
+    },
+    /// Drag a whole curve by a vector.
+    Curve {
+        /// Curve name.
+        name: String,
+        /// The move, m.
+        by: DVec3,
+    },
+}
+
+impl std::fmt::Display for Edit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = |d: DVec3| format!("({:.3}, {:.3}, {:.3})", d.x, d.y, d.z);
+        match self {
+            Self::Point {
+                name,
+                target: Target::By(d),
+            } => write!(f, "drag {name} by {} m", v(*d)),
+            Self::Point {
+                name,
+                target: Target::To(p),
+            } => write!(f, "drag {name} to {} m", v(*p)),
+            Self::Curve { name, by } => write!(f, "drag curve {name} by {} m", v(*by)),
+        }
+    }
+}
+
+/// Why an edit cannot be made. The framework is left as it was.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum EditError {
+    /// No such control point.
+    #[error("unknown control point '{name}': expected one of {known}")]
+    UnknownPoint {
+        /// Asked.
+        name: String,
+        /// What exists.
+        known: String,
+    },
+    /// No such curve.
+    #[error("unknown curve '{name}': expected one of {known}")]
+    UnknownCurve {
+        /// Asked.
+        name: String,
+        /// What exists.
+        known: String,
+    },
+    /// A coordinate is not finite.
+    #[error("the drag of '{0}' is not a finite vector")]
+    NotFinite(String),
+    /// The edit would make a curve cross itself.
+    #[error(
+        "curve '{curve}' would cross itself (segments {i} and {j} meet at ({x:.4}, {y:.4}, {z:.4}) m, cutting off a loop of {loop_length:.4} m): edit refused",
+        x = at.x, y = at.y, z = at.z
+    )]
+    SelfCrossing {
+        /// Curve.
+        curve: String,
+        /// First segment.
+        i: usize,
+        /// Second segment.
+        j: usize,
+        /// Where.
+        at: DVec3,
+        /// Loop length, m.
+        loop_length: f64,
+    },
+    /// A curve cannot be refitted.
+    #[error("curve '{curve}' cannot be refitted: {message}")]
+    Refit {
+        /// Curve.
+        curve: String,
+        /// Why.
+        message: String,
+    },
+}
+
+/// Every draggable point name with its (curve, control point).
+pub fn point_names(fw: &Framework, net: &ConstraintNet) -> Vec<(String, usize, usize)> {
+    let mut out = Vec::new();
+    for (k, c) in net.curves.iter().enumerate() {
+        match c.kind {
+            CurveKind::Ring => {
+                for a in &fw.rings[c.index].anchors {
+                    out.push((format!("{}.{}", c.name, a.name), k, a.control));
+                }
+            }
+            CurveKind::Open => {
+                let apex = fw.open_curves[c.index].apex_name;
+                out.push((format!("{}.{apex}", c.name), k, curves::points(fw, c).len() / 2));
+            }
+            CurveKind::Contour => {}
+        }
+    }
+    out
+}
