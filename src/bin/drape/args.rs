@@ -1,0 +1,107 @@
+//! The command line's arguments (clap).
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+/// Exit codes, for `--help` and the README.
+pub(crate) const EXIT_CODES: &str = "Exit codes: 0 success; 1 a step failed at run time (the recording keeps \
+every stage before it, plus the error); 2 bad input (a malformed session, flag or body file); \
+3 an internal or I/O failure (a file that cannot be written, a viewer that cannot be reached).";
+
+/// Garment edit sessions against a body, every stage logged to Rerun.
+///
+/// With no command, runs the built-in demo session and writes recordings/demo.rrd
+/// (view it with `rerun recordings/demo.rrd`).
+#[derive(Parser, Debug)]
+#[command(name = "drape", version, about, long_about, after_help = EXIT_CODES)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Subcommand, Debug)]
+pub(crate) enum Command {
+    /// Run a session (default: the built-in demo) and log every stage to Rerun.
+    #[command(after_help = EXIT_CODES)]
+    Run(RunArgs),
+    /// Parse and validate a session without running it.
+    #[command(after_help = EXIT_CODES)]
+    Check {
+        /// The session file.
+        session: PathBuf,
+    },
+    /// Print the constraint network of every garment the session builds: its curves, the
+    /// matrix g_ij, and every constraint with its priority, direction and residual; then
+    /// each drag's outcome.
+    #[command(after_help = EXIT_CODES)]
+    Constraints {
+        /// The session file; without it, the built-in demo.
+        session: Option<PathBuf>,
+    },
+    /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
+    /// and print each method's deviation from the true surface per region.
+    Mannequin(MannequinArgs),
+}
+
+#[derive(Args, Debug, Default)]
+pub(crate) struct RunArgs {
+    /// Session file; without it, the built-in demo (assets/sessions/demo.drape).
+    pub(crate) session: Option<PathBuf>,
+    /// Use this body OBJ (metres, y up, facing +z) instead of the session's.
+    #[arg(long, value_name = "OBJ")]
+    pub(crate) body: Option<PathBuf>,
+    /// Write the recording here [default: recordings/<session name>.rrd].
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["connect", "serve"])]
+    pub(crate) save: Option<PathBuf>,
+    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy.
+    #[arg(long, value_name = "URL", conflicts_with = "serve")]
+    pub(crate) connect: Option<String>,
+    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C.
+    #[arg(long)]
+    pub(crate) serve: bool,
+    /// Port for --serve.
+    #[arg(long, default_value_t = 9876, requires = "serve")]
+    pub(crate) port: u16,
+    /// Write per-step metrics (timings, counts, figures) as a JSON array.
+    #[arg(long, value_name = "PATH")]
+    pub(crate) metrics: Option<PathBuf>,
+    /// Write the body and every mesh a step produces as OBJ files into this folder.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) export: Option<PathBuf>,
+    /// Also log compute timings to the recording (makes recordings differ run to run).
+    #[arg(long)]
+    pub(crate) log_timings: bool,
+    /// Check every collision against the brute-force ground truth (every garment vertex
+    /// and edge against every body triangle; a few seconds per step). The figures go to
+    /// the log, the metrics and the progress lines.
+    #[arg(long)]
+    pub(crate) verify: bool,
+    /// Test every vertex point-face against every body triangle (no partitions, no BVH, no
+    /// line-line), to compare.
+    #[arg(long)]
+    pub(crate) brute_force: bool,
+    /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
+    #[arg(long)]
+    pub(crate) no_skipping: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct MannequinArgs {
+    /// Measured layers (rings) of the dress form.
+    #[arg(long, default_value_t = 18, value_parser = clap::value_parser!(u16).range(4..=200))]
+    pub(crate) layers: u16,
+    /// Measured points per layer.
+    #[arg(long, default_value_t = 12, value_parser = clap::value_parser!(u16).range(6..=360))]
+    pub(crate) points: u16,
+    /// Split every grid interval this many ways (the paper: 6).
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u16).range(1..=20))]
+    pub(crate) subdivisions: u16,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Log both surfaces, coloured by their distance to the true surface, to this recording.
+    #[arg(long, value_name = "PATH", default_value = "recordings/mannequin.rrd")]
+    pub(crate) save: PathBuf,
+}

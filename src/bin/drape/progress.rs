@@ -1,0 +1,84 @@
+//! Progress lines on stderr: each step's compute and logging time, solves, refusals and
+//! collision figures as they happen, so a long run shows where it is.
+
+use drape::session::{CollisionPart, CollisionStage, ConstraintStage, SinkError, StageInfo, StageSink, StepEnd};
+
+use crate::network::solve_line;
+
+/// Prints each stage as it completes, so long runs show progress.
+pub(crate) struct Progress;
+
+impl StageSink for Progress {
+    fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> std::result::Result<(), SinkError> {
+        match end {
+            StepEnd::Done(m) => {
+                let compute: f64 = m
+                    .timings_ms
+                    .iter()
+                    .filter(|(k, _)| !k.starts_with("log."))
+                    .map(|(_, v)| v)
+                    .sum();
+                let log: f64 = m
+                    .timings_ms
+                    .iter()
+                    .filter(|(k, _)| k.starts_with("log."))
+                    .map(|(_, v)| v)
+                    .sum();
+                // An empty sum is -0.0.
+                let (compute, log) = (compute + 0.0, log + 0.0);
+                eprintln!(
+                    "  step {} {:<10} done: compute {compute:8.1} ms, logging {log:6.1} ms",
+                    info.step, info.op
+                );
+            }
+            StepEnd::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message()),
+        }
+        Ok(())
+    }
+
+    fn constraints(&mut self, info: &StageInfo, stage: ConstraintStage<'_>) -> std::result::Result<(), SinkError> {
+        match stage {
+            ConstraintStage::Solve {
+                edit, net, solution, ..
+            } => eprintln!("  step {} solve: {}", info.step, solve_line(edit, net, solution)),
+            ConstraintStage::Refused { message, .. } => eprintln!("  step {} drag REFUSED: {message}", info.step),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> std::result::Result<(), SinkError> {
+        if stage.part != CollisionPart::Respond {
+            return Ok(());
+        }
+        let outcome = stage.outcome;
+        let c = &outcome.collision;
+        let d = &c.detection;
+        eprintln!(
+            "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges",
+            info.step,
+            d.tested,
+            d.skipped_inert,
+            d.skipped_patch,
+            d.hits.len(),
+            c.responses.len(),
+            c.quality.penetrating_vertices,
+            c.quality.crossing_edges
+        );
+        if let Some(v) = &outcome.verify {
+            eprintln!(
+                "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",
+                info.step,
+                v.inside_before,
+                v.missed,
+                v.missed_line_line,
+                v.false_hits,
+                v.false_line_line,
+                v.inside_after,
+                v.crossing_after,
+                v.quality_agrees
+            );
+        }
+        Ok(())
+    }
+}
