@@ -137,6 +137,18 @@ pub struct GarmentRing {
     pub body_girth: f64,
 }
 
+/// One try at the ring with a given extra ease: every sub-step from easing on, and the
+/// fitted spline's girth (m).
+struct Attempt {
+    eased: Vec<DVec3>,
+    control: Vec<DVec3>,
+    at: Vec<usize>,
+    spline: ChordSpline3,
+    params: Vec<f64>,
+    fitted: Vec<DVec3>,
+    girth: f64,
+}
+
 /// Inputs of one ring.
 #[derive(Clone, Debug)]
 pub struct RingInput<'a> {
@@ -325,18 +337,7 @@ impl GarmentRing {
         let resampled = resample_closed(&convex.points, &convex.anchors, options.resample_per_arc)
             .map_err(|e| RingBuildError::Resample(name.clone(), e))?;
         let body_girth = closed_length(&convex.points);
-        let attempt = |extra: f64| -> Result<
-            (
-                Vec<DVec3>,
-                Vec<DVec3>,
-                Vec<usize>,
-                ChordSpline3,
-                Vec<f64>,
-                Vec<DVec3>,
-                f64,
-            ),
-            RingBuildError,
-        > {
+        let attempt = |extra: f64| -> Result<Attempt, RingBuildError> {
             let eased = ease_ring(&resampled, &convex.points, &plane, offset_ease(input.ease, extra))
                 .map_err(|e| RingBuildError::Ease(name.clone(), e))?;
             let located = locate(&eased, input.anchors, input.mid_x).map_err(|anchor| RingBuildError::Anchor {
@@ -355,13 +356,21 @@ impl GarmentRing {
             let (spline, params, fitted) =
                 fit(&control, &at, options.per_arc(at.len())).map_err(|e| RingBuildError::Fit(name.clone(), e))?;
             let girth = spline_length(&spline, true);
-            Ok((eased, control, at, spline, params, fitted, girth))
+            Ok(Attempt {
+                eased,
+                control,
+                at,
+                spline,
+                params,
+                fitted,
+                girth,
+            })
         };
         let mut extra = 0.0;
         let mut result = attempt(0.0)?;
         if let Some(target) = input.target {
             let floor = -least_ease(input.ease);
-            let minimum = attempt(floor)?.6;
+            let minimum = attempt(floor)?.girth;
             if !(target.is_finite() && target >= minimum) {
                 return Err(RingBuildError::GirthTooSmall {
                     ring: name,
@@ -370,11 +379,11 @@ impl GarmentRing {
                 });
             }
             // Secant on girth(extra) = target; the girth grows by about 2 pi per metre of ease.
-            let (mut x0, mut g0) = (0.0, result.6);
+            let (mut x0, mut g0) = (0.0, result.girth);
             let mut x1 = ((target - g0) / std::f64::consts::TAU).max(floor);
             for _ in 0..40 {
                 let r = attempt(x1)?;
-                let g1 = r.6;
+                let g1 = r.girth;
                 extra = x1;
                 result = r;
                 if (g1 - target).abs() <= options.girth_tolerance * target {
@@ -390,7 +399,15 @@ impl GarmentRing {
                 x1 = (x1 + (target - g1) / slope).max(floor);
             }
         }
-        let (eased, control, at, spline, params, fitted, girth) = result;
+        let Attempt {
+            eased,
+            control,
+            at,
+            spline,
+            params,
+            fitted,
+            girth,
+        } = result;
         let anchors = input
             .anchors
             .iter()

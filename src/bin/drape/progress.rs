@@ -9,7 +9,7 @@ use crate::network::solve_line;
 pub(crate) struct Progress;
 
 impl StageSink for Progress {
-    fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> std::result::Result<(), SinkError> {
+    fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> Result<(), SinkError> {
         match end {
             StepEnd::Done(m) => {
                 let compute: f64 = m
@@ -36,7 +36,7 @@ impl StageSink for Progress {
         Ok(())
     }
 
-    fn constraints(&mut self, info: &StageInfo, stage: ConstraintStage<'_>) -> std::result::Result<(), SinkError> {
+    fn constraints(&mut self, info: &StageInfo, stage: ConstraintStage<'_>) -> Result<(), SinkError> {
         match stage {
             ConstraintStage::Solve {
                 edit, net, solution, ..
@@ -47,7 +47,7 @@ impl StageSink for Progress {
         Ok(())
     }
 
-    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> std::result::Result<(), SinkError> {
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         if stage.part != CollisionPart::Respond {
             return Ok(());
         }
