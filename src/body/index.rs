@@ -22,19 +22,19 @@ use crate::mesh::topology::NO_NEIGHBOUR;
 pub struct Nearest {
     /// Body triangle.
     pub triangle: u32,
-    /// Nearest surface point.
+    /// Nearest surface point, m (world frame).
     pub foot: DVec3,
     /// Which feature of the triangle it lies on.
     pub feature: Feature,
-    /// Distance to it.
+    /// Distance from the query point to `foot`, m.
     pub distance: f64,
     /// Outward pseudo-normal of that feature (unit; zero on a fully degenerate feature).
     pub normal: DVec3,
 }
 
 impl Nearest {
-    /// Signed distance: negative inside the body (the point lies behind the feature's
-    /// pseudo-normal), zero on the surface.
+    /// Signed distance of `p` (m): negative inside the body (the point lies behind the
+    /// feature's angle-weighted pseudo-normal, Baerentzen and Aanaes 2005), zero on the surface.
     pub fn signed(&self, p: DVec3) -> f64 {
         if (p - self.foot).dot(self.normal) < 0.0 {
             -self.distance
@@ -64,7 +64,7 @@ pub struct PartitionIndex {
 
 /// The body prepared for collision.
 pub struct BodyIndex {
-    /// Vertex positions.
+    /// Vertex positions, m (world frame).
     pub positions: Vec<DVec3>,
     /// Triangles.
     pub triangles: Vec<[u32; 3]>,
@@ -310,7 +310,8 @@ impl BodyIndex {
         self.nearest_in(&part.bvh, |i| part.triangles[i as usize], p, reach)
     }
 
-    /// Signed distance to the body (negative inside), exact; `None` beyond `reach`.
+    /// Signed distance of `p` to the body (m, negative inside), exact; `None` when no
+    /// triangle lies within `reach` (m).
     pub fn signed_distance(&self, p: DVec3, reach: f64) -> Option<f64> {
         self.nearest(p, reach).map(|n| n.signed(p))
     }

@@ -1,4 +1,4 @@
-//! Body partitions A-G ([collide] section 4.1, table 1): height bands between landmark
+//! Body partitions A-G (\[collide\] section 4.1, table 1): height bands between landmark
 //! rings, each with the collision test and the response rule its shape calls for.
 
 use super::landmarks::{LandmarkKind, Landmarks};
@@ -54,7 +54,7 @@ impl PartitionId {
         }
     }
 
-    /// How garment vertices in this partition are tested ([collide] table 1 and section 4.2:
+    /// How garment vertices in this partition are tested (\[collide\] table 1 and section 4.2:
     /// legs and abdomen use the cheap line-line test in the horizontal section).
     pub fn method(self) -> DetectionMethod {
         match self {
@@ -63,7 +63,7 @@ impl PartitionId {
         }
     }
 
-    /// Which direction a penetrating vertex is pushed out along ([collide] section 5.2).
+    /// Which direction a penetrating vertex is pushed out along (\[collide\] section 5.2).
     pub fn response(self) -> ResponseRule {
         match self {
             Self::A | Self::B | Self::C => ResponseRule::RingCentre,

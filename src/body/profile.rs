@@ -10,7 +10,7 @@ use crate::mesh::{Adjacency, TriMesh};
 pub struct MeasuredLoop {
     /// The loop's points (y constant), counter-clockwise seen from above, front-most first.
     pub points: Vec<DVec3>,
-    /// `(x, z)` of each point.
+    /// `(x, z)` of each point, m (world frame seen from above).
     pub flat: Vec<DVec2>,
     /// Enclosed area, m^2.
     pub area: f64,
@@ -18,11 +18,11 @@ pub struct MeasuredLoop {
     pub girth: f64,
     /// Perimeter of the convex hull (what a tape measure reads), m.
     pub tape_girth: f64,
-    /// Area centroid `(x, z)`.
+    /// Area centroid `(x, z)`, m.
     pub centroid: DVec2,
-    /// Smallest `(x, z)`.
+    /// Smallest `(x, z)` of the points, m.
     pub min: DVec2,
-    /// Largest `(x, z)`.
+    /// Largest `(x, z)` of the points, m.
     pub max: DVec2,
 }
 
@@ -51,17 +51,17 @@ impl MeasuredLoop {
         p.cmpge(self.min).all() && p.cmple(self.max).all() && polygon::contains(&self.flat, p)
     }
 
-    /// The section's height.
+    /// The section's height `y`, m.
     pub fn y(&self) -> f64 {
         self.points.first().map_or(0.0, |p| p.y)
     }
 
-    /// The point with the largest `z` (front-most).
+    /// The point with the largest `z` (front-most), m.
     pub fn front_point(&self) -> DVec3 {
         self.extreme(|p| p.z)
     }
 
-    /// The point maximizing `key`.
+    /// The point maximizing `key`, m (world frame).
     pub fn extreme(&self, key: impl Fn(&DVec3) -> f64) -> DVec3 {
         self.points
             .iter()

@@ -48,11 +48,11 @@ impl BodyRing {
 pub struct RingError {
     /// Ring name.
     pub ring: String,
-    /// Requested height.
+    /// Requested height, m.
     pub y: f64,
-    /// Body bottom.
+    /// The body's lowest `y`, m.
     pub floor: f64,
-    /// Body top.
+    /// The body's highest `y`, m.
     pub top: f64,
 }
 

@@ -1,8 +1,8 @@
-//! The body's horizontal sections at a fixed spacing, cut once per body ([collide] 4.1:
+//! The body's horizontal sections at a fixed spacing, cut once per body (\[collide\] 4.1:
 //! "根据高度值进行切环", rings cut by height). Each slice keeps every outer loop (legs,
 //! torso and arms: the line-line test must see them all) oriented counter-clockwise in
 //! `(x, z)`, and the ring centres of the torso or leg loops for the response of legs,
-//! crotch and hip ([collide] 5.2, figure 12):
+//! crotch and hip (\[collide\] 5.2, figure 12):
 //!
 //! 1. the global centre is the midpoint of the ring's left and right extremes;
 //! 2. it splits the ring into two halves, each with a local centre (the mean of its points);
@@ -52,13 +52,13 @@ pub enum CentreChoice {
 /// The centres of one ring.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Centres {
-    /// Midpoint of the left and right extremes, `(x, z)`.
+    /// Midpoint of the left and right extremes, `(x, z)`, m.
     pub global: DVec2,
     /// Mean of the points left (`x` below the global centre) and right of it.
     pub local: [DVec2; 2],
-    /// Width `W` (right extreme minus left extreme in `x`).
+    /// Width `W` (right extreme minus left extreme in `x`), m.
     pub width: f64,
-    /// Area over convex hull area (of all the ring's loops together).
+    /// Area over convex hull area (of all the ring's loops together), a ratio in 0..1.
     pub convexity: f64,
     /// What the rule keeps.
     pub choice: CentreChoice,
@@ -95,7 +95,7 @@ impl Centres {
 /// One closed loop of a slice, counter-clockwise in `(x, z)`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Loop2 {
-    /// Points `(x, z)`, not repeated at the end.
+    /// Points `(x, z)`, m, not repeated at the end.
     pub points: Vec<DVec2>,
 }
 
@@ -123,9 +123,9 @@ pub struct Slice {
 /// Slices from the floor to the top of the highest partition that needs them.
 #[derive(Clone, Debug, PartialEq, Default)]
 pub struct SliceStack {
-    /// Height of the first slice.
+    /// Height of the first slice, m.
     pub y0: f64,
-    /// Spacing.
+    /// Spacing between slices, m.
     pub dy: f64,
     /// Slices, bottom up.
     pub slices: Vec<Slice>,

@@ -1,9 +1,9 @@
-//! Mesh-layer detection ([collide] 4): every garment vertex is given the body partition
+//! Mesh-layer detection (\[collide\] 4): every garment vertex is given the body partition
 //! its height falls in and tested against that partition's triangles only (plus the
 //! margin band), with the partition's own test: point-face, or line-line for legs and
 //! abdomen. Which test a partition uses is data ([`crate::body::Partition::method`]).
 //!
-//! Two accelerations skip vertices between steps ([collide] 4.3):
+//! Two accelerations skip vertices between steps (\[collide\] 4.3):
 //! - **patch skipping**: a patch none of whose boundary curves' control points moved more
 //!   than a threshold is not re-tested;
 //! - **inert points**: a vertex that moved less than a threshold since it was last tested
@@ -48,7 +48,8 @@ pub struct DetectOptions {
     /// `w1`, the depth below the skin still detected, over the body height. Default value:
     /// 0.1 (16 cm on 1.6 m: deeper than any point of a human torso lies).
     pub inside_reach: f64,
-    /// `w2`, over the body height. Default value: 0.02.
+    /// `w2`, the reach outside the surface, as a fraction of the body height. Default value:
+    /// 0.02.
     pub outside_reach: f64,
     /// Skip inert vertices. Default value: true.
     pub inert: bool,
@@ -138,9 +139,10 @@ pub struct Hit {
     pub method: DetectionMethod,
     /// Depth below the skin, m.
     pub depth: f64,
-    /// Nearest body point (point-face) or the crossing in the section (line-line).
+    /// Nearest body point (point-face) or the crossing in the section (line-line), m (world
+    /// frame).
     pub foot: DVec3,
-    /// Outward body normal there.
+    /// Outward unit body normal there (world frame).
     pub normal: DVec3,
     /// Body triangle (point-face only).
     pub triangle: Option<u32>,

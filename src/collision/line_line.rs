@@ -1,4 +1,4 @@
-//! The line-line test ([collide] 4.2, figure 9a), for legs and abdomen: in the horizontal
+//! The line-line test (\[collide\] 4.2, figure 9a), for legs and abdomen: in the horizontal
 //! section nearest the vertex's height, the vertex's short segment along its normal,
 //! `p - w2 n .. p + w1 n` (the normal's horizontal part), is intersected with the body's
 //! ring polylines. From a point outside every loop the first crossing either way enters a
@@ -25,11 +25,11 @@ pub struct LineLine {
     pub inside: bool,
     /// Distance from the vertex to the crossed edge's line (in the section), m.
     pub depth: f64,
-    /// The crossing point (at the slice's height).
+    /// The crossing point (at the slice's height), m (world frame).
     pub foot: DVec3,
-    /// Outward normal of the crossed edge (horizontal).
+    /// Outward unit normal of the crossed edge (horizontal, world frame).
     pub normal: DVec3,
-    /// Distance in the section from the vertex to the nearest loop edge (a lower bound on
+    /// Distance in the section from the vertex to the nearest loop edge, m (a lower bound on
     /// how far it can move in this slice before the verdict can change).
     pub clearance: f64,
 }

@@ -1,4 +1,4 @@
-//! Mesh-layer collision of the garment with the body ([collide] sections 4 and 5):
+//! Mesh-layer collision of the garment with the body (\[collide\] sections 4 and 5):
 //! partitioned detection (point-face or line-line by partition, BVH, inert points, patch
 //! skipping), the response along each partition's constrained direction, the quality
 //! measured afterwards, and the brute-force ground truth.
@@ -53,7 +53,7 @@ pub struct GarmentMesh {
     pub face_patch: Vec<u32>,
     /// Undirected edges.
     pub edges: Vec<[u32; 2]>,
-    /// Vertex normals.
+    /// Unit vertex normals (area-weighted mean of the incident face normals, world frame).
     pub normals: Vec<DVec3>,
     /// Vertices on an opening.
     pub boundary: Vec<bool>,
@@ -158,13 +158,13 @@ impl GarmentMesh {
 /// into compared data).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct CollisionTimings {
-    /// Detection.
+    /// Detection, ms.
     pub detect: f64,
-    /// Vertex response.
+    /// Vertex response, ms.
     pub respond: f64,
-    /// Edge rounds.
+    /// Edge rounds, ms.
     pub respond_edges: f64,
-    /// Quality.
+    /// The quality check, ms.
     pub quality: f64,
 }
 

@@ -1,4 +1,4 @@
-//! The point-face test ([collide] 4.2, figure 8): from the garment vertex `p` along a body
+//! The point-face test (\[collide\] 4.2, figure 8): from the garment vertex `p` along a body
 //! triangle's normal `n`, the short segment `p - w2 n .. p + w1 n` is intersected with the
 //! triangle; a hit on the outward side means `p` lies behind the skin, inside the body.
 //!
@@ -45,7 +45,7 @@ pub struct PointFace {
 }
 
 impl PointFace {
-    /// Distance to the surface if outside (at least the reach when nothing was near).
+    /// Distance to the surface if outside, m (at least the reach when nothing was near).
     pub fn clearance(&self, reach: &Reach) -> f64 {
         match self.nearest {
             Some(n) if !self.inside => n.distance,

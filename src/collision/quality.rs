@@ -1,4 +1,4 @@
-//! Quality after response, measured rather than assumed ([collide] 6, figure 14): garment
+//! Quality after response, measured rather than assumed (\[collide\] 6, figure 14): garment
 //! vertices still inside the body and how deep, edges that cross the body although both
 //! their ends are outside, and how far the moved vertices stand from the ease.
 

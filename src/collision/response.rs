@@ -1,4 +1,4 @@
-//! Collision response ([collide] 5.2): every penetrating vertex is moved out along a
+//! Collision response (\[collide\] 5.2): every penetrating vertex is moved out along a
 //! constrained direction until it stands the ease off the body.
 //!
 //! The direction, by the vertex's partition rule and its place in the garment:
@@ -6,11 +6,11 @@
 //! 2. given directions: the view direction for boundary vertices at the shoulder (they
 //!    must stay on their contour as drawn), the body normal at the hit for the abdomen
 //!    (avoids folds), the ray from a ring centre for legs, crotch and hip (global or local
-//!    centres by the rule in [`super::slices`]);
+//!    centres by the rule in [`crate::body::slices`]);
 //! 3. iso-height: a vertex on a garment ring keeps its place in the ring's plane (the
 //!    component along the plane's normal is removed: zero vertical part for a horizontal
 //!    ring);
-//! 4. self-collision guard ([collide] 5.1): where the body has ring centres (legs to
+//! 4. self-collision guard (\[collide\] 5.1): where the body has ring centres (legs to
 //!    abdomen), the direction must lie within 90 degrees of the direction from the
 //!    vertex's local centre through its mapped body point (on the ray from that centre
 //!    through the vertex); if not, it becomes that direction.
@@ -24,7 +24,7 @@
 //! way out, and so is a push that would travel more than three times the depth plus the
 //! ease (the ray would cross the body to its far side).
 //!
-//! Edges can still cross the body with both ends outside ([collide] figure 14). Edge
+//! Edges can still cross the body with both ends outside (\[collide\] figure 14). Edge
 //! rounds move the ends of such edges out by the depth the edge reaches inside, by the
 //! same rules, until none crosses or the rounds run out.
 
@@ -46,7 +46,8 @@ pub struct ResponseOptions {
     /// Least ease, as a fraction of the body's height (a garment with zero ease still gets
     /// its vertices off the skin). Default value: 0.002.
     pub min_ease: f64,
-    /// View direction for shoulder boundary vertices. Default value: `+z` (front view).
+    /// View direction for shoulder boundary vertices, a unit vector in the world frame.
+    /// Default value: `+z` (front view).
     pub view: DVec3,
     /// Rounds of edge response: the ends of edges that still cross the body after the
     /// vertex response are moved out by their own rules, by the depth the edge reaches
@@ -130,15 +131,15 @@ pub struct Response {
     pub vertex: u32,
     /// Partition index.
     pub partition: usize,
-    /// Position before.
+    /// Position before, m (world frame).
     pub from: DVec3,
-    /// Position after.
+    /// Position after, m (world frame).
     pub to: DVec3,
     /// Unit direction it moved along.
     pub direction: DVec3,
     /// The rule that gave the direction.
     pub rule: AppliedRule,
-    /// The direction before the guard (equal to `direction` unless guarded).
+    /// The unit direction before the guard (equal to `direction` unless guarded).
     pub proposed: DVec3,
     /// The iso-height constraint removed the component along this ring normal (`None` if
     /// the vertex is on no ring, or a fallback had to leave the ring's plane).
@@ -256,7 +257,9 @@ fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, 
     None
 }
 
-/// The ease responses stand off at for a garment of ease `garment_ease`.
+/// The gap (m) responses stand off at for a garment of ease `garment_ease` (m): half the
+/// ease ([`ResponseOptions::ease_fraction`]), at least [`ResponseOptions::min_ease`] of the
+/// body's height.
 pub fn response_ease(index: &BodyIndex, garment_ease: f64, options: &ResponseOptions) -> f64 {
     (options.ease_fraction * garment_ease).max(options.min_ease * index.height)
 }

@@ -1,4 +1,4 @@
-//! The brute-force ground truth ([collide] 4.2: "the most exact test intersects every
+//! The brute-force ground truth (\[collide\] 4.2: "the most exact test intersects every
 //! primitive of both"): every garment vertex against every body triangle by the
 //! generalized winding number (inside above one half), and every garment edge against
 //! every body triangle. No partitions, no BVH, no pseudo-normals: slow, independent,

@@ -1,4 +1,4 @@
-//! Curve self-intersection ([collide] section 2, curve layer): the segments of a planar
+//! Curve self-intersection (\[collide\] section 2, curve layer): the segments of a planar
 //! polyline tested pairwise, with a bounding-box prefilter (sort and sweep on `x`), so
 //! only segments whose boxes overlap reach the exact test. Neighbouring segments share an
 //! end and are never counted.
@@ -12,7 +12,7 @@ pub struct Crossing {
     pub i: usize,
     /// The second segment, `j > i`.
     pub j: usize,
-    /// Where they cross (in the plane).
+    /// Where they cross, in the plane's coordinates (m).
     pub at: DVec2,
     /// The length of the shorter of the two loops the crossing cuts the curve into, m:
     /// the part the crossing would have to undo.

@@ -114,7 +114,7 @@ pub fn key_points(fw: &Framework, c: &CurveNode) -> Vec<usize> {
 }
 
 /// The control points after moving key points `moved` (index, displacement): the others
-/// between two key points follow in proportion ([frame] section 2.5's combined adjustment
+/// between two key points follow in proportion (\[frame\] section 2.5's combined adjustment
 /// for rings, a linear fade along an open curve), so a drag bends the curve smoothly.
 pub fn spread(fw: &Framework, c: &CurveNode, moved: &[(usize, DVec3)]) -> Vec<DVec3> {
     let control = points(fw, c);

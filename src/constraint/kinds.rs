@@ -1,4 +1,4 @@
-//! The constraint kinds ([frame] section 3) and their residuals, in metres or radians.
+//! The constraint kinds (\[frame\] section 3) and their residuals, in metres or radians.
 //!
 //! Self constraints of a curve: left-right symmetry, coplanarity of its control points,
 //! control points inside a polygon, a ring outside the body section plus ease, no
@@ -117,7 +117,7 @@ pub struct Constraint {
     pub directed: bool,
 }
 
-/// The mirror image about `x = mid_x`.
+/// The mirror image of `p` about the plane `x = mid_x`: `(2 mid_x - x, y, z)`, m.
 pub fn mirror(p: DVec3, mid_x: f64) -> DVec3 {
     DVec3::new(2.0 * mid_x - p.x, p.y, p.z)
 }
@@ -142,7 +142,7 @@ pub fn nearest_on_polygon(q: DVec2, polygon: &[DVec2]) -> (DVec2, f64) {
     best
 }
 
-/// Signed distance of `q` from a closed polygon's boundary: negative inside.
+/// Signed distance (m) of `q` from a closed polygon's boundary: negative inside.
 pub fn signed_gap(q: DVec2, polygon: &[DVec2]) -> f64 {
     let d = nearest_on_polygon(q, polygon).1;
     if polygon::contains(polygon, q) { -d } else { d }

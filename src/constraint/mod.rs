@@ -1,4 +1,4 @@
-//! The node and constraint layers ([collide] section 2, [frame] section 3): the constraint
+//! The node and constraint layers (\[collide\] section 2, \[frame\] section 3): the constraint
 //! kinds and their residuals, the network CNet built for a template, the self-crossing
 //! check, and the solver that brings the framework back to a valid state after an edit.
 

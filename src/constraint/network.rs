@@ -1,4 +1,4 @@
-//! The constraint network CNet ([frame] section 3): the curves and a matrix whose entry
+//! The constraint network CNet (\[frame\] section 3): the curves and a matrix whose entry
 //! `g_ij` holds the constraints between curve `i` and curve `j` (several per entry,
 //! directed or not; `g_ii` holds a curve's self constraints). Built automatically from a
 //! solved framework, for either template.
@@ -234,7 +234,7 @@ impl ConstraintNet {
         out
     }
 
-    /// Every residual on `fw`.
+    /// Every constraint's residual on `fw`, in its kind's unit (m, or rad for tangents).
     pub fn residuals(&self, fw: &Framework) -> Vec<f64> {
         self.constraints.iter().map(|c| c.residual(fw, &self.curves)).collect()
     }
@@ -359,7 +359,7 @@ fn centred_pairs(fw: &Framework, c: &CurveNode, roles: &CurveRoles) -> Option<Ve
     )
 }
 
-/// A displacement mirrored about a plane `x = const`.
+/// A displacement mirrored about a plane `x = const`: `(-dx, dy, dz)`.
 pub fn mirror_vector(d: DVec3) -> DVec3 {
     DVec3::new(-d.x, d.y, d.z)
 }

@@ -1,4 +1,4 @@
-//! Loose fit and the combined adjustment ([frame] sections 2.4-2.5).
+//! Loose fit and the combined adjustment (\[frame\] sections 2.4-2.5).
 //!
 //! Straightening: below a ring that must not change (its anchor is a virtual control point
 //! of the contour), a loose contour becomes the straight line from that point to the
@@ -12,9 +12,9 @@ use glam::{DVec2, DVec3};
 use super::ease::deformation_centre;
 use crate::geom::Plane;
 
-/// Straightens a contour part: `points[0]` is fixed, the last may move along
-/// `outward[last]` (a horizontal unit vector), the ones between move onto the line at their
-/// own height. Returns the new positions.
+/// Straightens a contour part (\[frame\] section 2.4, loose garments): `points[0]` (m) is
+/// fixed, the last may move along `outward[last]` (a horizontal unit vector), the ones
+/// between move onto the line at their own height. Returns the new positions, m.
 pub fn straighten(points: &[DVec3], outward: &[DVec3]) -> Vec<DVec3> {
     let n = points.len();
     if n < 2 {
@@ -47,9 +47,11 @@ pub fn straighten(points: &[DVec3], outward: &[DVec3]) -> Vec<DVec3> {
         .collect()
 }
 
-/// Deforms a ring's control points so that its anchors (`anchors`: indices into `control`,
-/// in ring order) move by `moves`; the others move in proportion to their angle about the
-/// deformation centre between the two anchors around them.
+/// The combined adjustment of \[frame\] section 2.5: deforms a ring's control points (m, in
+/// `plane`) so that its anchors (`anchors`: indices into `control`, in ring order) move by
+/// `moves` (m); every other point moves by the linear blend of the two anchor moves around
+/// it, weighted by its angle about the deformation centre between them:
+/// `d(p) = (1 - s) d_a + s d_b`, `s = angle(a, p) / angle(a, b)`.
 pub fn combined_adjustment(control: &[DVec3], anchors: &[usize], moves: &[DVec3], plane: &Plane) -> Vec<DVec3> {
     let flat: Vec<DVec2> = control.iter().map(|p| plane.project(*p)).collect();
     let o = deformation_centre(&flat);

@@ -1,5 +1,5 @@
 //! Assembly: the seams, Coons patches and M0 of a framework, built from its feature curves
-//! (rings, open curves, contours) as they stand ([frame] section 4).
+//! (rings, open curves, contours) as they stand (\[frame\] section 4).
 //!
 //! The framework solve calls this once; an edit calls it again after the constraint
 //! solver has moved the curves. Sample counts come from the [`Layout`](super::model::Layout) fixed when the

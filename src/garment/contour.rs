@@ -1,4 +1,4 @@
-//! Contour lines ([frame] sections 2.3-2.4): open cubic splines through the rings' anchor
+//! Contour lines (\[frame\] sections 2.3-2.4): open cubic splines through the rings' anchor
 //! points (centre front, side, princess lines, the legs' front, outer, back and inner
 //! lines), from the lowest ring up. Patches take their sides from the spans between rings.
 
@@ -14,7 +14,7 @@ pub struct Contour {
     pub name: String,
     /// The control points it passes through, lowest first, each named `ring.anchor`.
     pub through: Vec<String>,
-    /// Their positions.
+    /// Their positions, m (world frame).
     pub points: Vec<DVec3>,
     /// The spline.
     pub spline: ChordSpline3,
@@ -23,7 +23,8 @@ pub struct Contour {
 }
 
 impl Contour {
-    /// Fits the contour through `points` (lowest first), natural ends.
+    /// Fits the contour through `points` (m, lowest first) as a chord-length cubic spline with
+    /// natural ends (\[frame\] section 2.3).
     pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>) -> Result<Self, SplineError> {
         Self::fit_with(name, through, points, [None, None])
     }
@@ -63,8 +64,8 @@ impl Contour {
         self.spline.derivative(l).normalize_or_zero()
     }
 
-    /// `n + 1` samples of the span from point `k` to point `k + 1`, ends exact. With a
-    /// probe, the inner samples are pushed out to stand `gap` off the body.
+    /// `n + 1` samples (m) of the span from point `k` to point `k + 1`, ends exact. With a
+    /// probe, the inner samples are pushed out to stand `gap` (m) off the body.
     pub fn span(&self, k: usize, n: usize, clearance: Option<(&BodyProbe, f64)>) -> Vec<DVec3> {
         let knots = self.spline.knots();
         let (a, b) = (knots[k], knots[k + 1]);
@@ -81,14 +82,15 @@ impl Contour {
             .collect()
     }
 
-    /// Dense samples for display (16 per span).
+    /// Dense samples for display (16 per span), m.
     pub fn polyline(&self) -> Vec<DVec3> {
         self.spline.subdivide(16, false)
     }
 }
 
 /// A short feature line between two control points that no section gives (a shoulder
-/// seam, the crotch junction): the straight line, its inner samples pushed out to `gap`.
+/// seam, the crotch junction): `n + 1` samples of the straight line from `a` to `b` (m), its
+/// inner samples pushed out to stand `gap` (m) off the body.
 pub fn clear_line(a: DVec3, b: DVec3, n: usize, probe: &BodyProbe, gap: f64) -> Vec<DVec3> {
     let n = n.max(1);
     (0..=n)

@@ -1,4 +1,4 @@
-//! Ring convexification ([frame] section 2.2, step 1).
+//! Ring convexification (\[frame\] section 2.2, step 1).
 //!
 //! The paper: find the ring's 4 extreme points (front, left, back, right in the plane's
 //! frame), take the ring's orientation from three of them, then delete every point whose

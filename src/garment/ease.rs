@@ -1,4 +1,4 @@
-//! Easing ([frame] section 2.2, step 3): every garment ring point slides along the ray from
+//! Easing (\[frame\] section 2.2, step 3): every garment ring point slides along the ray from
 //! the deformation centre `O` until its gap to the body ring equals the ease.
 //!
 //! `O` is the middle of the body ring's extremes. The gap is measured to the convexified
@@ -45,7 +45,8 @@ pub enum EaseError {
     RayMissed(usize),
 }
 
-/// The deformation centre of a ring given in a plane's 2D frame.
+/// The deformation centre `O` of a ring given in a plane's 2D frame (m): the middle of its
+/// extremes' box (\[frame\] section 2.2, step 3).
 pub fn deformation_centre(flat: &[DVec2]) -> DVec2 {
     let [front, left, back, right] = extremes(flat).map(|i| flat[i]);
     DVec2::new(0.5 * (front.x + back.x), 0.5 * (left.y + right.y))
@@ -131,8 +132,10 @@ impl Ease {
     }
 }
 
-/// Eases `garment` (points in `plane`, e.g. a resampled ring) against the convexified body
-/// ring `body` (same plane). Returns the moved points, in the same order.
+/// Eases `garment` (points in `plane`, m; e.g. a resampled ring) against the convexified
+/// body ring `body` (same plane), \[frame\] section 2.2 step 3: every point slides along the
+/// ray from `O` until its gap to the body ring is the ease (m). Returns the moved points, in
+/// the same order.
 pub fn ease_ring(garment: &[DVec3], body: &[DVec3], plane: &Plane, ease: Ease) -> Result<Vec<DVec3>, EaseError> {
     ease.check()?;
     if body.len() < 3 {

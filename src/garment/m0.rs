@@ -1,4 +1,4 @@
-//! Surfaces and the stitched mesh M0 ([frame] section 4, [collide] section 3.1).
+//! Surfaces and the stitched mesh M0 (\[frame\] section 4, \[collide\] section 3.1).
 //!
 //! Each region bounded by four curves is a bilinearly blended Coons patch, sampled on a
 //! fixed `(nu + 1) x (nv + 1)` grid; its boundary samples are the curves' own samples, so
@@ -22,7 +22,7 @@ pub struct PatchGrid {
     pub nu: usize,
     /// Segments along `v` (the contours).
     pub nv: usize,
-    /// `(nu + 1) (nv + 1)` points, row by row in `v`.
+    /// `(nu + 1) (nv + 1)` points, m (world frame), row by row in `v`.
     pub points: Vec<DVec3>,
     /// The feature curves (and the runs of their control points) its boundary comes from:
     /// when none of those control points moves, the patch does not move much either.
@@ -221,7 +221,9 @@ pub fn weld(points: &[DVec3], threshold: f64) -> (Vec<u32>, usize) {
     (map, count as usize)
 }
 
-/// Stitches patches into M0, welding within `threshold` (m).
+/// Stitches patches into M0 (\[collide\] section 3.1, steps 1-5: merge the vertex lists, weld
+/// within `threshold` (m), renumber the faces, drop degenerate and duplicate faces, build
+/// the directed and undirected edge lists).
 pub fn stitch(patches: &[PatchGrid], threshold: f64) -> M0 {
     let mut points = Vec::new();
     let mut faces: Vec<([u32; 3], u32)> = Vec::new();

@@ -1,8 +1,8 @@
-//! The garment feature-line framework ([frame]): ring processing, open curves, contours,
+//! The garment feature-line framework (\[frame\]): ring processing, open curves, contours,
 //! templates, Coons surfacing and the stitched mesh M0.
 //!
 //! Layers, lowest first: the data model ([`model`]); the curve algorithms (ring sub-steps
-//! in [`ring`], [`convexify`], [`resample`], [`ease`]; [`open_curve`], [`contour`],
+//! in [`ring`], [`convexify`](mod@convexify), [`resample`], [`ease`]; [`open_curve`], [`contour`],
 //! [`adjust`]; anchors in [`anchors`]); surfacing ([`surface`], [`m0`]); the templates
 //! ([`template`]), which say what a garment's curves and patches are; and the two entry
 //! points, [`build_framework`] (solve on a body) and [`assemble::assemble`] (surface after

@@ -77,7 +77,7 @@ pub struct Dimensions {
 }
 
 impl Dimensions {
-    /// A value if set.
+    /// A value if set (m, or a fraction for `strap_position`).
     pub fn get(&self, name: &str) -> Option<f64> {
         self.values.get(name).copied()
     }
@@ -136,7 +136,7 @@ pub struct NamedPlane {
 pub struct FeatureLine {
     /// Name.
     pub name: String,
-    /// Samples, ends exact.
+    /// Samples, m (world frame), ends exact.
     pub points: Vec<DVec3>,
 }
 
@@ -147,7 +147,7 @@ pub struct DimensionValue {
     pub name: String,
     /// Value reached (m, or a fraction).
     pub value: f64,
-    /// The value set by the session, if any.
+    /// The value set by the session, if any (same unit as `value`).
     pub target: Option<f64>,
 }
 
@@ -156,9 +156,9 @@ pub struct DimensionValue {
 pub struct Straightened {
     /// Contour.
     pub contour: String,
-    /// Before.
+    /// The contour's points before, m (world frame).
     pub before: Vec<DVec3>,
-    /// After.
+    /// After, m.
     pub after: Vec<DVec3>,
 }
 
@@ -240,7 +240,7 @@ impl Framework {
         self.dimension("ease").unwrap_or(0.0)
     }
 
-    /// A dimension's value.
+    /// A dimension's value (m, or a fraction for `strap_position`).
     pub fn dimension(&self, name: &str) -> Option<f64> {
         self.dimensions.iter().find(|d| d.name == name).map(|d| d.value)
     }

@@ -34,7 +34,7 @@ pub struct OpenCurve {
     pub spline: ChordSpline3,
     /// Spline parameter of the apex.
     pub apex_param: f64,
-    /// Apex position.
+    /// Apex position, m (world frame).
     pub apex: DVec3,
     /// The name of the apex as a control point (`crotch.point`, `left_strap.top`).
     pub apex_name: &'static str,
@@ -104,7 +104,7 @@ pub struct OpenInput<'a> {
     pub raw: (Vec<DVec3>, usize),
     /// Ease.
     pub ease: Ease,
-    /// Where the ends must land (the ring anchors they meet).
+    /// Where the ends must land (the ring anchors they meet), m.
     pub ends: [DVec3; 2],
     /// Points per half when resampling.
     pub per_half: usize,
@@ -185,7 +185,8 @@ impl OpenCurve {
         Ok(curve)
     }
 
-    /// `n + 1` samples of the front half (front end to apex) or the back half (apex to back end).
+    /// `n + 1` samples (m) of the front half (front end to apex) or the back half (apex to back
+    /// end).
     pub fn half(&self, front: bool, n: usize) -> Vec<DVec3> {
         let n = n.max(1);
         let (a, b) = if front {
@@ -233,12 +234,12 @@ impl OpenCurve {
         Ok(())
     }
 
-    /// The front end.
+    /// The front end, m.
     pub fn front_end(&self) -> DVec3 {
         self.stages.control[0]
     }
 
-    /// The back end.
+    /// The back end, m.
     pub fn back_end(&self) -> DVec3 {
         self.stages.control[self.stages.control.len() - 1]
     }

@@ -39,12 +39,12 @@ impl BodyProbe {
             .map(|n| (n.foot, n.signed(p), n.normal))
     }
 
-    /// Signed distance to the body surface (negative inside); infinite with no body.
+    /// Signed distance of `p` to the body surface, m (negative inside); infinite with no body.
     pub fn signed_distance(&self, p: DVec3) -> f64 {
         self.nearest(p).map_or(f64::INFINITY, |(_, d, _)| d)
     }
 
-    /// Moves `p` out until it stands at least `gap` off the body: from the nearest surface
+    /// Moves `p` out until it stands at least `gap` (m) off the body: from the nearest surface
     /// point along the way out. A few passes settle points near concave creases. Points
     /// already `gap` away are returned unchanged (bit for bit).
     pub fn clear(&self, p: DVec3, gap: f64) -> DVec3 {

@@ -1,4 +1,4 @@
-//! Ring resampling ([frame] section 2.2, step 2): the ring's anchor points (its 4
+//! Ring resampling (\[frame\] section 2.2, step 2): the ring's anchor points (its 4
 //! extremes) split it into 4 arcs, each resampled with equal chords between consecutive
 //! points; an open ring is split into 2 arcs about its middle point (by length).
 

@@ -1,4 +1,4 @@
-//! One garment ring through every sub-step of [frame] section 2.2: the raw body section,
+//! One garment ring through every sub-step of \[frame\] section 2.2: the raw body section,
 //! convexified, resampled, eased, then a closed cubic spline fitted through 8-12 control
 //! points (the anchors among them) and resampled. A girth target is met by solving for a
 //! uniform extra ease (secant iteration on the fitted spline's length).
@@ -22,7 +22,7 @@ pub struct RingOptions {
     /// Points of the resampled fitted spline, spread evenly over the anchor arcs (default
     /// 48; 20 to 60).
     pub fitted_points: usize,
-    /// Relative girth tolerance of the ease solve (default 1e-9).
+    /// Relative girth tolerance of the ease solve, a ratio (default 1e-9).
     pub girth_tolerance: f64,
 }
 
@@ -89,15 +89,15 @@ pub enum RingBuildError {
 pub struct RingStages {
     /// The body section loop(s) the ring comes from.
     pub raw: Vec<Vec<DVec3>>,
-    /// Convexified (the tape line around the body).
+    /// Convexified (the tape line around the body), m.
     pub convex: Vec<DVec3>,
-    /// Resampled at equal chords on the arcs between the extremes.
+    /// Resampled at equal chords on the arcs between the extremes, m.
     pub resampled: Vec<DVec3>,
-    /// Eased out from the deformation centre.
+    /// Eased out from the deformation centre, m.
     pub eased: Vec<DVec3>,
-    /// The spline's control points (the anchors among them).
+    /// The spline's control points (the anchors among them), m.
     pub control: Vec<DVec3>,
-    /// The fitted spline resampled: `fitted_points` spread evenly over the anchor arcs.
+    /// The fitted spline resampled, m: `fitted_points` spread evenly over the anchor arcs.
     pub fitted: Vec<DVec3>,
 }
 
@@ -110,7 +110,7 @@ pub struct Anchor {
     pub control: usize,
     /// Spline parameter.
     pub param: f64,
-    /// Position.
+    /// Position, m (world frame).
     pub point: DVec3,
 }
 
@@ -131,7 +131,7 @@ pub struct GarmentRing {
     pub ease: Ease,
     /// Girth of the fitted spline, m.
     pub girth: f64,
-    /// The girth asked for, if any.
+    /// The girth asked for, if any, m.
     pub target: Option<f64>,
     /// The body's tape girth at this ring, m.
     pub body_girth: f64,
@@ -160,11 +160,11 @@ pub struct RingInput<'a> {
     pub raw: Vec<Vec<DVec3>>,
     /// Anchors, in ring order starting at the front.
     pub anchors: &'a [AnchorSpec],
-    /// Centre line `x` (the body's mid plane).
+    /// Centre line `x` (the body's mid plane), m.
     pub mid_x: f64,
     /// Ease.
     pub ease: Ease,
-    /// Girth target.
+    /// Girth target, m.
     pub target: Option<f64>,
 }
 
@@ -203,7 +203,7 @@ fn least_ease(ease: Ease) -> f64 {
     }
 }
 
-/// Length of a closed polyline.
+/// Length of a closed polyline, m (the closing segment included).
 pub fn closed_length(points: &[DVec3]) -> f64 {
     let n = points.len();
     (0..n).map(|i| points[i].distance(points[(i + 1) % n])).sum()

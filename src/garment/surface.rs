@@ -1,5 +1,5 @@
 //! Surfacing: each four-sided region of a framework as a bilinearly blended Coons patch on
-//! the layout's fixed grid ([frame] section 4), kept from the previous framework when none
+//! the layout's fixed grid (\[frame\] section 4), kept from the previous framework when none
 //! of its boundary curves changed; and the lookups a template's patches use.
 
 use std::collections::BTreeMap;
@@ -43,7 +43,7 @@ pub fn anchor(fw: &Framework, name: &str, a: &str) -> Result<DVec3, FrameworkErr
         .ok_or_else(|| missing(name, &format!("anchor {a} missing")))
 }
 
-/// Joins sample runs that share their end points.
+/// Joins sample runs (m) that share their end points.
 pub fn join(parts: &[Vec<DVec3>]) -> Vec<DVec3> {
     let mut out: Vec<DVec3> = Vec::new();
     for p in parts {
@@ -56,7 +56,7 @@ pub fn join(parts: &[Vec<DVec3>]) -> Vec<DVec3> {
     out
 }
 
-/// `v` in reverse order.
+/// Samples `v` (m) in reverse order.
 pub fn reversed(mut v: Vec<DVec3>) -> Vec<DVec3> {
     v.reverse();
     v

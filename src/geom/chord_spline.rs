@@ -1,4 +1,4 @@
-//! Parametric cubic splines in 3D on accumulated chord length ([spline] section 4):
+//! Parametric cubic splines in 3D on accumulated chord length (\[spline\] section 4):
 //! `x(l)`, `y(l)`, `z(l)` each interpolate the points against `l_i = sum |P_k - P_{k-1}|`.
 //! Closed curves use periodic ends; open ones, given end tangents (clamped) or natural ends.
 
@@ -86,12 +86,12 @@ impl ChordSpline3 {
         self.axes[0].knots()
     }
 
-    /// `P(l)`.
+    /// `P(l)`, at accumulated chord length `l` (both in the input's units, m in drape).
     pub fn sample(&self, l: f64) -> DVec3 {
         DVec3::new(self.axes[0].sample(l), self.axes[1].sample(l), self.axes[2].sample(l))
     }
 
-    /// `dP/dl`.
+    /// `dP/dl`, unitless (close to unit length: `l` is close to arc length).
     pub fn derivative(&self, l: f64) -> DVec3 {
         DVec3::new(
             self.axes[0].derivative(l),

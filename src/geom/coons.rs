@@ -1,4 +1,4 @@
-//! Bilinearly blended Coons patches ([frame] section 4): the surface of a region bounded by
+//! Bilinearly blended Coons patches (\[frame\] section 4): the surface of a region bounded by
 //! four curves.
 //!
 //! With boundaries `c0(u)` (v = 0), `c1(u)` (v = 1), `d0(v)` (u = 0), `d1(v)` (u = 1) and
@@ -36,13 +36,13 @@ impl<F: Fn(f64) -> DVec3> ParametricCurve for F {
 pub struct CornerMismatch {
     /// `P00`, `P10`, `P01` or `P11`.
     pub corner: &'static str,
-    /// The point on the u-curve.
+    /// The point on the u-curve (input units, m in drape).
     pub a: [f64; 3],
-    /// The point on the v-curve.
+    /// The point on the v-curve (input units).
     pub b: [f64; 3],
-    /// Their distance.
+    /// Their distance (input units).
     pub distance: f64,
-    /// The tolerance used.
+    /// The tolerance used (input units).
     pub tolerance: f64,
 }
 
@@ -93,7 +93,8 @@ impl<C: ParametricCurve> CoonsPatch<C> {
         })
     }
 
-    /// `S(u, v)`.
+    /// `S(u, v)` for `u, v` in `0..=1` (input units, m in drape), by the bilinearly blended Coons
+    /// formula of the module docs.
     pub fn sample(&self, u: f64, v: f64) -> DVec3 {
         let [p00, p10, p01, p11] = self.corners;
         let ruled_u = self.bottom.sample(u) * (1.0 - v) + self.top.sample(u) * v;
@@ -102,7 +103,7 @@ impl<C: ParametricCurve> CoonsPatch<C> {
         ruled_u + ruled_v - bilinear
     }
 
-    /// Samples on a regular `(nu + 1) x (nv + 1)` grid, row by row in `v`.
+    /// Samples on a regular `(nu + 1) x (nv + 1)` grid in `(u, v)`, row by row in `v`.
     pub fn grid(&self, nu: usize, nv: usize) -> Vec<DVec3> {
         let (nu, nv) = (nu.max(1), nv.max(1));
         let mut out = Vec::with_capacity((nu + 1) * (nv + 1));

@@ -16,7 +16,10 @@ fn solid_angle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
     2.0 * det.atan2(denom) / (4.0 * std::f64::consts::PI)
 }
 
-/// The winding number of `mesh` (closed, outward-oriented) at `p`.
+/// The generalized winding number of `mesh` (closed, outward-oriented) at `p`, unitless:
+/// the sum of the solid angles of its triangles seen from `p` over `4 pi` (Van Oosterom and
+/// Strackee 1983 for each triangle's solid angle; Jacobson et al. 2013): 1 inside, 0
+/// outside.
 pub fn winding_number(mesh: &TriMesh, p: DVec3) -> f64 {
     mesh.triangles
         .iter()

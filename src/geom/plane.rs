@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 pub struct Plane {
     /// Unit normal.
     pub normal: DVec3,
-    /// Signed distance of the plane from the origin along `normal`.
+    /// Signed distance of the plane from the origin along `normal` (input units, m in drape).
     pub offset: f64,
 }
 
@@ -29,7 +29,8 @@ impl Plane {
         }
     }
 
-    /// Signed distance of `p` (positive on the normal's side).
+    /// Signed distance of `p`, `normal . p - offset` (positive on the normal's side; input
+    /// units).
     pub fn signed_distance(&self, p: DVec3) -> f64 {
         self.normal.dot(p) - self.offset
     }
@@ -86,13 +87,13 @@ impl Plane {
     }
 
     /// The point of the plane with in-plane coordinates `q` (the inverse of [`Self::project`]
-    /// on the plane).
+    /// on the plane; input units).
     pub fn lift(&self, q: DVec2) -> DVec3 {
         let (u, v) = self.frame();
         self.normal * self.offset + u * q.x + v * q.y
     }
 
-    /// `p` moved along the normal onto the plane.
+    /// `p` moved along the normal onto the plane: `p - (normal . p - offset) normal`.
     pub fn snap(&self, p: DVec3) -> DVec3 {
         p - self.normal * self.signed_distance(p)
     }

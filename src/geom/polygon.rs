@@ -24,7 +24,7 @@ pub fn centroid(points: &[DVec2]) -> DVec2 {
     c / (6.0 * area)
 }
 
-/// Closed perimeter.
+/// Closed perimeter (input units, m in drape).
 pub fn perimeter(points: &[DVec2]) -> f64 {
     let n = points.len();
     (0..n).map(|i| points[i].distance(points[(i + 1) % n])).sum()
@@ -58,7 +58,8 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     hull
 }
 
-/// Perimeter of the convex hull: what a tape measure laid around the section reads.
+/// Perimeter of the convex hull (input units): what a tape measure laid around the section
+/// reads.
 pub fn hull_perimeter(points: &[DVec2]) -> f64 {
     perimeter(&convex_hull(points))
 }

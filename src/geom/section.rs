@@ -17,14 +17,15 @@ use crate::mesh::topology::{Adjacency, NO_NEIGHBOUR};
 /// One connected piece of a section.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SectionLoop {
-    /// Points in order; a closed loop does not repeat its first point.
+    /// Points in order, in the mesh's units (m in drape); a closed loop does not repeat its
+    /// first point.
     pub points: Vec<DVec3>,
     /// Closed (the normal case on a closed mesh) or open (the mesh has a boundary there).
     pub closed: bool,
 }
 
 impl SectionLoop {
-    /// Length, including the closing segment of a closed loop.
+    /// Length (mesh units), including the closing segment of a closed loop.
     pub fn length(&self) -> f64 {
         let open: f64 = self.points.windows(2).map(|w| w[0].distance(w[1])).sum();
         match (self.closed, self.points.first(), self.points.last()) {

@@ -191,17 +191,18 @@ impl CubicSpline {
         &self.y
     }
 
-    /// `S(t)`. Outside the knot range the end polynomials are extended (periodic: wrapped).
+    /// `S(t)` (the data's units). Outside the knot range the end polynomials are extended
+    /// (periodic: wrapped).
     pub fn sample(&self, t: f64) -> f64 {
         self.eval(t).0
     }
 
-    /// `S'(t)`.
+    /// `S'(t)` (data units per unit of `t`).
     pub fn derivative(&self, t: f64) -> f64 {
         self.eval(t).1
     }
 
-    /// `S''(t)`.
+    /// `S''(t)` (data units per unit of `t` squared).
     pub fn second_derivative(&self, t: f64) -> f64 {
         self.eval(t).2
     }

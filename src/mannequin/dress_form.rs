@@ -61,7 +61,7 @@ impl Region {
 /// The analytic dress form (all lengths in metres).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DressForm {
-    /// Height of the lower edge (`s = 0`).
+    /// Height of the lower edge (`s = 0`), m.
     pub base_y: f64,
 }
 
@@ -83,13 +83,13 @@ fn bell(s: f64, c: f64, w: f64) -> f64 {
 }
 
 impl DressForm {
-    /// Ring centre height.
+    /// Ring centre height at `s` (0 at the lower edge, 1 at the top), m.
     pub fn y(&self, s: f64) -> f64 {
         // y' = 0.75 - 0.09 sech^2((s - 0.78) / 0.07) / 0.14: steepest body, flattest shoulder.
         self.base_y + 0.75 * s - 0.09 * step(s, 0.78, 0.07)
     }
 
-    /// Half width (x).
+    /// Half width (along x), m.
     pub fn half_width(&self, s: f64) -> f64 {
         0.160 + 0.012 * bell(s, 0.10, 0.10) - 0.030 * step(s, 0.32, 0.05)
             + 0.035 * step(s, 0.58, 0.07)
@@ -97,18 +97,18 @@ impl DressForm {
             - 0.135 * step(s, 0.80, 0.025)
     }
 
-    /// Half depth (z).
+    /// Half depth (along z), m.
     pub fn half_depth(&self, s: f64) -> f64 {
         0.105 + 0.010 * bell(s, 0.10, 0.10) - 0.020 * step(s, 0.32, 0.05) + 0.022 * bell(s, 0.53, 0.07)
             - 0.030 * step(s, 0.78, 0.04)
     }
 
-    /// Forward offset of the ring centre.
+    /// Forward offset (z) of the ring centre, m.
     pub fn centre_z(&self, s: f64) -> f64 {
         0.010 * bell(s, 0.53, 0.07) - 0.018 * step(s, 0.84, 0.04)
     }
 
-    /// Front fullness.
+    /// Front fullness `e`, unitless: the front half's depth is scaled by `1 + e sin t`.
     pub fn fullness(&self, s: f64) -> f64 {
         0.18 * bell(s, 0.53, 0.06)
     }
@@ -118,7 +118,8 @@ impl DressForm {
         0.30 * step(s, 0.92, 0.03)
     }
 
-    /// The surface point `P(s, t)`.
+    /// The surface point `P(s, t)`, m (world frame): with `d = b sin t (1 + e sin t)`,
+    /// `P = (a cos t, y(s) - d sin phi, z_c(s) + d cos phi)`.
     pub fn point(&self, s: f64, t: f64) -> DVec3 {
         let (a, b, e, phi) = (self.half_width(s), self.half_depth(s), self.fullness(s), self.tilt(s));
         let (st, ct) = t.sin_cos();

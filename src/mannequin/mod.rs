@@ -1,4 +1,4 @@
-//! The [spline] mannequin: a dress form measured as a coarse ring grid (L layers x P
+//! The \[spline\] mannequin: a dress form measured as a coarse ring grid (L layers x P
 //! points, the paper's 18 x 12) refined to a dense surface two ways, polar and
 //! chord-length cubic splines, and both measured against the form's true surface.
 //!
@@ -26,12 +26,12 @@ pub struct RingGrid {
     pub layers: usize,
     /// Points per ring.
     pub points: usize,
-    /// `layers * points` positions.
+    /// `layers * points` positions, m (world frame).
     pub positions: Vec<DVec3>,
 }
 
 impl RingGrid {
-    /// Point `j` of ring `i`.
+    /// Point `j` of ring `i`, m.
     pub fn at(&self, i: usize, j: usize) -> DVec3 {
         self.positions[i * self.points + j]
     }

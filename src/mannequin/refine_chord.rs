@@ -1,4 +1,4 @@
-//! Parametric cubic-spline refinement on accumulated chord length ([spline] section 4).
+//! Parametric cubic-spline refinement on accumulated chord length (\[spline\] section 4).
 //!
 //! Per layer, `x(l)`, `y(l)`, `z(l)` through the ring's points with periodic ends; per
 //! meridian, the same through the refined layers' columns with end tangents from the

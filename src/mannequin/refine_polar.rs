@@ -1,4 +1,4 @@
-//! Polar cubic-spline refinement ([spline] section 3).
+//! Polar cubic-spline refinement (\[spline\] section 3).
 //!
 //! Per layer, the ring is written as radius against polar angle about the vertical axis,
 //! `rho(psi)`, interpolated by a periodic cubic spline; heights vary linearly in `psi`.

@@ -5,7 +5,7 @@ use glam::DVec3;
 /// An indexed triangle mesh in metres (`y` up). Triangles index into `positions`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriMesh {
-    /// Vertex positions.
+    /// Vertex positions, m (world frame) for bodies and garments.
     pub positions: Vec<DVec3>,
     /// Triangles as vertex indices, counter-clockwise seen from outside once validated.
     pub triangles: Vec<[u32; 3]>,
@@ -38,7 +38,8 @@ impl TriMesh {
         )
     }
 
-    /// Enclosed volume by the divergence theorem (positive for outward-facing triangles).
+    /// Enclosed volume by the divergence theorem, `sum (a . (b x c)) / 6` over the triangles
+    /// (cubic mesh units; positive for outward-facing triangles).
     pub fn signed_volume(&self) -> f64 {
         (0..self.triangles.len())
             .map(|t| {
@@ -48,7 +49,7 @@ impl TriMesh {
             .sum()
     }
 
-    /// Total surface area.
+    /// Total surface area (square mesh units).
     pub fn area(&self) -> f64 {
         (0..self.triangles.len())
             .map(|t| 0.5 * self.scaled_normal(t).length())

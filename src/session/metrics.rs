@@ -1,7 +1,7 @@
 //! Per-step metrics: timings and every figure a step measured, for `--metrics`.
 //!
 //! Each step records its figures as typed structs (`#[derive(Serialize)]`, one per group of
-//! figures, beside the step's code in [`super::steps`]); their fields become the keys of the
+//! figures, beside the step's code in `session/steps/`); their fields become the keys of the
 //! step's JSON object.
 
 use std::collections::BTreeMap;

@@ -1,7 +1,7 @@
 //! Sessions: the text format and its parser, the stage contract, and the runner that turns
 //! steps into stages.
 //!
-//! * [`format`]: the session text (syntax tree, lexer, parser).
+//! * [`format`](mod@format): the session text (syntax tree, lexer, parser).
 //! * [`stage`]: what steps emit and the [`StageSink`] trait of whoever takes it.
 //! * [`runner`]: [`run_session`], a short driver over the steps in `steps/` (one file per
 //!   step kind), with the session's state and undo history in `state`.

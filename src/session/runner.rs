@@ -1,7 +1,7 @@
 //! The session runner: the scene (step 0), then each step, each emitting its stages to the
 //! sinks. Timings measure compute only; the sinks' time is kept apart under `log.*` keys.
 //!
-//! The steps themselves live in [`super::steps`], one file per kind; this is the driver.
+//! The steps themselves live in `steps/`, one file per kind; this is the driver.
 
 use std::path::PathBuf;
 

@@ -122,7 +122,7 @@ pub enum GarmentPart {
     Mesh,
 }
 
-/// A ring sub-step ([frame] section 2.2).
+/// A ring sub-step (\[frame\] section 2.2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum RingStep {
     /// The body section.

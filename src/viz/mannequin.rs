@@ -1,4 +1,4 @@
-//! Logging the [spline] mannequin study: both refined surfaces beside the body, coloured by
+//! Logging the \[spline\] mannequin study: both refined surfaces beside the body, coloured by
 //! their distance to the true surface on one scale, the measured points, and the per-region
 //! figures as scalars.
 

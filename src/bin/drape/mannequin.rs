@@ -1,4 +1,4 @@
-//! `drape mannequin`: the [spline] study, printed as a table or JSON and logged.
+//! `drape mannequin`: the \[spline\] study, printed as a table or JSON and logged.
 
 use std::process::ExitCode;
 

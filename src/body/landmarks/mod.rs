@@ -143,7 +143,7 @@ impl Landmark {
         }
     }
 
-    /// The point as a vector.
+    /// The point as a vector, m (world frame).
     pub fn position(&self) -> DVec3 {
         DVec3::from_array(self.point)
     }
@@ -229,9 +229,9 @@ pub struct Landmarks {
     pub items: Vec<Landmark>,
     /// The body's middle `x` (area-weighted mean).
     pub mid_x: f64,
-    /// Left and right leg centroids `(y, left (x, z), right (x, z))`, feet to crotch.
+    /// Left and right leg centroids `(y, left (x, z), right (x, z))`, m, feet to crotch.
     pub leg_axis: Vec<(f64, DVec2, DVec2)>,
-    /// Torso centroid `(y, (x, z))`, crotch to neck.
+    /// Torso centroid `(y, (x, z))`, m, crotch to neck.
     pub torso_axis: Vec<(f64, DVec2)>,
 }
 
@@ -241,7 +241,7 @@ impl Landmarks {
         self.items.iter().find(|l| l.kind == kind && l.side == side)
     }
 
-    /// Height of a landmark (the mean of a pair).
+    /// Height `y` of a landmark (the mean of a pair), m.
     pub fn height(&self, kind: LandmarkKind) -> f64 {
         let ys: Vec<f64> = self
             .items

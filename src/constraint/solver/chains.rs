@@ -1,4 +1,4 @@
-//! Closed chains ([collide] section 2.3): when a collision response breaks a joint with a
+//! Closed chains (\[collide\] section 2.3): when a collision response breaks a joint with a
 //! curve solved before (A -> B -> C -> A), the earlier curve takes the later one's point (or
 //! tangent) and the next pass solves again from it.
 

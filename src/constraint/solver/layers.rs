@@ -1,4 +1,4 @@
-//! The node and curve layers ([collide] section 2.3): a curve's control points collided with
+//! The node and curve layers (\[collide\] section 2.3): a curve's control points collided with
 //! the body (moved out in the curve's plane until they stand the collision gap off it), then
 //! its refitted samples (each sample short of the gap pushes the two control points around
 //! it out, for a few rounds). A symmetric curve is pushed jointly, pair by pair.

@@ -1,4 +1,4 @@
-//! The constraint solver of an edit ([collide] section 2.3, [frame] section 3).
+//! The constraint solver of an edit (\[collide\] section 2.3, \[frame\] section 3).
 //!
 //! An edit moves control points of one curve (the active element). The solver then works
 //! outward through the network: a curve is solved when a constraint with an already

@@ -13,9 +13,9 @@ pub struct NodeHit {
     pub point: usize,
     /// Signed distance to the body before, m.
     pub distance: f64,
-    /// Before.
+    /// Before, m (world frame).
     pub before: DVec3,
-    /// After.
+    /// After, m (world frame).
     pub after: DVec3,
 }
 
@@ -56,7 +56,7 @@ pub struct Iteration {
     pub residuals: Vec<(usize, f64)>,
     /// Constraints with curves solved before that this solve left violated.
     pub broken: Vec<usize>,
-    /// The curve's control points afterwards.
+    /// The curve's control points afterwards, m (world frame).
     pub control: Vec<DVec3>,
 }
 
@@ -71,13 +71,13 @@ pub struct Solution {
     pub passes: usize,
     /// Whether the last pass broke nothing.
     pub converged: bool,
-    /// Every constraint's residual at the end.
+    /// Every constraint's residual at the end, in its kind's unit (m, or rad).
     pub residuals: Vec<f64>,
     /// `(constraint, residual)` above the tolerance at the end.
     pub violations: Vec<(usize, f64)>,
     /// The dragged point (curve, control point), for a point drag.
     pub dragged: Option<(usize, usize)>,
-    /// The dragged point: where it was, where it was asked to go, after the first pass's
+    /// The dragged point, m: where it was, where it was asked to go, after the first pass's
     /// node layer, and after each pass.
     pub path: Vec<DVec3>,
     /// The curves solved.
@@ -86,7 +86,7 @@ pub struct Solution {
     pub gap: f64,
     /// Largest shortfall of the gap left on a solved planar curve's samples, m.
     pub clearance_deficit: f64,
-    /// The tolerance the constraints were solved to.
+    /// The tolerance the constraints were solved to (m, or rad for tangents).
     pub tolerance: f64,
 }
 

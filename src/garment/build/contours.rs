@@ -1,4 +1,4 @@
-//! Contours through the rings' anchors ([frame] section 2.3), and the loose fit that
+//! Contours through the rings' anchors (\[frame\] section 2.3), and the loose fit that
 //! straightens them below a fixed ring and adjusts the rings they pass (section 2.5).
 
 use glam::DVec3;
@@ -36,7 +36,7 @@ pub fn fit_contours(
         .collect()
 }
 
-/// Loose fit ([frame] sections 2.3 and 2.5): straightens the contours below ring `fixed`
+/// Loose fit (\[frame\] sections 2.3 and 2.5): straightens the contours below ring `fixed`
 /// (which stays: a virtual control point where each contour meets it) and deforms the rings
 /// below it by the combined adjustment.
 pub fn loosen(

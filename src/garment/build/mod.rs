@@ -1,4 +1,4 @@
-//! Solving a garment's framework on a body ([frame] sections 2-4): the template solves its
+//! Solving a garment's framework on a body (\[frame\] sections 2-4): the template solves its
 //! curves in a [`BuildCtx`], then the framework is surfaced into its patches and M0.
 
 mod context;

@@ -109,7 +109,7 @@ pub enum Change {
 }
 
 impl Change {
-    /// The new value from the current one.
+    /// The new value from the current one (the dimension's unit: m, or a fraction).
     pub fn apply(self, current: f64) -> f64 {
         match self {
             Self::By(d) => current + d,

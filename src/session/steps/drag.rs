@@ -1,5 +1,5 @@
 //! `drag`: a control point or a whole curve of the current garment moved. The constraint
-//! solver brings the framework back to a valid state ([frame] section 3, [collide] section
+//! solver brings the framework back to a valid state (\[frame\] section 3, \[collide\] section
 //! 2.3), the patches along the changed curves are re-surfaced, and M0 is collided. A drag
 //! the solver refuses leaves the garment as it was; the session goes on.
 

@@ -1,4 +1,4 @@
-//! `mannequin`: the [spline] study. The analytic dress form is sampled as a ring grid,
+//! `mannequin`: the \[spline\] study. The analytic dress form is sampled as a ring grid,
 //! refined by polar and by chord-length cubic splines, and both are measured against the
 //! true surface, region by region.
 

@@ -1,7 +1,7 @@
 //! The jumpsuit's curves on a body: the neckline in the neck-base plane, the straps in
 //! vertical planes across the shoulders, the torso rings (chest, bust, waist, hip) with the
 //! princess anchors in the strap planes, the leg rings (thigh, knee, hem), the crotch curve
-//! in the vertical crotch plane, and the contours through the anchors ([frame] sections
+//! in the vertical crotch plane, and the contours through the anchors (\[frame\] sections
 //! 2.1-2.5).
 
 use glam::DVec3;

@@ -1,4 +1,4 @@
-//! The jumpsuit's seams, junction lines and patches, from its curves ([frame] section 4).
+//! The jumpsuit's seams, junction lines and patches, from its curves (\[frame\] section 4).
 
 use glam::DVec3;
 
