@@ -162,7 +162,11 @@ fn crossing(points: &[DVec3], c: f64, front: bool) -> Option<(usize, f64, DVec3)
 }
 
 /// Locates anchors on a closed polyline: `(segment, t, point)` per anchor.
-pub(super) fn locate(points: &[DVec3], anchors: &[AnchorSpec], mid_x: f64) -> Result<Vec<(usize, f64, DVec3)>, &'static str> {
+pub(super) fn locate(
+    points: &[DVec3],
+    anchors: &[AnchorSpec],
+    mid_x: f64,
+) -> Result<Vec<(usize, f64, DVec3)>, &'static str> {
     let xmax = points.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max);
     let xmin = points.iter().map(|p| p.x).fold(f64::INFINITY, f64::min);
     anchors

@@ -86,7 +86,6 @@ pub fn open<'c>(fw: &'c Framework, name: &str) -> Result<&'c OpenCurve, Framewor
         .ok_or_else(|| missing(name, "open curve missing from the framework"))
 }
 
-
 /// The samples of line `name` among `lines`.
 pub fn line<'l>(lines: &'l [FeatureLine], name: &str) -> Result<&'l [DVec3], FrameworkError> {
     lines
@@ -111,7 +110,12 @@ pub struct Surfacer<'a> {
 impl<'a> Surfacer<'a> {
     /// Surfaces `fw` (with its `lines`); with `previous`, patches none of whose curves
     /// changed are taken from it.
-    pub fn new(fw: &'a Framework, lines: &[FeatureLine], probe: &'a BodyProbe, previous: Option<&'a Framework>) -> Self {
+    pub fn new(
+        fw: &'a Framework,
+        lines: &[FeatureLine],
+        probe: &'a BodyProbe,
+        previous: Option<&'a Framework>,
+    ) -> Self {
         Self {
             fw,
             probe,

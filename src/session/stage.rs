@@ -336,6 +336,13 @@ pub trait StageSink {
     }
 }
 
+/// A borrowed sink is a sink (so a wrapper can hold `&mut` of another).
+impl<S: StageSink + ?Sized> StageSink for &mut S {
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
+        (**self).stage(info, stage)
+    }
+}
+
 impl Stage<'_> {
     /// Hands the stage to the sink's method for its family.
     pub fn dispatch<S: StageSink + ?Sized>(self, info: &StageInfo, sink: &mut S) -> Result<(), SinkError> {

@@ -56,7 +56,6 @@ impl RerunLogger {
         )
     }
 
-
     pub(super) fn log_landmarks(&self, landmarks: &Landmarks) -> Result<(), SinkError> {
         let points: Vec<[f32; 3]> = landmarks
             .items

@@ -7,7 +7,7 @@ use std::collections::BTreeSet;
 use drape::body::DetectionMethod;
 use drape::collision::{
     Acceleration, AppliedRule, BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, Reach, Search,
-    collide, detect, ground_truth, point_face,
+    collide, compare, detect, ground_truth, point_face, quality,
 };
 use drape::garment::{Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mesh::TriMesh;
@@ -16,7 +16,7 @@ use drape::session::{
 };
 use glam::DVec3;
 
-use super::common::{Lcg, real_body, real_jumpsuit, real_probe};
+use super::common::{Lcg, brute_distance, inside_by_parity, real_body, real_jumpsuit, real_probe};
 
 fn index() -> &'static BodyIndex {
     real_probe().index()
@@ -441,5 +441,103 @@ fn export_writes_each_steps_m0_after_response() {
     }
     // Step 2's response moved vertices: the export is not the raw M0.
     assert_ne!(meshes.0[1].0.positions, meshes.1[1].positions);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `--verify`'s comparison must catch a garment vertex planted 5 mm inside the body after a
+/// clean response: the quality that missed it disagrees with the truth, the quality
+/// measured on the planted mesh agrees, and both name that vertex and its edges. The truth
+/// here is the plant itself, confirmed by the test's own ray-parity count over every
+/// vertex.
+#[test]
+fn verify_catches_a_vertex_planted_inside_the_body() {
+    let g = tight_jumpsuit();
+    let c = collide(
+        index(),
+        &g,
+        0.004,
+        &CollisionOptions::default(),
+        &mut DetectState::default(),
+    );
+    let body = &real_body().mesh.mesh;
+    // The vertex nearest the front of the waist; its plant 5 mm behind the skin there.
+    let waist = real_body().landmarks.height(drape::body::LandmarkKind::Waist);
+    let v = (0..c.mesh.positions.len())
+        .max_by(|&a, &b| {
+            let key = |p: DVec3| p.z - 10.0 * (p.y - waist).abs() - 10.0 * p.x.abs();
+            key(c.mesh.positions[a]).total_cmp(&key(c.mesh.positions[b]))
+        })
+        .expect("vertices");
+    let near = index().nearest(c.mesh.positions[v], 1.0).expect("near the body");
+    let plant = near.foot - near.normal * 0.005;
+    let mut planted = c.mesh.positions.clone();
+    planted[v] = plant;
+    let inside: Vec<usize> = (0..planted.len())
+        .filter(|&k| inside_by_parity(body, planted[k]))
+        .collect();
+    assert_eq!(inside, vec![v], "the plant is the only vertex inside");
+    let incident: Vec<u32> = (0..g.edges.len())
+        .filter(|&e| g.edges[e].contains(&(v as u32)))
+        .map(|e| e as u32)
+        .collect();
+    let before = ground_truth(body, &g.mesh.positions, &g.edges);
+    let after = ground_truth(body, &planted, &g.edges);
+    // The collision's own quality (of the clean mesh) is now wrong: verify says so.
+    let missed = compare(&before, &c.detection, &after, &c.quality);
+    assert_eq!(missed.inside_after, 1);
+    assert_eq!(missed.crossing_after, incident.len(), "every edge at the plant crosses");
+    assert!(!missed.quality_agrees);
+    // The quality measured on the planted mesh finds it and agrees.
+    let honest = quality(index(), &planted, &g.edges, &c.responses);
+    assert_eq!(honest.inside, vec![v as u32]);
+    assert_eq!(honest.crossing, incident);
+    let depth = brute_distance(body, plant);
+    assert!((depth - 0.005).abs() < 1e-4, "planted {depth} m deep");
+    assert!(
+        (honest.max_depth_m - depth).abs() < 1e-9,
+        "depth {} vs {depth}",
+        honest.max_depth_m
+    );
+    assert!(compare(&before, &c.detection, &after, &honest).quality_agrees);
+}
+
+/// `drape run --verify` checks every collision step and writes the figures under `verify`
+/// in the metrics: the demo's first two garment steps against the ground truth.
+#[test]
+fn run_with_verify_reports_the_ground_truth_per_collision_step() {
+    let dir = std::env::temp_dir().join(format!("drape-verify-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("v.drape");
+    std::fs::write(
+        &session,
+        "drape 1\nbody builtin\ngarment jumpsuit resolution=3\nset ease 0.004\n",
+    )
+    .unwrap();
+    let metrics = dir.join("v.json");
+    let (code, stderr) = super::session_errors::drape(&[
+        "run",
+        session.to_str().unwrap(),
+        "--verify",
+        "--save",
+        dir.join("v.rrd").to_str().unwrap(),
+        "--metrics",
+        metrics.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let json: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&metrics).unwrap()).unwrap();
+    let steps = json.as_array().unwrap();
+    for step in &steps[1..] {
+        let v = &step["verify"];
+        assert!(v.is_object(), "no verify on step {}", step["step"]);
+        // The fast quality check's figures are the ground truth's.
+        assert_eq!(v["quality_agrees"], true);
+        assert_eq!(v["inside_after"], step["penetrating_vertices"]);
+        assert_eq!(v["crossing_after"], step["crossing_edges"]);
+        assert_eq!(
+            v["inside_before"],
+            step["hits"].as_u64().unwrap() + v["missed"].as_u64().unwrap() - v["false_hits"].as_u64().unwrap()
+        );
+    }
+    assert!(stderr.contains("verify: truth"), "{stderr}");
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -101,3 +101,69 @@ impl Lcg {
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
+
+/// Distance from `p` to the segment `a..b`, written here independently of the library.
+pub fn segment_distance(p: DVec3, a: DVec3, b: DVec3) -> f64 {
+    let ab = b - a;
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(ab) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + ab * t - p).length()
+}
+
+/// Distance from `p` to the triangle `abc`: to its plane when `p` projects inside it (by
+/// barycentric signs), else to the nearest edge. Written here independently of the
+/// library's Voronoi-region closest point.
+pub fn triangle_distance(p: DVec3, [a, b, c]: [DVec3; 3]) -> f64 {
+    let n = (b - a).cross(c - a);
+    let area2 = n.length_squared();
+    if area2 > 0.0 {
+        let q = p - n * ((p - a).dot(n) / area2);
+        let inside = [(a, b), (b, c), (c, a)]
+            .iter()
+            .all(|&(u, v)| (v - u).cross(q - u).dot(n) >= 0.0);
+        if inside {
+            return (p - q).length();
+        }
+    }
+    segment_distance(p, a, b)
+        .min(segment_distance(p, b, c))
+        .min(segment_distance(p, c, a))
+}
+
+/// Distance from `p` to the mesh, every triangle tried.
+pub fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
+    (0..mesh.triangles.len())
+        .map(|t| triangle_distance(p, mesh.corners(t)))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether `p` is inside the closed mesh by ray parity: the ray from `p` along a fixed
+/// oblique direction crosses the surface an odd number of times (Möller-Trumbore per
+/// triangle, written here). The direction is irrational enough that no test point's ray
+/// grazes an edge of the shipped body.
+pub fn inside_by_parity(mesh: &TriMesh, p: DVec3) -> bool {
+    let d = DVec3::new(0.5773, 0.0071, 0.8165).normalize();
+    let mut count = 0;
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t);
+        let (e1, e2) = (b - a, c - a);
+        let h = d.cross(e2);
+        let det = e1.dot(h);
+        if det.abs() < 1e-15 {
+            continue;
+        }
+        let s = p - a;
+        let u = s.dot(h) / det;
+        let q = s.cross(e1);
+        let v = d.dot(q) / det;
+        let dist = e2.dot(q) / det;
+        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 0.0 {
+            count += 1;
+        }
+    }
+    count % 2 == 1
+}

@@ -6,8 +6,7 @@
 use std::collections::BTreeSet;
 
 use drape::constraint::{
-    Chains, ConstraintNet, Edit, EditError, Kind, NetworkOptions, SolverOptions, Target, curves, self_crossings,
-    self_crossings_brute, solve,
+    Chains, ConstraintNet, Edit, EditError, Kind, NetworkOptions, SolverOptions, Target, curves, self_crossings, solve,
 };
 use drape::garment::assemble::assemble;
 use drape::garment::{Ease, Framework, ease_ring};
@@ -229,22 +228,57 @@ proptest! {
         prop_assert!(after <= TOL, "{ring}: {before:e} -> {after:e}");
     }
 
-    /// The box-swept self-crossing check finds exactly what the all-pairs check finds.
+    /// The box-swept self-crossing check finds exactly the crossings this test finds by
+    /// its own parametric segment intersection over every pair of non-neighbouring segments,
+    /// at the same points.
     #[test]
-    fn the_crossing_prefilter_misses_nothing(seed in 0u64..10_000, n in 4usize..60, closed in proptest::bool::ANY) {
+    fn the_crossing_check_finds_every_crossing(seed in 0u64..10_000, n in 4usize..60, closed in proptest::bool::ANY) {
         let mut g = Lcg(seed);
         let pts: Vec<DVec2> = (0..n).map(|_| DVec2::new(g.next(), g.next())).collect();
-        let fast = self_crossings(&pts, closed);
-        let mut slow = self_crossings_brute(&pts, closed);
-        slow.sort_by_key(|c| (c.i, c.j));
-        prop_assert_eq!(fast, slow);
+        let found = self_crossings(&pts, closed);
+        let truth = crossings_by_hand(&pts, closed);
+        let pairs: Vec<(usize, usize)> = found.iter().map(|c| (c.i, c.j)).collect();
+        let truth_pairs: Vec<(usize, usize)> = truth.iter().map(|t| t.0).collect();
+        prop_assert_eq!(pairs, truth_pairs);
+        for (c, (_, at)) in found.iter().zip(&truth) {
+            prop_assert!(c.at.distance(*at) < 1e-9, "{:?} vs {:?}", c.at, at);
+        }
     }
+}
+
+/// Every crossing of a polyline by parametric segment intersection: segments `p + t r` and
+/// `q + u s` meet where `t = (q - p) x s / (r x s)` and `u = (q - p) x r / (r x s)` both lie
+/// in `0..=1`. Segments sharing a point (neighbours, and the last and first of a closed
+/// one) are skipped. Sorted by segment pair, with the meeting point.
+fn crossings_by_hand(p: &[DVec2], closed: bool) -> Vec<((usize, usize), DVec2)> {
+    let n = p.len();
+    let m = if closed { n } else { n - 1 };
+    let mut out = Vec::new();
+    for i in 0..m {
+        for j in i + 2..m {
+            if closed && i == 0 && j == m - 1 {
+                continue;
+            }
+            let (a, r) = (p[i], p[(i + 1) % n] - p[i]);
+            let (b, s) = (p[j], p[(j + 1) % n] - p[j]);
+            let denom = r.x * s.y - r.y * s.x;
+            if denom == 0.0 {
+                continue;
+            }
+            let w = b - a;
+            let t = (w.x * s.y - w.y * s.x) / denom;
+            let u = (w.x * r.y - w.y * r.x) / denom;
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+                out.push(((i, j), a + r * t));
+            }
+        }
+    }
+    out
 }
 
 #[test]
 fn no_self_crossing_is_met_by_refusal_and_the_framework_stays() {
     let (fw, net) = (real_jumpsuit(), net());
-    let before = fw.clone();
     let err = solve(
         fw,
         net,
@@ -264,7 +298,6 @@ fn no_self_crossing_is_met_by_refusal_and_the_framework_stays() {
         other => panic!("expected a self-crossing, got {other}"),
     }
     assert!(err.to_string().contains("'waist'"), "{err}");
-    assert_eq!(fw.m0, before.m0);
     let c = net.curve("waist").expect("waist");
     assert_eq!(residual_of(net, fw, "no_self_crossing", c), 0.0);
 }
@@ -318,6 +351,137 @@ fn a_drag_into_the_body_ends_outside_by_the_ease_with_its_joints_exact() {
     assert_eq!(s.path.len(), 4, "start, asked, after the first pass, final");
 }
 
+/// Unit tangent of a sampled curve at parameter `t`, one-sided second-order differences
+/// (`h` forward when `forward`, else backward), written here independently of the splines'
+/// own derivatives.
+fn tangent_by_differences(sample: impl Fn(f64) -> DVec3, t: f64, forward: bool) -> DVec3 {
+    let h = if forward { 1e-5 } else { -1e-5 };
+    ((sample(t + h) * 4.0 - sample(t) * 3.0 - sample(t + 2.0 * h)) / (2.0 * h)).normalize()
+}
+
+/// The mirror image of `p` about the plane `x = mid`.
+fn mirrored(p: DVec3, mid: f64) -> DVec3 {
+    DVec3::new(2.0 * mid - p.x, p.y, p.z)
+}
+
+/// The jumpsuit's joints and symmetries as its description states them, measured on `fw`
+/// by this test alone: every contour point equals the ring anchor it names, every strap
+/// end and crotch end its ring anchor, every princess contour leaves its top in its strap's
+/// end direction, and the right straps, leg rings and torso anchors mirror the left ones
+/// about the crotch plane as they did when built (the body is not symmetric, so the built
+/// offsets are kept; mirrored points are compared in the partner's plane). Returns
+/// `(joint, residual in m or rad)` for every joint.
+fn joints(fw: &Framework) -> Vec<(String, f64)> {
+    let built = real_jumpsuit();
+    let mid_of = |f: &Framework| {
+        let c = f.open_curves.iter().find(|c| c.name == "crotch").expect("crotch");
+        c.plane.offset * c.plane.normal.x.signum()
+    };
+    let (mid, mid0) = (mid_of(fw), mid_of(built));
+    let mut out = Vec::new();
+    // Pairs of points that mirror each other: (label, left point, right point, right plane).
+    let mut pairs: Vec<(String, [DVec3; 2], [DVec3; 2], drape::geom::Plane)> = Vec::new();
+    for side_pair in [("left_strap", "right_strap")] {
+        let curve = |f: &Framework, n: &str| f.open_curves.iter().find(|c| c.name == n).expect("strap").clone();
+        let (l, r, l0, r0) = (
+            curve(fw, side_pair.0),
+            curve(fw, side_pair.1),
+            curve(built, side_pair.0),
+            curve(built, side_pair.1),
+        );
+        let n = l.stages.control.len();
+        for i in 1..n - 1 {
+            pairs.push((
+                "straps".to_string(),
+                [l.stages.control[i], r.stages.control[i]],
+                [l0.stages.control[i], r0.stages.control[i]],
+                r.plane,
+            ));
+        }
+    }
+    for level in ["thigh", "knee", "hem"] {
+        let (ln, rn) = (format!("left_{level}"), format!("right_{level}"));
+        let (l, r, l0, r0) = (
+            fw.ring(&ln).expect("ring"),
+            fw.ring(&rn).expect("ring"),
+            built.ring(&ln).expect("ring"),
+            built.ring(&rn).expect("ring"),
+        );
+        for a in ["front", "back", "inner", "outer"] {
+            let p = |x: &drape::garment::GarmentRing| x.anchor(a).expect("anchor").point;
+            pairs.push((format!("{level} rings"), [p(l), p(r)], [p(l0), p(r0)], r.plane));
+        }
+    }
+    for ring in ["chest", "bust", "waist", "hip"] {
+        let (r, r0) = (fw.ring(ring).expect("ring"), built.ring(ring).expect("ring"));
+        for (a, b) in [
+            ("front_left", "front_right"),
+            ("left", "right"),
+            ("back_left", "back_right"),
+        ] {
+            let p = |x: &drape::garment::GarmentRing, n: &str| x.anchor(n).expect("anchor").point;
+            pairs.push((ring.to_string(), [p(r, a), p(r, b)], [p(r0, a), p(r0, b)], r.plane));
+        }
+    }
+    // One symmetry per pair of curves (or centred ring): its worst point.
+    let mut symmetry: std::collections::BTreeMap<String, f64> = std::collections::BTreeMap::new();
+    for (label, [l, r], [l0, r0], plane) in pairs {
+        let rest = r0 - mirrored(l0, mid0);
+        let want = mirrored(l, mid) + rest;
+        let want = want - plane.normal * plane.signed_distance(want);
+        let worst = symmetry.entry(format!("symmetry of {label}")).or_insert(0.0);
+        *worst = worst.max(r.distance(want));
+    }
+    out.extend(symmetry);
+    let anchor = |ring: &str, a: &str| fw.ring(ring).and_then(|r| r.anchor(a)).map(|x| x.point);
+    for c in &fw.contours {
+        for (name, p) in c.through.iter().zip(&c.points) {
+            let (ring, a) = name.split_once('.').expect("ring.anchor");
+            if let Some(q) = anchor(ring, a) {
+                out.push((format!("{} at {name}", c.name), p.distance(q)));
+            }
+        }
+    }
+    for (curve, ring, ends) in [
+        ("crotch", "hip", ["front", "back"]),
+        ("left_strap", "chest", ["front_left", "back_left"]),
+        ("right_strap", "chest", ["front_right", "back_right"]),
+    ] {
+        let c = fw.open_curves.iter().find(|c| c.name == curve).expect("open curve");
+        let control = &c.stages.control;
+        for (end, a) in [control[0], control[control.len() - 1]].into_iter().zip(ends) {
+            out.push((
+                format!("{curve} end at {ring}.{a}"),
+                end.distance(anchor(ring, a).expect("anchor")),
+            ));
+        }
+    }
+    for side in ["left", "right"] {
+        let strap = fw
+            .open_curves
+            .iter()
+            .find(|c| c.name == format!("{side}_strap"))
+            .expect("strap");
+        let l = strap.spline.length();
+        for (part, front) in [("front", true), ("back", false)] {
+            let contour = fw
+                .contours
+                .iter()
+                .find(|c| c.name == format!("{part}_{side}"))
+                .expect("contour");
+            let top = tangent_by_differences(|t| contour.spline.sample(t), contour.spline.length(), false);
+            // Into the strap from its end: forward from the front end, backward from the back end.
+            let into = if front {
+                tangent_by_differences(|t| strap.spline.sample(t), 0.0, true)
+            } else {
+                -tangent_by_differences(|t| strap.spline.sample(t), l, false)
+            };
+            out.push((format!("{part}_{side} top along {side}_strap"), top.angle_between(into)));
+        }
+    }
+    out
+}
+
 #[test]
 fn a_closed_chain_converges_and_the_split_alternative_reports_what_is_left() {
     let (fw, net) = (real_jumpsuit(), net());
@@ -335,7 +499,10 @@ fn a_closed_chain_converges_and_the_split_alternative_reports_what_is_left() {
     );
     // The chain closed at least once: a curve broke a joint with one solved before it.
     assert!(iterate.iterations.iter().any(|it| !it.broken.is_empty()));
-    assert!(iterate.violations.is_empty());
+    // Every joint holds, by the test's own measure.
+    for (joint, r) in joints(&iterate.framework) {
+        assert!(r <= 1e-6, "iterate leaves {joint} at {r:e}");
+    }
     let split = solve(
         fw,
         net,
@@ -348,10 +515,35 @@ fn a_closed_chain_converges_and_the_split_alternative_reports_what_is_left() {
     )
     .expect("solves");
     assert_eq!(split.passes, 1);
-    // One way only: what is still violated is reported, not hidden.
-    let recount = net.residuals(&split.framework).iter().filter(|r| **r > TOL).count();
-    assert_eq!(split.violations.len(), recount);
-    assert!(!split.converged || split.violations.is_empty());
+    // One way only, the chain is left open somewhere: the test's own measure finds the
+    // joints split leaves broken, and the solver reports exactly those, with their size.
+    let broken: Vec<(String, f64)> = joints(&split.framework).into_iter().filter(|(_, r)| *r > TOL).collect();
+    assert!(!broken.is_empty(), "split left nothing open on this drag");
+    assert!(!split.converged);
+    let reported: Vec<f64> = split
+        .violations
+        .iter()
+        .filter(|(k, _)| {
+            matches!(
+                net.constraints[*k].kind,
+                Kind::Coincident { .. } | Kind::Tangent { .. } | Kind::Symmetry { .. }
+            )
+        })
+        .map(|(_, r)| *r)
+        .collect();
+    assert_eq!(
+        reported.len(),
+        broken.len(),
+        "reported {:?}, measured {broken:?}",
+        split.violations
+    );
+    let mut measured: Vec<f64> = broken.iter().map(|(_, r)| *r).collect();
+    let mut reported = reported;
+    measured.sort_by(f64::total_cmp);
+    reported.sort_by(f64::total_cmp);
+    for (m, r) in measured.iter().zip(&reported) {
+        assert!((m - r).abs() <= 1e-6 * m.max(1e-3), "measured {m:e}, reported {r:e}");
+    }
 }
 
 #[test]
@@ -512,4 +704,28 @@ fn undo_restores_the_exact_previous_state_and_a_refused_drag_changes_nothing() {
     );
     assert_eq!(at(&sink.m0, 7), at(&sink.m0, 1), "back to the garment as built");
     assert_eq!(at(&sink.responded, 7), at(&sink.responded, 1));
+    // Undo against fresh runs of the session without the undone steps: after the undo of
+    // the crotch drag, the state is what the session up to the first drag gives; after the
+    // last undo, what the garment step alone gives.
+    let fresh = |text: &str| {
+        let session = parse_session(text, "fresh.drape", std::path::Path::new(".")).expect("parses");
+        let mut sink = Steps::default();
+        let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+        assert!(report.error.is_none(), "{:?}", report.error);
+        let last = |v: &[(usize, TriMesh)]| v.last().map(|(_, m)| m.clone()).expect("logged");
+        (last(&sink.m0), last(&sink.responded))
+    };
+    let one_drag = fresh("drape 1\nbody builtin\ngarment jumpsuit\ndrag waist.front_left by=0,0,0.02\n");
+    assert_eq!(
+        (at(&sink.m0, 4), at(&sink.responded, 4)),
+        one_drag,
+        "undo of the second drag"
+    );
+    assert_eq!(
+        (at(&sink.m0, 6), at(&sink.responded, 6)),
+        one_drag,
+        "undo of the refused drag"
+    );
+    let built = fresh("drape 1\nbody builtin\ngarment jumpsuit\n");
+    assert_eq!((at(&sink.m0, 7), at(&sink.responded, 7)), built, "undo of everything");
 }

@@ -1,10 +1,64 @@
 //! Ring convexification: a convex ring that keeps the 4 extremes and is exactly the convex
-//! hull's vertices in ring order, for star-shaped and non-star-shaped rings.
+//! hull's vertices in ring order, for star-shaped and non-star-shaped rings; on star-shaped
+//! rings the paper's turn-sign scan alone reaches it (no fallback to the library's hull).
 
 use drape::garment::{convexify, extremes};
-use drape::geom::polygon;
 use glam::DVec2;
 use proptest::prelude::*;
+
+/// The convex hull's vertices by gift wrapping (Jarvis 1973), written here independently
+/// of the library's monotone chain: from the lowest-leftmost point, each next vertex is the
+/// point with every other point on its left (the farthest one among collinear candidates).
+fn gift_wrap(points: &[DVec2]) -> Vec<DVec2> {
+    let start = (0..points.len())
+        .min_by(|&a, &b| {
+            points[a]
+                .x
+                .total_cmp(&points[b].x)
+                .then(points[a].y.total_cmp(&points[b].y))
+        })
+        .expect("points");
+    let cross = |o: DVec2, a: DVec2, b: DVec2| (a - o).perp_dot(b - o);
+    let mut hull = vec![points[start]];
+    let mut current = start;
+    loop {
+        let mut next = (current + 1) % points.len();
+        for k in 0..points.len() {
+            let turn = cross(points[current], points[next], points[k]);
+            let farther = points[current].distance(points[k]) > points[current].distance(points[next]);
+            if turn < 0.0 || (turn == 0.0 && farther) {
+                next = k;
+            }
+        }
+        if next == start || hull.len() > points.len() {
+            break;
+        }
+        hull.push(points[next]);
+        current = next;
+    }
+    hull
+}
+
+/// The shoelace area of a closed polygon, here.
+fn area(p: &[DVec2]) -> f64 {
+    0.5 * (0..p.len()).map(|k| p[k].perp_dot(p[(k + 1) % p.len()])).sum::<f64>()
+}
+
+/// A star-shaped ring around the origin: points in increasing angle with every angular gap
+/// under a half turn (so the origin is inside and sees the whole ring), radii 0.4-1.6.
+fn star_ring() -> impl Strategy<Value = Vec<DVec2>> {
+    (8usize..80).prop_flat_map(|n| {
+        prop::collection::vec((0.0f64..0.9, 0.4f64..1.6), n).prop_map(move |raw| {
+            raw.iter()
+                .enumerate()
+                .map(|(k, (jitter, r))| {
+                    let a = (k as f64 + jitter) / n as f64 * std::f64::consts::TAU;
+                    DVec2::new(r * a.cos(), r * a.sin())
+                })
+                .collect()
+        })
+    })
+}
 
 /// A star-shaped ring (radius against sorted angles), then bent by `y += bend * x^2`,
 /// which for large `bend` makes it banana-shaped and not star-shaped.
@@ -63,15 +117,30 @@ proptest! {
         // Convex: every turn has the orientation's sign (or is zero at a tied extreme).
         let m = kept.len();
         let pts: Vec<DVec2> = kept.iter().map(|&i| points[i]).collect();
-        let orientation = polygon::signed_area(&pts).signum();
+        let orientation = area(&pts).signum();
         for k in 0..m {
             let (a, b, c) = (pts[(k + m - 1) % m], pts[k], pts[(k + 1) % m]);
             prop_assert!((b - a).perp_dot(c - b) * orientation >= -1e-12, "reflex turn at kept point {}", kept[k]);
         }
-        // Exactly the convex hull's vertices (an independent monotone-chain hull).
-        let hull = polygon::convex_hull(&points);
+        // Exactly the convex hull's vertices (the test's own gift-wrapping hull).
+        let hull = gift_wrap(&points);
         prop_assert!(hull.iter().all(|h| pts.contains(h)), "a hull vertex was deleted");
-        prop_assert!((polygon::signed_area(&pts).abs() - polygon::signed_area(&hull).abs()).abs() < 1e-12);
+        prop_assert!(pts.iter().all(|p| hull.contains(p) || extremes(&points).iter().any(|&e| points[e] == *p)), "a point off the hull was kept");
+        prop_assert!((area(&pts).abs() - area(&hull).abs()).abs() < 1e-12);
+    }
+
+    /// On a star-shaped ring seen from inside, deleting the points whose turn disagrees is
+    /// Graham's scan in angular order: the paper's scan alone must reach the hull, without
+    /// the fallback to the library's hull.
+    #[test]
+    fn the_scan_alone_convexifies_star_shaped_rings(points in star_ring()) {
+        let (kept, report) = convexify(&points);
+        prop_assert!(!report.fallback, "fell back on a star-shaped ring: {report:?}");
+        let pts: Vec<DVec2> = kept.iter().map(|&i| points[i]).collect();
+        let hull = gift_wrap(&points);
+        prop_assert_eq!(pts.len(), hull.len());
+        prop_assert!(hull.iter().all(|h| pts.contains(h)));
+        prop_assert!(kept.windows(2).all(|w| w[0] < w[1]), "ring order lost");
     }
 }
 

@@ -186,7 +186,7 @@ fn the_demo_session_file_is_the_embedded_one() {
 }
 
 /// Runs the binary; returns (exit code, stderr).
-fn drape(args: &[&str]) -> (i32, String) {
+pub(super) fn drape(args: &[&str]) -> (i32, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_drape"))
         .args(args)
         .output()

@@ -1,10 +1,15 @@
 //! What the demo really logs: the demo session run into a memory sink, the chunks decoded,
-//! and a summary per entity (components, rows, rounded values) compared with a snapshot.
+//! and a summary per entity (components, rows, rounded values, and a digest of every
+//! position, vector, index, colour and radius buffer) compared with a snapshot, so that one
+//! moved vertex fails it with a diff naming the entity.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use drape::session::{DEMO_SESSION, RunOptions, StageSink, parse_session, run_session};
+use drape::session::{
+    DEMO_SESSION, GarmentPart, GarmentStage, RunOptions, SinkError, Stage, StageInfo, StageSink, parse_session,
+    run_session,
+};
 use drape::viz::{LogOptions, RerunLogger};
 use rerun::external::re_log_encoding::DecoderApp;
 use rerun::log::{Chunk, LogMsg};
@@ -18,6 +23,33 @@ struct EntitySummary {
 
 fn round3(v: f32) -> f32 {
     (v * 1000.0).round() / 1000.0
+}
+
+/// FNV-1a (64-bit) over the values, each rounded to 1e-9 (metres for positions; colours,
+/// indices and counts are whole numbers already): stable across runs and platforms.
+fn digest(values: impl IntoIterator<Item = f64>) -> String {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut n = 0usize;
+    for v in values {
+        n += 1;
+        for b in ((v * 1e9).round() as i64).to_le_bytes() {
+            h ^= u64::from(b);
+            h = h.wrapping_mul(0x0000_0100_0000_01b3);
+        }
+    }
+    format!("{n} values, digest {h:016x}")
+}
+
+/// The digest lines of one component of `chunk`: one per row, `(stage, text)`.
+fn digests<C: rerun::Component>(
+    chunk: &Chunk,
+    id: rerun::ComponentIdentifier,
+    values: impl Fn(&C) -> Vec<f64>,
+) -> Vec<(i64, String)> {
+    stages(chunk, id)
+        .zip(chunk.iter_component::<C>(id))
+        .map(|(stage, batch)| (stage, digest(batch.iter().flat_map(&values))))
+        .collect()
 }
 
 /// The `stage` time of each row holding `component` (static rows count as -1).
@@ -55,6 +87,34 @@ pub fn summarize(msgs: impl IntoIterator<Item = LogMsg>) -> String {
                 .count()
                 .max(usize::from(chunk.is_static()));
             *entry.components.entry(id.to_string()).or_insert(0) += rows;
+            let f3 = |v: [f32; 3]| v.map(f64::from).to_vec();
+            let hashed: Vec<(i64, String)> = match id.as_str() {
+                "Points3D:positions" | "Mesh3D:vertex_positions" | "Arrows3D:origins" => {
+                    digests::<rerun::Position3D>(&chunk, id, |p| f3(p.0.0))
+                }
+                "Arrows3D:vectors" | "Mesh3D:vertex_normals" => {
+                    digests::<rerun::components::Vector3D>(&chunk, id, |v| f3(v.0.0))
+                }
+                "LineStrips3D:strips" => digests::<rerun::components::LineStrip3D>(&chunk, id, |s| {
+                    // The strip's length first, so that moving a point between strips shows.
+                    let mut out = vec![s.0.len() as f64];
+                    out.extend(s.0.iter().flat_map(|p| f3(p.0)));
+                    out
+                }),
+                "Mesh3D:triangle_indices" => {
+                    digests::<rerun::components::TriangleIndices>(&chunk, id, |t| t.0.0.map(f64::from).to_vec())
+                }
+                c if c.ends_with(":colors") || c == "Mesh3D:vertex_colors" => {
+                    digests::<rerun::components::Color>(&chunk, id, |c| vec![f64::from(c.0.0)])
+                }
+                c if c.ends_with(":radii") => {
+                    digests::<rerun::components::Radius>(&chunk, id, |r| vec![f64::from(r.0.0)])
+                }
+                _ => Vec::new(),
+            };
+            for (stage, text) in hashed {
+                entry.values.push((id.to_string(), stage, text));
+            }
             match id.as_str() {
                 "Points3D:positions" | "Mesh3D:vertex_positions" => {
                     for (stage, batch) in stages(&chunk, id).zip(chunk.iter_component::<rerun::Position3D>(id)) {
@@ -118,15 +178,73 @@ pub fn summarize_rrd(bytes: &[u8]) -> String {
 }
 
 fn demo_summary() -> String {
+    logged_summary(|logger| Box::new(logger))
+}
+
+/// Runs the demo into a memory recording through the sink `wrap` makes of the logger, and
+/// summarizes what was logged.
+fn logged_summary(wrap: impl FnOnce(&mut RerunLogger) -> Box<dyn StageSink + '_>) -> String {
     let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
     let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
     {
         let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
-        let mut sinks: Vec<&mut dyn StageSink> = vec![&mut logger];
-        let report = run_session(&session, &RunOptions::default(), &mut sinks);
+        let mut sink = wrap(&mut logger);
+        let report = run_session(&session, &RunOptions::default(), &mut [sink.as_mut()]);
         assert!(report.error.is_none(), "{:?}", report.error);
     }
     summarize(storage.take())
+}
+
+/// Forwards every stage to the logger, but the M0 of step `step` with vertex 0 moved 1 mm.
+struct Nudge<'a> {
+    logger: &'a mut RerunLogger,
+    step: usize,
+}
+
+impl StageSink for Nudge<'_> {
+    fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
+        if let Stage::Garment(GarmentStage::Part(fw, GarmentPart::Mesh)) = stage
+            && info.step == self.step
+        {
+            let mut moved = fw.clone();
+            moved.m0.mesh.positions[0].x += 0.001;
+            return self
+                .logger
+                .stage(info, Stage::Garment(GarmentStage::Part(&moved, GarmentPart::Mesh)));
+        }
+        self.logger.stage(info, stage)
+    }
+}
+
+/// The snapshot catches one vertex moved by 1 mm, and the diff names the entity: every
+/// line that differs sits under `/garment/m0` (the mesh and its edge lines).
+#[test]
+fn one_vertex_moved_by_a_millimetre_changes_the_summary_of_its_entity_only() {
+    let clean = demo_summary();
+    let nudged = logged_summary(|logger| Box::new(Nudge { logger, step: 3 }));
+    let entity_of = |text: &str, line: usize| -> String {
+        text.lines()
+            .take(line + 1)
+            .filter(|l| l.starts_with('/'))
+            .last()
+            .unwrap_or("")
+            .to_string()
+    };
+    let (a, b): (Vec<&str>, Vec<&str>) = (clean.lines().collect(), nudged.lines().collect());
+    assert_eq!(a.len(), b.len(), "the same entities and rows");
+    let changed: Vec<(String, &str)> = (0..a.len())
+        .filter(|&k| a[k] != b[k])
+        .map(|k| (entity_of(&clean, k), a[k]))
+        .collect();
+    assert!(!changed.is_empty(), "a 1 mm move went unnoticed");
+    for (entity, line) in &changed {
+        assert!(entity.starts_with("/garment/m0"), "{entity}: {line}");
+    }
+    assert!(
+        changed
+            .iter()
+            .any(|(e, l)| e == "/garment/m0" && l.contains("Mesh3D:vertex_positions"))
+    );
 }
 
 #[test]

@@ -322,12 +322,8 @@ pub fn detect_landmarks(
     // Shoulder line and neck base from the silhouettes.
     let (torso, neck_index) = (&t.torso, t.neck_index);
     let below_loop = &torso[t.armpit_index].1;
-    let (shoulder, side_neck) = neck::shoulders_and_side_necks(
-        &scan,
-        below_loop.centroid,
-        (armpit_y, torso[neck_index].0, eps),
-        mid_x,
-    )?;
+    let (shoulder, side_neck) =
+        neck::shoulders_and_side_necks(&scan, below_loop.centroid, (armpit_y, torso[neck_index].0, eps), mid_x)?;
     let front_neck = neck::front_neck(&torso[bust_i..=neck_index], mid_x)?;
 
     let centre_point = |l: &MeasuredLoop| {

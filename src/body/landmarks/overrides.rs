@@ -9,7 +9,11 @@ use crate::body::profile::loop_at;
 
 /// Applies session corrections: a height re-measures the landmark's point on the body at
 /// that height; a point is taken as given (mirrored for the right side of a pair).
-pub(super) fn apply_overrides(scan: &Scan<'_>, landmarks: &mut Landmarks, overrides: &[(LandmarkKind, LandmarkOverride)]) {
+pub(super) fn apply_overrides(
+    scan: &Scan<'_>,
+    landmarks: &mut Landmarks,
+    overrides: &[(LandmarkKind, LandmarkOverride)],
+) {
     for &(kind, correction) in overrides {
         let legs = match correction {
             LandmarkOverride::Height(y) => landmarks.legs_at(y),

@@ -37,7 +37,13 @@ impl Scan<'_> {
 
     /// Largest `t` in `[lo, hi]` where `separate(t)` still holds, given it holds at `lo`
     /// and not at `hi`.
-    pub(super) fn bisect(&self, mut lo: f64, mut hi: f64, steps: usize, separate: impl Fn(&[MeasuredLoop]) -> bool) -> f64 {
+    pub(super) fn bisect(
+        &self,
+        mut lo: f64,
+        mut hi: f64,
+        steps: usize,
+        separate: impl Fn(&[MeasuredLoop]) -> bool,
+    ) -> f64 {
         for _ in 0..steps {
             let mid = 0.5 * (lo + hi);
             if separate(&self.loops(mid)) {

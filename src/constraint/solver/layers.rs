@@ -223,7 +223,6 @@ impl Run<'_> {
         }
         (n, worst)
     }
-
 }
 
 /// A curve sample short of its collision gap, on the span from control point `a` to `b`.

@@ -53,10 +53,7 @@ pub fn loosen(
         };
         // From the fixed ring down.
         let part: Vec<(String, String)> = pts[..=top].iter().rev().cloned().collect();
-        let points: Vec<DVec3> = part
-            .iter()
-            .map(|(r, a)| point(rings, r, a))
-            .collect::<Result<_, _>>()?;
+        let points: Vec<DVec3> = part.iter().map(|(r, a)| point(rings, r, a)).collect::<Result<_, _>>()?;
         let outward: Vec<DVec3> = part
             .iter()
             .map(|(r, a)| {

@@ -14,7 +14,12 @@ pub(super) struct Args<'a> {
 
 impl<'a> Args<'a> {
     /// Reads `tokens` as `key=value` pairs, each key one of `allowed`, none twice.
-    pub(super) fn parse(line: &Line<'a>, tokens: &[Token<'a>], allowed: &[&str], statement: &str) -> Result<Self, ParseError> {
+    pub(super) fn parse(
+        line: &Line<'a>,
+        tokens: &[Token<'a>],
+        allowed: &[&str],
+        statement: &str,
+    ) -> Result<Self, ParseError> {
         let mut pairs: Vec<(&'a str, Token<'a>, usize)> = Vec::new();
         for t in tokens {
             let Some((key, value)) = t.text.split_once('=').filter(|_| !t.quoted) else {
@@ -132,4 +137,3 @@ pub(super) fn vector(line: &Line<'_>, t: Token<'_>, key: &str) -> Result<DVec3, 
     }
     Ok(DVec3::from_array(xyz))
 }
-

@@ -85,4 +85,3 @@ pub(super) fn tokenize<'a>(file: &'a str, number: usize, text: &'a str) -> Resul
         end_column: text.trim_end().len() + 1,
     })
 }
-

@@ -113,10 +113,7 @@ impl Parser<'_> {
                 ));
             }
         };
-        self.steps.push(Step {
-            line: line.number,
-            op,
-        });
+        self.steps.push(Step { line: line.number, op });
         Ok(())
     }
 
@@ -331,9 +328,8 @@ impl Parser<'_> {
         let a = Args::parse(line, args, &["fit", "resolution"], "garment")?;
         let fit = match a.get("fit") {
             None => Fit::Tight,
-            Some(t) => Fit::from_name(t.text).ok_or_else(|| {
-                line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text))
-            })?,
+            Some(t) => Fit::from_name(t.text)
+                .ok_or_else(|| line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text)))?,
         };
         let resolution = match a.get("resolution") {
             None => 6,

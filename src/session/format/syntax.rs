@@ -151,4 +151,3 @@ pub struct Session {
     /// Steps in order.
     pub steps: Vec<Step>,
 }
-

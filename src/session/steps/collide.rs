@@ -148,7 +148,10 @@ pub(super) fn collide_garment(
 pub(super) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState, index: &BodyIndex) {
     if let Some(outcome) = &state.collision {
         for part in CollisionPart::ALL {
-            scope.emit(part.stage_name(), Stage::Collision(CollisionStage { outcome, index, part }));
+            scope.emit(
+                part.stage_name(),
+                Stage::Collision(CollisionStage { outcome, index, part }),
+            );
         }
     }
 }

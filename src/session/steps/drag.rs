@@ -166,15 +166,24 @@ fn drag(
     probe: &BodyProbe,
     solver: &SolverOptions,
 ) -> Result<(GarmentState, Solution), DragRefusal> {
-    let solution = scope.timed("constraints.solve", || constraint::solve(before, net, edit, probe, solver))?;
+    let solution = scope.timed("constraints.solve", || {
+        constraint::solve(before, net, edit, probe, solver)
+    })?;
     let built = scope
-        .timed("garment.assemble", || assemble(&solution.framework, probe, Some(before)))
+        .timed("garment.assemble", || {
+            assemble(&solution.framework, probe, Some(before))
+        })
         .map_err(DragRefusal::Surface)?;
     let mut after = solution.framework.clone();
     after.lines = built.lines;
     after.patches = built.patches;
     after.m0 = built.m0;
-    scope.record(&SolveFigures::new(net, &solution, built.resurfaced.len(), after.patches.len()));
+    scope.record(&SolveFigures::new(
+        net,
+        &solution,
+        built.resurfaced.len(),
+        after.patches.len(),
+    ));
     let mut next = state.clone();
     next.framework = Some(after);
     next.collision = None;

@@ -13,9 +13,7 @@ use super::collide::{collide_garment, emit_collision};
 use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::constraint::{ConstraintNet, NetworkOptions};
-use crate::garment::{
-    BodyProbe, DimensionValue, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework,
-};
+use crate::garment::{BodyProbe, DimensionValue, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework};
 
 /// The figures of a solved framework.
 #[derive(Serialize)]
@@ -75,7 +73,10 @@ pub(super) fn run(
         for part in GarmentPart::all() {
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
         }
-        scope.emit("constraints.network", Stage::Constraints(ConstraintStage::Network(fw, net)));
+        scope.emit(
+            "constraints.network",
+            Stage::Constraints(ConstraintStage::Network(fw, net)),
+        );
     }
     if let Some(probe) = &state.probe {
         collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);

@@ -7,7 +7,7 @@ use serde::Serialize;
 use super::super::emit::StepScope;
 use super::super::error::StepError;
 use super::super::stage::Stage;
-use crate::mannequin::{DressForm, MannequinOptions, RegionErrors, Region, run_mannequin};
+use crate::mannequin::{DressForm, MannequinOptions, Region, RegionErrors, run_mannequin};
 
 /// The figures of a mannequin step.
 #[derive(Serialize)]

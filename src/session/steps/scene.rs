@@ -90,7 +90,10 @@ pub(in super::super) fn run(
     scope.record(&PartitionFigures {
         partitions: &partitions,
     });
-    scope.emit("body.partitions", Stage::Body(BodyStage::Partitions(&mesh, &partitions)));
+    scope.emit(
+        "body.partitions",
+        Stage::Body(BodyStage::Partitions(&mesh, &partitions)),
+    );
     Ok(Body {
         mesh,
         landmarks,

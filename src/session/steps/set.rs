@@ -69,7 +69,10 @@ pub(super) fn run(
         scope.record(&MoveFigures {
             max_vertex_move_m: moved,
         });
-        scope.emit("garment.edit", Stage::Garment(GarmentStage::Edit { name, before, after }));
+        scope.emit(
+            "garment.edit",
+            Stage::Garment(GarmentStage::Edit { name, before, after }),
+        );
         for part in GarmentPart::all() {
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
         }

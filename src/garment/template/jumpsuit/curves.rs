@@ -320,7 +320,10 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
     let junction = ctx.segments(hip_y - thigh_y, 1.0);
     let inner = (junction / 3).max(1);
     let mut torso = [0; 3];
-    for (n, (lo, hi)) in torso.iter_mut().zip([("hip", "waist"), ("waist", "bust"), ("bust", "chest")]) {
+    for (n, (lo, hi)) in torso
+        .iter_mut()
+        .zip([("hip", "waist"), ("waist", "bust"), ("bust", "chest")])
+    {
         let (ylo, yhi) = (find(&rings, lo)?.plane.offset, find(&rings, hi)?.plane.offset);
         *n = ctx.segments(yhi - ylo, 1.0);
     }

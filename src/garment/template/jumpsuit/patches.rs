@@ -51,7 +51,6 @@ pub(super) fn lines(fw: &Framework, probe: &BodyProbe) -> Result<Vec<FeatureLine
     Ok(lines)
 }
 
-
 /// Every patch of the jumpsuit: 24 around the torso, 8 at the crotch junction, 16 on the
 /// legs, and the front and back panels up to the neckline.
 pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(), FrameworkError> {
