@@ -302,3 +302,76 @@ fn set_reads_relative_and_absolute_values() {
         ]
     );
 }
+
+/// The exit codes tell bad input (2), a failed step (1) and drape's own failure (3) apart.
+#[test]
+fn exit_codes_tell_bad_input_from_a_failed_step_from_an_internal_failure() {
+    let dir = std::env::temp_dir().join(format!("drape-exit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, text: &str| {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    };
+    let save = dir.join("out.rrd");
+    let save = save.to_str().unwrap();
+    // A body file that does not exist: bad input.
+    let missing = write("missing.drape", "drape 1\nbody \"no/such/body.obj\"\n");
+    let (code, stderr) = drape(&["run", missing.to_str().unwrap(), "--save", save]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains("no/such/body.obj: cannot read"), "{stderr}");
+    // A malformed body file: bad input, with its line.
+    let obj = write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+    let broken = write("broken.drape", "drape 1\nbody \"broken.obj\"\n");
+    let (code, stderr) = drape(&["run", broken.to_str().unwrap(), "--save", save]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(stderr.contains(&format!("{}:3", obj.display())), "{stderr}");
+    // A section above the body: the step fails.
+    let high = write("high.drape", "drape 1\nsection y=5\n");
+    let (code, stderr) = drape(&["run", high.to_str().unwrap(), "--save", save]);
+    assert_eq!(code, 1, "{stderr}");
+    // The recording's folder cannot be made (a file is in the way): drape's own failure.
+    let blocker = write("blocker", "a file, not a folder");
+    let inside = blocker.join("out.rrd");
+    let ok = write("ok.drape", "drape 1\n");
+    let (code, stderr) = drape(&["run", ok.to_str().unwrap(), "--save", inside.to_str().unwrap()]);
+    assert_eq!(code, 3, "{stderr}");
+    assert!(stderr.contains("cannot create"), "{stderr}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `cargo run --release` and `cargo test --release` build every shared dependency once:
+/// cargo's own resolver gives each package the same features with and without the
+/// dev-dependencies (`cargo tree`, offline, over the lock file).
+#[test]
+fn the_run_and_test_builds_share_their_dependency_features() {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    // Package to its feature sets (a package built for the host and the target appears twice).
+    type Features = std::collections::BTreeMap<String, std::collections::BTreeSet<String>>;
+    let tree = |extra: &[&str]| -> Features {
+        let out = Command::new(&cargo)
+            .args(["tree", "--offline", "--prefix", "none", "-f", "{p}|{f}"])
+            .args(extra)
+            .current_dir(env!("CARGO_MANIFEST_DIR"))
+            .output()
+            .expect("cargo tree runs");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let mut features = Features::new();
+        for (p, f) in String::from_utf8_lossy(&out.stdout)
+            .lines()
+            .filter_map(|l| l.trim_end_matches(" (*)").split_once('|'))
+        {
+            features.entry(p.to_string()).or_default().insert(f.to_string());
+        }
+        features
+    };
+    let run = tree(&["-e", "no-dev"]);
+    let test = tree(&[]);
+    for (package, features) in &run {
+        assert_eq!(
+            test.get(package),
+            Some(features),
+            "{package}: the test build turns on other features, so it would build it again"
+        );
+    }
+}
