@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""Regenerates the README's demo figures from `drape run --verify --metrics`.
+
+    python3 scripts/readme_figures.py            # run the demo, rewrite the README sections
+    python3 scripts/readme_figures.py --check    # exit 1 if the README is out of date
+    python3 scripts/readme_figures.py --metrics M.json   # use an existing metrics file
+
+Each generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
+in README.md; nothing else is touched. Standard library only.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SESSION = os.path.join(ROOT, "assets", "sessions", "demo.drape")
+README = os.path.join(ROOT, "README.md")
+SCENE = {"drape", "body", "units", "landmark", "solver"}
+
+
+def demo_metrics():
+    """Runs the demo with --verify; returns its metrics."""
+    with tempfile.TemporaryDirectory() as tmp:
+        metrics = os.path.join(tmp, "demo.json")
+        subprocess.run(
+            ["cargo", "run", "--release", "--quiet", "--", "run", "--verify",
+             "--metrics", metrics, "--save", os.path.join(tmp, "demo.rrd")],
+            cwd=ROOT, check=True, stderr=subprocess.DEVNULL)
+        with open(metrics) as f:
+            return json.load(f)
+
+
+def step_texts():
+    """The demo's steps as written, by step number (1-based)."""
+    out = {}
+    n = 0
+    for line in open(SESSION):
+        text = line.split("#", 1)[0].strip()
+        if not text or text.split()[0] in SCENE:
+            continue
+        n += 1
+        out[n] = text
+    return out
+
+
+def collision_table(steps, texts):
+    rows = [
+        "| step | tested / inert / patch-skipped | hits (truth) | missed / false | moved (vertex + edge rounds) "
+        "| crossing edges before -> per round -> after | inside after |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for s in steps:
+        if "hits" not in s:
+            continue
+        v = s.get("verify", {})
+        missed, false = v.get("missed", "?"), v.get("false_hits", "?")
+        note = ""
+        if (missed or false) and missed == v.get("missed_line_line") and false == v.get("false_line_line"):
+            note = ", all line-line"
+        rounds = ", ".join(str(r) for r in s["crossing_edges_by_round"])
+        rows.append(
+            f"| {s['step']} `{texts.get(s['step'], s['op'])}` "
+            f"| {s['tested_vertices']} / {s['skipped_inert']} / {s['skipped_patch']} "
+            f"| {s['hits']} ({v.get('inside_before', '?')}) | {missed} / {false}{note} "
+            f"| {s['responses']} + {s['edge_responses']} "
+            f"| {v.get('crossing_before', '?')} -> {rounds} -> {s['crossing_edges']} "
+            f"| {s['penetrating_vertices']} |")
+    return "\n".join(rows)
+
+
+def busiest_step(steps):
+    s = max((s for s in steps if "hits" in s), key=lambda s: s["hits"])
+    parts = ", ".join(f"{k} {n}" for k, n in s["hits_by_partition"].items() if n)
+    rules = ", ".join(f"{k.replace('_', ' ')} {n}" for k, n in s["responses_by_rule"].items())
+    return (f"Step {s['step']} has the most hits; by partition: {parts}; moves by rule: {rules}. "
+            f"Response ease {s['response_ease_m'] * 1e3:.2f} mm; the moved vertices stand "
+            f"{s['max_ease_error_m'] * 1e3:.3f} mm from it at most (mean {s['mean_ease_error_m'] * 1e3:.4f} mm).")
+
+
+def landmarks(steps):
+    scene = steps[0]
+    heights = {}
+    for l in scene["landmarks"]:
+        heights.setdefault(l["kind"], []).append(l["point"][1])
+    order = ["ankle", "knee", "crotch", "hip", "waist", "bust", "armpit", "shoulder", "front_neck", "side_neck", "neck"]
+    listed = ", ".join(
+        f"{k.replace('_', ' ')} {sum(heights[k]) / len(heights[k]):.3f}" for k in order if k in heights)
+    waist = next((r for r in scene["rings"] if r["name"] == "waist"), None)
+    tape = f"; waist tape girth {waist['tape_girth']:.3f} m" if waist else ""
+    return f"On the shipped body: {listed} m{tape}."
+
+
+def sections(steps):
+    texts = step_texts()
+    return {
+        "demo-collision": collision_table(steps, texts),
+        "demo-busiest": busiest_step(steps),
+        "landmarks": landmarks(steps),
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--check", action="store_true", help="exit 1 if the README is out of date")
+    ap.add_argument("--metrics", help="a metrics file of the demo run with --verify (default: run it)")
+    args = ap.parse_args()
+    steps = json.load(open(args.metrics)) if args.metrics else demo_metrics()
+    text = open(README).read()
+    new = text
+    for name, body in sections(steps).items():
+        pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
+        if not pattern.search(new):
+            sys.exit(f"README.md has no section figures:{name}")
+        new = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), new)
+    if new == text:
+        print("README figures are current")
+        return 0
+    if args.check:
+        print("README figures are out of date: run python3 scripts/readme_figures.py")
+        return 1
+    open(README, "w").write(new)
+    print("README figures rewritten")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
