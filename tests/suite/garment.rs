@@ -354,3 +354,27 @@ fn loose_fit_straightens_the_legs_below_the_thigh_and_keeps_the_thigh() {
         );
     }
 }
+
+/// The names a template declares (for checking a session before anything runs) are the
+/// names its built framework has: every control point and every curve, both templates.
+#[test]
+fn the_templates_declared_names_are_the_built_frameworks() {
+    for kind in TemplateKind::ALL {
+        let fw = build_framework(
+            real_body(),
+            real_probe(),
+            kind,
+            &Dimensions::default(),
+            &FrameworkOptions::default(),
+        )
+        .expect("builds");
+        let spec = drape::garment::template::of(kind);
+        let built: Vec<String> = fw.control_points().into_iter().map(|(n, _)| n).collect();
+        assert_eq!(spec.point_names(), built, "{kind:?} points");
+        let curves: Vec<String> = drape::constraint::curves::curve_nodes(&fw)
+            .into_iter()
+            .map(|c| c.name)
+            .collect();
+        assert_eq!(spec.curve_names(), curves, "{kind:?} curves");
+    }
+}

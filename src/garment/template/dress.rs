@@ -16,6 +16,9 @@ use crate::geom::Plane;
 /// Rings of the dress, top to bottom.
 pub const RINGS: [&str; 4] = ["waist", "hip", "thigh", "hem"];
 
+/// Contours of the dress, in ring order from the front.
+pub const CONTOURS: [&str; 4] = ["centre_front", "side_left", "centre_back", "side_right"];
+
 /// The dress template.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Dress;
@@ -34,6 +37,14 @@ impl Template for Dress {
             "length",
             "waist height minus hem height, m (default: down to the knees)",
         )]
+    }
+
+    fn ring_anchors(&self) -> Vec<(&'static str, &'static [&'static str])> {
+        RINGS.iter().map(|r| (*r, &QUAD[..])).collect()
+    }
+
+    fn contours(&self) -> &'static [&'static str] {
+        &CONTOURS
     }
 
     fn fit(&self, _asked: Fit) -> Fit {
@@ -96,7 +107,7 @@ fn solve(ctx: &mut BuildCtx<'_>) -> Result<Parts, FrameworkError> {
         planes.push(ctx.plane_for(&r.name, r.plane, centre));
     }
     let levels = ["hem", "thigh", "hip", "waist"];
-    let names = ["centre_front", "side_left", "centre_back", "side_right"];
+    let names = CONTOURS;
     let specs: Vec<ContourSpec> = names
         .iter()
         .zip(QUAD)
@@ -128,7 +139,7 @@ fn patches(s: &mut Surfacer<'_>) -> Result<(), FrameworkError> {
         return Err(missing("layout", "not a dress's"));
     };
     let k = s.layout().k;
-    let names = ["centre_front", "side_left", "centre_back", "side_right"];
+    let names = CONTOURS;
     for ((lo, hi), nv) in [("hem", "thigh"), ("thigh", "hip"), ("hip", "waist")]
         .into_iter()
         .zip(nv)

@@ -55,6 +55,37 @@ pub trait Template: Sync {
         names
     }
 
+    /// Every ring with its anchors, in ring order: the named control points `ring.anchor`.
+    fn ring_anchors(&self) -> Vec<(&'static str, &'static [&'static str])>;
+
+    /// The open curves with the name of their apex (`crotch` and `point`).
+    fn open_curves(&self) -> &'static [(&'static str, &'static str)] {
+        &[]
+    }
+
+    /// The contours, by name.
+    fn contours(&self) -> &'static [&'static str];
+
+    /// Every control point a drag may name (`waist.front`, `crotch.point`, ...), in the
+    /// order of the curves.
+    fn point_names(&self) -> Vec<String> {
+        let mut out: Vec<String> = self
+            .ring_anchors()
+            .iter()
+            .flat_map(|(ring, anchors)| anchors.iter().map(move |a| format!("{ring}.{a}")))
+            .collect();
+        out.extend(self.open_curves().iter().map(|(c, apex)| format!("{c}.{apex}")));
+        out
+    }
+
+    /// Every curve a drag may move whole: rings, open curves, contours.
+    fn curve_names(&self) -> Vec<&'static str> {
+        let mut out: Vec<&'static str> = self.ring_anchors().iter().map(|(r, _)| *r).collect();
+        out.extend(self.open_curves().iter().map(|(c, _)| *c));
+        out.extend(self.contours());
+        out
+    }
+
     /// The fit the template is built with when `asked` is asked for (a dress is always
     /// loose below the hip).
     fn fit(&self, asked: Fit) -> Fit {

@@ -6,7 +6,7 @@ mod curves;
 mod patches;
 
 use super::{CurveRoles, EndJoint, TangentJoint, Template};
-use crate::garment::anchors::{QUAD, TORSO, mirror_pairs};
+use crate::garment::anchors::{LEFT_LEG, QUAD, RIGHT_LEG, TORSO, mirror_pairs};
 use crate::garment::build::{BuildCtx, Parts};
 use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, TemplateKind};
 use crate::garment::probe::BodyProbe;
@@ -25,6 +25,20 @@ pub const RINGS: [&str; 11] = [
     "right_knee",
     "left_hem",
     "right_hem",
+];
+
+/// Contours of the jumpsuit.
+pub const CONTOURS: [&str; 10] = [
+    "centre_front",
+    "centre_back",
+    "front_left",
+    "side_left",
+    "back_left",
+    "inner_left",
+    "front_right",
+    "side_right",
+    "back_right",
+    "inner_right",
 ];
 
 /// The jumpsuit template.
@@ -52,6 +66,29 @@ impl Template for Jumpsuit {
                 "where the straps cross the shoulder, 0 at the side neck to 1 at the shoulder point (default 0.5)",
             ),
         ]
+    }
+
+    fn ring_anchors(&self) -> Vec<(&'static str, &'static [&'static str])> {
+        RINGS
+            .iter()
+            .map(|r| {
+                let anchors: &'static [&'static str] = match *r {
+                    "neckline" => &QUAD,
+                    r if r.starts_with("left_") => &LEFT_LEG,
+                    r if r.starts_with("right_") => &RIGHT_LEG,
+                    _ => &TORSO,
+                };
+                (*r, anchors)
+            })
+            .collect()
+    }
+
+    fn open_curves(&self) -> &'static [(&'static str, &'static str)] {
+        &[("crotch", "point"), ("left_strap", "top"), ("right_strap", "top")]
+    }
+
+    fn contours(&self) -> &'static [&'static str] {
+        &CONTOURS
     }
 
     fn curves(&self, ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, FrameworkError> {
