@@ -77,8 +77,8 @@ def busiest_step(steps):
     parts = ", ".join(f"{k} {n}" for k, n in s["hits_by_partition"].items() if n)
     rules = ", ".join(f"{k.replace('_', ' ')} {n}" for k, n in s["responses_by_rule"].items())
     return (f"Step {s['step']} has the most hits; by partition: {parts}; moves by rule: {rules}. "
-            f"Response ease {s['response_ease_m'] * 1e3:.2f} mm; the moved vertices stand "
-            f"{s['max_ease_error_m'] * 1e3:.3f} mm from it at most (mean {s['mean_ease_error_m'] * 1e3:.4f} mm).")
+            f"Response ease {s['response_ease_m'] * 1e3:.2f} mm; the pushed vertices stand "
+            f"{s['max_ease_error_m'] * 1e3:.4f} mm from their gap at most.")
 
 
 def landmarks(steps):

@@ -10,6 +10,7 @@
 //! [`BodyIndex::new`] (in [`crate::body::index`]).
 
 pub mod detect;
+pub mod edges;
 pub mod line_line;
 pub mod par;
 pub mod point_face;
@@ -24,9 +25,10 @@ use glam::DVec3;
 pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
+pub use edges::respond_edges;
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality};
-pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, respond_edges, response_ease};
+pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
 pub use verify::{GroundTruth, VerifyReport, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};

@@ -16,7 +16,12 @@
 //!    through the vertex); if not, it becomes that direction.
 //!
 //! The vertex then travels along the direction to where it leaves the body, and on until
-//! its distance to the body is the ease (a few secant steps on the exact distance).
+//! its distance to the body is the ease, within [`EASE_TOLERANCE`] of it either way (secant
+//! steps on the exact distance, bracketed). Where another part of the body lies within two
+//! eases along the direction (the other thigh just below the crotch, an arm against the
+//! torso) there is no room for the ease: the vertex stands where it is farthest from both
+//! along the ray, and the shortest way out is tried as well, the better one kept. The gap a
+//! vertex was sent to is recorded with it ([`Response::gap`]).
 //!
 //! Two checks keep a rule from doing harm, and are recorded as `fallback` when they act:
 //! a direction more than 75 degrees off the vertex's shortest way out of the body (a
@@ -24,9 +29,8 @@
 //! way out, and so is a push that would travel more than three times the depth plus the
 //! ease (the ray would cross the body to its far side).
 //!
-//! Edges can still cross the body with both ends outside (\[collide\] figure 14). Edge
-//! rounds move the ends of such edges out by the depth the edge reaches inside, by the
-//! same rules, until none crosses or the rounds run out.
+//! Edges can still cross the body with both ends outside (\[collide\] figure 14): the edge
+//! rounds of [`super::edges`] lift them.
 
 use glam::{DVec2, DVec3};
 
@@ -49,9 +53,10 @@ pub struct ResponseOptions {
     /// View direction for shoulder boundary vertices, a unit vector in the world frame.
     /// Default value: `+z` (front view).
     pub view: DVec3,
-    /// Rounds of edge response: the ends of edges that still cross the body after the
-    /// vertex response are moved out by their own rules, by the depth the edge reaches
-    /// inside plus a quarter of the ease (at least to the ease). Default value: 3.
+    /// Most rounds of edge response (see [`super::edges`]): the ends of edges that still
+    /// cross the body after the vertex response are lifted out along the way out at the
+    /// edge's deepest point; each round checks only the edges at ends moved before, and the
+    /// rounds stop when none crosses. Default value: 20.
     pub edge_rounds: usize,
 }
 
@@ -61,7 +66,7 @@ impl Default for ResponseOptions {
             ease_fraction: 0.5,
             min_ease: 0.002,
             view: DVec3::Z,
-            edge_rounds: 3,
+            edge_rounds: 20,
         }
     }
 }
@@ -82,6 +87,9 @@ pub enum AppliedRule {
     LocalCentre,
     /// The self-collision guard replaced the direction.
     Guard,
+    /// An end of an edge still crossing the body, lifted along the way out at the edge's
+    /// deepest point (edge rounds).
+    EdgeLift,
     /// The rule's direction was more than 75 degrees off the shortest way out, or its push
     /// too long: out along the shortest way instead.
     Fallback,
@@ -89,13 +97,14 @@ pub enum AppliedRule {
 
 impl AppliedRule {
     /// All rules, in order.
-    pub const ALL: [Self; 7] = [
+    pub const ALL: [Self; 8] = [
         Self::VertexNormal,
         Self::ViewDirection,
         Self::BodyNormal,
         Self::GlobalCentre,
         Self::LocalCentre,
         Self::Guard,
+        Self::EdgeLift,
         Self::Fallback,
     ];
 
@@ -108,6 +117,7 @@ impl AppliedRule {
             Self::GlobalCentre => "global_centre",
             Self::LocalCentre => "local_centre",
             Self::Guard => "guard",
+            Self::EdgeLift => "edge_lift",
             Self::Fallback => "fallback",
         }
     }
@@ -146,8 +156,11 @@ pub struct Response {
     pub iso: Option<DVec3>,
     /// The centre the rule or the guard read, `(x, z)`.
     pub centre: Option<DVec2>,
-    /// Its distance to the body afterwards minus the ease it was sent to, m.
+    /// Its distance to the body afterwards minus `gap`, m.
     pub ease_error: f64,
+    /// The gap it was sent to, m: the ease, or half the free space where another part of
+    /// the body lies within two eases along its direction.
+    pub gap: f64,
     /// Moved as the end of an edge crossing the body (edge round, from 1), not as a
     /// penetrating vertex (0).
     pub edge_round: usize,
@@ -201,17 +214,40 @@ fn rule_direction(
     }
 }
 
-/// Moves `p` along unit `d` out of the body and on to `ease` off it. Returns the new
-/// point and its distance to the body minus the ease; `None` if no ray leaves the body.
-fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, f64)> {
+/// Where a push ends: the point, the gap it aimed at (m; the ease, or less where the body
+/// leaves no room), and its distance to the body minus that gap (m).
+#[derive(Clone, Copy, Debug)]
+struct Pushed {
+    to: DVec3,
+    target: f64,
+    error: f64,
+}
+
+/// How far from its gap a pushed vertex may stand, either way, as a fraction of the gap.
+pub const EASE_TOLERANCE: f64 = 1e-3;
+
+/// Moves `p` along unit `d` out of the body and on until it stands `ease` (m) off it, within
+/// [`EASE_TOLERANCE`] of it either way; `None` if no ray leaves the body.
+///
+/// From the exit point the vertex first jumps one ease further along `d` (where its
+/// distance is at most the ease: the exit point lies on the surface), then takes secant
+/// steps on the distance along the ray, `t += (gap - distance) / slope`, kept inside the
+/// bracket of a point short of the gap and one beyond it (bisecting when a step would leave
+/// it), until the distance is the gap.
+///
+/// Where another part of the body lies within two eases beyond the exit along `d` (the
+/// other thigh under the crotch, an arm against the torso), there is no room for the ease:
+/// the vertex stands in the middle of the free space, as far from both as it can be.
+fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<Pushed> {
     let far = 2.0 * index.height;
     let reach = 0.2 * index.height;
+    // Past a surface along the ray before looking for the next one.
+    let skip = 1e-6 * index.height;
     let mut q = p;
     for round in 0..8 {
-        // From outside (an edge's end), straight to the secant steps.
         let outside = round == 0 && index.signed_distance(p, reach).is_none_or(|s| s >= 0.0);
         let mut s = if outside {
-            // From outside the direction must lead away from the body.
+            // From outside (an edge's end) the direction must lead away from the body.
             let near = index.nearest(p, reach)?;
             let away = if near.distance > 0.0 {
                 (p - near.foot) / near.distance
@@ -221,15 +257,36 @@ fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, 
             if d.dot(away) < 0.2 {
                 return None;
             }
+            // Another part of the body ahead before the ease is reached: the best point
+            // between.
+            if near.distance < ease
+                && let Some((ahead, _)) = index.cast_ray(p, d, skip, 2.0 * ease)
+            {
+                return Some(best_along(index, p, d, ahead, ease));
+            }
             p
         } else {
             let (t, _) = index.cast_ray(q, d, 0.0, far)?;
-            q + d * (t + ease)
+            let exit = q + d * t;
+            if let Some((free, _)) = index.cast_ray(exit, d, skip, 2.0 * ease) {
+                return Some(best_along(index, exit, d, free, ease));
+            }
+            exit + d * ease
         };
+        let start = s;
+        // Offsets along `d` from `start` known short of the gap and beyond it: a secant step
+        // that would leave that bracket bisects it instead.
+        let (mut short, mut beyond): (Option<f64>, Option<f64>) = (None, None);
+        let mut t = 0.0;
         let mut inside = false;
-        for _ in 0..8 {
+        for _ in 0..PUSH_STEPS {
+            s = start + d * t;
             let Some(near) = index.nearest(s, reach) else {
-                return Some((s, 0.0));
+                return Some(Pushed {
+                    to: s,
+                    target: ease,
+                    error: 0.0,
+                });
             };
             let signed = near.signed(s);
             if signed < 0.0 {
@@ -237,25 +294,137 @@ fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Option<(DVec3, 
                 break;
             }
             let err = ease - signed;
-            if err <= 1e-3 * ease {
-                return Some((s, signed - ease));
+            if err.abs() <= EASE_TOLERANCE * ease {
+                return Some(Pushed {
+                    to: s,
+                    target: ease,
+                    error: signed - ease,
+                });
+            }
+            if err > 0.0 {
+                short = Some(short.map_or(t, |x: f64| x.max(t)));
+            } else {
+                beyond = Some(beyond.map_or(t, |x: f64| x.min(t)));
             }
             let slope = if signed > 0.0 {
                 d.dot(s - near.foot) / signed
             } else {
                 1.0
             };
-            s += d * (err / slope.max(0.2));
+            let mut next = t + err / slope.max(0.2);
+            if let (Some(a), Some(b)) = (short, beyond)
+                && !(next > a.min(b) && next < a.max(b))
+            {
+                next = 0.5 * (a + b);
+            }
+            t = next;
         }
         if !inside {
+            // The steps ran out: the nearest point known beyond the gap, else the last.
+            let s = start + d * beyond.unwrap_or(t);
             let signed = index.signed_distance(s, reach).unwrap_or(reach);
-            return Some((s, signed - ease));
+            return Some(Pushed {
+                to: s,
+                target: ease,
+                error: signed - ease,
+            });
         }
         // The point entered another part of the body (an arm, the other leg): go on.
         q = s;
     }
     None
 }
+
+/// The point of the segment `from + d t`, `t` in `0..len`, farthest from the body (the free
+/// space between two parts of the body along `d`), by a coarse scan of 16 steps and a golden
+/// section around the best one; it aims at that distance. Where the distance reaches the
+/// ease after all, the first point at the ease instead.
+fn best_along(index: &BodyIndex, from: DVec3, d: DVec3, len: f64, ease: f64) -> Pushed {
+    let reach = 0.2 * index.height;
+    let dist = |t: f64| index.signed_distance(from + d * t, reach).unwrap_or(reach);
+    let steps = 16;
+    let (mut best_t, mut best) = (0.0, dist(0.0));
+    for k in 1..steps {
+        let t = len * k as f64 / steps as f64;
+        let v = dist(t);
+        if v > best {
+            (best_t, best) = (t, v);
+        }
+    }
+    // Golden section on the bracket around the best sample.
+    let h = len / steps as f64;
+    let (mut a, mut b) = ((best_t - h).max(0.0), (best_t + h).min(len));
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..30 {
+        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+        if dist(x1) >= dist(x2) {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    let t = 0.5 * (a + b);
+    let v = dist(t);
+    let (mut t, v) = if v >= best { (t, v) } else { (best_t, best) };
+    if v > ease {
+        // Room enough after all: where the distance first reaches the ease (bisection from
+        // the start, which stands nearer).
+        let (mut lo, mut hi) = (0.0, t);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if dist(mid) < ease {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        t = hi;
+    }
+    let v = dist(t);
+    let target = v.min(ease);
+    Pushed {
+        to: from + d * t,
+        target,
+        error: v - target,
+    }
+}
+
+/// From `q`, steps out from the nearest surface point to the ease again and again (a point
+/// in a concave corner, where the surface it left is no longer the nearest), until it stands
+/// the ease off the body or stops gaining: then it aims at what it reached.
+fn settle(index: &BodyIndex, mut q: DVec3, ease: f64) -> Pushed {
+    let reach = 0.2 * index.height;
+    let mut reached = index.signed_distance(q, reach).unwrap_or(reach);
+    for _ in 0..PUSH_STEPS {
+        if (reached - ease).abs() <= EASE_TOLERANCE * ease {
+            break;
+        }
+        let Some(near) = index.nearest(q, reach) else {
+            break;
+        };
+        let out = if near.distance > 0.0 {
+            (q - near.foot) / near.distance * near.signed(q).signum()
+        } else {
+            near.normal
+        };
+        let next = near.foot + out * ease;
+        let now = index.signed_distance(next, reach).unwrap_or(reach);
+        if now <= reached {
+            break;
+        }
+        (q, reached) = (next, now);
+    }
+    let target = reached.min(ease);
+    Pushed {
+        to: q,
+        target,
+        error: reached - target,
+    }
+}
+
+/// Most secant steps of one push. Each step closes most of the shortfall; where `d` runs
+/// nearly along the surface it closes less, so the steps are many enough for that.
+const PUSH_STEPS: usize = 40;
 
 /// The gap (m) responses stand off at for a garment of ease `garment_ease` (m): half the
 /// ease ([`ResponseOptions::ease_fraction`]), at least [`ResponseOptions::min_ease`] of the
@@ -278,86 +447,7 @@ pub fn respond(
     (out, responses)
 }
 
-/// Edge rounds: the ends of edges of `positions` that still meet the body are moved out
-/// by their rules to a quarter of the ease beyond where they stand (at least the ease).
-/// Returns the responses of all rounds and the number of crossing edges each round
-/// found; `positions` is updated.
-pub fn respond_edges(
-    index: &BodyIndex,
-    positions: &mut [DVec3],
-    edges: &[[u32; 2]],
-    partition: &[usize],
-    roles: &VertexRoles<'_>,
-    ease: f64,
-    options: &ResponseOptions,
-) -> (Vec<Response>, Vec<usize>) {
-    let reach = 0.2 * index.height;
-    let mut all = Vec::new();
-    let mut found = Vec::new();
-    // Edges to check: all at first, then those with an end moved in the round before (the
-    // others kept their ends, and none of them crossed).
-    let mut check: Vec<usize> = (0..edges.len()).collect();
-    for round in 1..=options.edge_rounds {
-        // How deep each crossing edge goes: the middle of its part inside the body.
-        let mut need: std::collections::BTreeMap<u32, f64> = std::collections::BTreeMap::new();
-        let depths = {
-            let positions = &*positions;
-            let check = &check;
-            par_map(check.len(), |k| {
-                let [a, b] = edges[check[k]];
-                let (pa, pb) = (positions[a as usize], positions[b as usize]);
-                let (t_in, _) = index.cast_ray(pa, pb - pa, 0.0, 1.0)?;
-                let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
-                let mid = pa.lerp(pb, 0.5 * (t_in + t_out.max(t_in)));
-                Some(index.signed_distance(mid, reach).map_or(0.0, |s| (-s).max(0.0)))
-            })
-        };
-        let mut count = 0;
-        for (&e, depth) in check.iter().zip(depths) {
-            let [a, b] = edges[e];
-            let Some(depth) = depth else {
-                continue;
-            };
-            count += 1;
-            for v in [a, b] {
-                let e = need.entry(v).or_insert(0.0);
-                *e = e.max(depth);
-            }
-        }
-        found.push(count);
-        if need.is_empty() {
-            break;
-        }
-        let hits: Vec<Hit> = need
-            .keys()
-            .filter_map(|&v| {
-                let p = positions[v as usize];
-                let near = index.nearest(p, reach)?;
-                Some(Hit {
-                    vertex: v,
-                    partition: partition.get(v as usize).copied().unwrap_or(0),
-                    method: crate::body::DetectionMethod::PointFace,
-                    depth: -near.signed(p),
-                    foot: near.foot,
-                    normal: near.normal,
-                    triangle: Some(near.triangle),
-                })
-            })
-            .collect();
-        // Each end goes out by the edge's depth and a quarter of the ease beyond where it
-        // stands, at least to the ease.
-        let target = |h: &Hit| ease.max(-h.depth + need.get(&h.vertex).copied().unwrap_or(0.0) + 0.25 * ease);
-        let moved = respond_round(index, positions, &hits, roles, &target, round, options);
-        let ends: std::collections::BTreeSet<u32> = moved.iter().map(|r| r.vertex).collect();
-        check = (0..edges.len())
-            .filter(|&e| ends.contains(&edges[e][0]) || ends.contains(&edges[e][1]))
-            .collect();
-        all.extend(moved);
-    }
-    (all, found)
-}
-
-fn respond_round(
+pub(super) fn respond_round(
     index: &BodyIndex,
     out: &mut [DVec3],
     hits: &[Hit],
@@ -422,16 +512,33 @@ fn respond_round(
             centre = None;
         }
         let limit = 3.0 * (depth + ease);
-        let pushed = push_out(index, p, d, ease).filter(|(q, _)| q.distance(p) <= limit);
-        let (to, ease_error, rule) = match pushed {
-            Some((q, e)) => (q, e, rule),
-            None => {
+        let pushed = push_out(index, p, d, ease).filter(|q| q.to.distance(p) <= limit);
+        // Squeezed along the rule's direction (another part of the body in the way): the
+        // shortest way out, if it stands further off.
+        let pushed = match pushed {
+            Some(q) if q.target < (1.0 - EASE_TOLERANCE) * ease && rule != AppliedRule::Fallback => {
                 let foot = near.map_or(hit.foot, |n| n.foot);
-                let q = foot + way_out * ease;
-                let e = index.signed_distance(q, reach).unwrap_or(0.0) - ease;
-                (q, e, AppliedRule::Fallback)
+                match push_out(index, foot + way_out * ease, way_out, ease) {
+                    Some(w) if w.target > q.target => {
+                        rule = AppliedRule::Fallback;
+                        Some(w)
+                    }
+                    _ => Some(q),
+                }
+            }
+            other => other,
+        };
+        let (pushed, rule) = match pushed {
+            Some(q) => (q, rule),
+            None => {
+                // The shortest way out: from the nearest surface point out along it.
+                let foot = near.map_or(hit.foot, |n| n.foot);
+                let q = push_out(index, foot + way_out * ease, way_out, ease)
+                    .unwrap_or_else(|| settle(index, foot + way_out * ease, ease));
+                (q, AppliedRule::Fallback)
             }
         };
+        let (to, ease_error) = (pushed.to, pushed.error);
         let direction = if rule == AppliedRule::Fallback {
             (to - p).normalize_or_zero()
         } else {
@@ -450,6 +557,7 @@ fn respond_round(
             iso,
             centre,
             ease_error,
+            gap: pushed.target,
             edge_round,
         }
     });

@@ -1,6 +1,7 @@
 //! Surfacing: each four-sided region of a framework as a bilinearly blended Coons patch on
-//! the layout's fixed grid (\[frame\] section 4), kept from the previous framework when none
-//! of its boundary curves changed; and the lookups a template's patches use.
+//! the layout's fixed grid (\[frame\] section 4), its interior samples cleared off the body
+//! like the contour spans, kept from the previous framework when none of its boundary curves
+//! changed; and the lookups a template's patches use.
 
 use std::collections::BTreeMap;
 
@@ -169,7 +170,17 @@ impl<'a> Surfacer<'a> {
                 return Ok(());
             }
         }
-        let grid = PatchGrid::coons(name, sides, 1e-9 * self.layout.height)?.with_curves(curves);
+        let mut grid = PatchGrid::coons(name, sides, 1e-9 * self.layout.height)?.with_curves(curves);
+        // The blend of four boundaries that stand off the body can still dip into it where
+        // the body bulges between them (the inner thigh and the belly over a tall crotch
+        // junction): interior samples stand the clearance off, as contour spans do.
+        let (nu, nv) = (grid.nu, grid.nv);
+        for j in 1..nv {
+            for i in 1..nu {
+                let k = j * (nu + 1) + i;
+                grid.points[k] = self.probe.clear(grid.points[k], self.layout.clearance);
+            }
+        }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
         Ok(())

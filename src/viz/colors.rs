@@ -47,6 +47,7 @@ pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
         AppliedRule::GlobalCentre => [30, 160, 60],
         AppliedRule::LocalCentre => [150, 220, 60],
         AppliedRule::Guard => [230, 30, 200],
+        AppliedRule::EdgeLift => [255, 230, 90],
         AppliedRule::Fallback => [140, 140, 140],
     }
 }

@@ -141,6 +141,30 @@ pub fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The nearest hit of the ray `p + t d`, `t > 0`, with the mesh (Möller-Trumbore per
+/// triangle, written here), if any.
+pub fn ray_hit(mesh: &TriMesh, p: DVec3, d: DVec3) -> Option<f64> {
+    let mut best: Option<f64> = None;
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t);
+        let (e1, e2) = (b - a, c - a);
+        let h = d.cross(e2);
+        let det = e1.dot(h);
+        if det.abs() < 1e-15 {
+            continue;
+        }
+        let s = p - a;
+        let u = s.dot(h) / det;
+        let q = s.cross(e1);
+        let v = d.dot(q) / det;
+        let dist = e2.dot(q) / det;
+        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 0.0 {
+            best = Some(best.map_or(dist, |x| x.min(dist)));
+        }
+    }
+    best
+}
+
 /// Whether `p` is inside the closed mesh by ray parity: the ray from `p` along a fixed
 /// oblique direction crosses the surface an odd number of times (Möller-Trumbore per
 /// triangle, written here). The direction is irrational enough that no test point's ray

@@ -109,9 +109,8 @@ pub struct Parts {
     pub layout: Layout,
 }
 
-/// Assembles the lines, patches and M0 from the curves. Patch interiors are left where
-/// the Coons blend puts them: where they dip into the body (the seat below the hip ring)
-/// the mesh-layer collision finds and moves them.
+/// Assembles the lines, patches and M0 from the curves (patch interiors cleared off the
+/// body, see [`super::surface`]).
 fn finish(ctx: &BuildCtx<'_>, template: TemplateKind, fit: Fit, parts: Parts) -> Result<Framework, FrameworkError> {
     let mut fw = Framework {
         template,

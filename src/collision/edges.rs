@@ -1,0 +1,216 @@
+//! Edge rounds (\[collide\] figure 14: both ends outside, the edge inside): after the vertex
+//! response, the ends of every edge that still meets the body are lifted out of it.
+//!
+//! An edge crossing the body has a part inside; at the middle of that part (parameter `t`
+//! along the edge) it is deepest, `depth` behind the surface, whose way out there is `n`.
+//! Lifting that point by `lift = depth + ease / 4` takes the ends out by the least-squares
+//! split of the lift, `u_a = lift (1 - t) / w` and `u_b = lift t / w` with
+//! `w = (1 - t)^2 + t^2` (so that `(1 - t) u_a + t u_b = lift`). Each end moves along `n`
+//! where that leads away from the body at the end too (within 75 degrees of the end's own
+//! shortest way out), else along its own way out. An end with no room (another part of the
+//! body ahead: it may go no further than the middle of the free space) leaves the rest of
+//! the lift to the other end, which then moves at most three lifts. An end shared by several
+//! crossing edges takes the longest of its moves. A vertex on a garment ring keeps its height
+//! where that leaves most of the move. A move that would leave the end inside the body is not
+//! made. Only the edges at moved ends are checked again, for a few rounds.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+use super::detect::Hit;
+use super::par::par_map;
+use super::response::{AppliedRule, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
+use crate::body::index::BodyIndex;
+
+/// A crossing edge: its ends, where along it it is deepest, the way out there and how deep.
+struct Crossing {
+    ends: [u32; 2],
+    length: f64,
+    t: f64,
+    out: DVec3,
+    depth: f64,
+}
+
+/// The edge's deepest point inside the body, if it meets the body.
+fn crossing(index: &BodyIndex, ends: [u32; 2], pa: DVec3, pb: DVec3) -> Option<Crossing> {
+    let reach = 0.2 * index.height;
+    let (t_in, _) = index.cast_ray(pa, pb - pa, 0.0, 1.0)?;
+    let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
+    let t = 0.5 * (t_in + t_out.max(t_in));
+    let mid = pa.lerp(pb, t);
+    let near = index.nearest(mid, reach)?;
+    let signed = near.signed(mid);
+    let out = if signed < 0.0 && near.distance > 0.0 {
+        (near.foot - mid) / near.distance
+    } else {
+        near.normal
+    };
+    Some(Crossing {
+        ends,
+        length: pa.distance(pb),
+        t: t.clamp(0.0, 1.0),
+        out,
+        depth: (-signed).max(0.0),
+    })
+}
+
+/// Where an end can go: its direction out and how far before the middle of the free space.
+#[derive(Clone, Copy)]
+struct Way {
+    dir: DVec3,
+    room: f64,
+}
+
+/// The way out for the end at `p` when its edge is lifted along `n`.
+fn way(index: &BodyIndex, p: DVec3, n: DVec3, ease: f64) -> Option<Way> {
+    let reach = 0.2 * index.height;
+    let near = index.nearest(p, reach)?;
+    if near.signed(p) < 0.0 {
+        // An end inside (a miss of the approximate line-line test) is pushed out as a hit.
+        return None;
+    }
+    let own = if near.distance > 0.0 {
+        (p - near.foot) / near.distance
+    } else {
+        near.normal
+    };
+    let dir = if n.dot(own) >= MIN_COSINE { n } else { own };
+    let behind = near.distance;
+    let room = match index.cast_ray(p, dir, 1e-6 * index.height, 4.0 * ease) {
+        Some((ahead, _)) => (0.5 * (behind + ahead) - behind).max(0.0),
+        None => f64::INFINITY,
+    };
+    Some(Way { dir, room })
+}
+
+/// Edge rounds on `positions` (updated): returns the lifts made, as responses, and the
+/// number of crossing edges each round found.
+pub fn respond_edges(
+    index: &BodyIndex,
+    positions: &mut [DVec3],
+    edges: &[[u32; 2]],
+    partition: &[usize],
+    roles: &VertexRoles<'_>,
+    ease: f64,
+    options: &ResponseOptions,
+) -> (Vec<Response>, Vec<usize>) {
+    let reach = 0.2 * index.height;
+    let mut all = Vec::new();
+    let mut found = Vec::new();
+    // Edges to check: all at first, then those with an end moved in the round before (the
+    // others kept their ends, and none of them crossed).
+    let mut check: Vec<usize> = (0..edges.len()).collect();
+    for round in 1..=options.edge_rounds {
+        let positions_now = &*positions;
+        let crossings: Vec<(Crossing, [Option<Way>; 2])> = par_map(check.len(), |k| {
+            let ends = edges[check[k]];
+            let [pa, pb] = ends.map(|v| positions_now[v as usize]);
+            let c = crossing(index, ends, pa, pb)?;
+            let ways = [pa, pb].map(|p| way(index, p, c.out, ease));
+            Some((c, ways))
+        })
+        .into_iter()
+        .flatten()
+        .collect();
+        found.push(crossings.len());
+        if crossings.is_empty() {
+            break;
+        }
+        let mut moves: BTreeMap<u32, DVec3> = BTreeMap::new();
+        for (c, ways) in &crossings {
+            let lift = c.depth + 0.25 * ease;
+            let w = (1.0 - c.t).powi(2) + c.t * c.t;
+            let room = ways.map(|x| x.map_or(0.0, |x| x.room));
+            let mut u = [lift * (1.0 - c.t) / w, lift * c.t / w];
+            if u[0] > room[0] && c.t > 1e-3 {
+                u = [room[0], (lift - (1.0 - c.t) * room[0]) / c.t];
+            } else if u[1] > room[1] && c.t < 1.0 - 1e-3 {
+                u = [(lift - c.t * room[1]) / (1.0 - c.t), room[1]];
+            }
+            for ((v, way), u) in c.ends.into_iter().zip(ways).zip(u) {
+                let Some(way) = way else {
+                    continue;
+                };
+                let m = way.dir * u.min(CAP * lift).min(c.length).min(way.room);
+                let slot = moves.entry(v).or_insert(DVec3::ZERO);
+                if m.length_squared() > slot.length_squared() {
+                    *slot = m;
+                }
+            }
+        }
+        let moves: Vec<(u32, DVec3)> = moves.into_iter().filter(|(_, m)| *m != DVec3::ZERO).collect();
+        // Ends inside the body: pushed out by their partition's rule, as penetrating vertices.
+        let mut inside: Vec<u32> = crossings.iter().flat_map(|(c, _)| c.ends).collect();
+        inside.sort_unstable();
+        inside.dedup();
+        let hits: Vec<Hit> = inside
+            .into_iter()
+            .filter_map(|v| {
+                let p = positions_now[v as usize];
+                let near = index.nearest(p, reach)?;
+                let signed = near.signed(p);
+                (signed < 0.0).then(|| Hit {
+                    vertex: v,
+                    partition: partition.get(v as usize).copied().unwrap_or(0),
+                    method: crate::body::DetectionMethod::PointFace,
+                    depth: -signed,
+                    foot: near.foot,
+                    normal: near.normal,
+                    triangle: Some(near.triangle),
+                })
+            })
+            .collect();
+        let mut pushed_out = positions_now.to_vec();
+        let responses = respond_round(index, &mut pushed_out, &hits, roles, &|_| ease, round, options);
+        let moved: Vec<Response> = par_map(moves.len(), |k| {
+            let (v, m) = moves[k];
+            let p = positions_now[v as usize];
+            let iso = roles.ring_normal.get(v as usize).copied().flatten();
+            let along = iso.map_or(m, |n| m - n * m.dot(n));
+            let (m, iso) = if along.length() > 0.5 * m.length() {
+                (along, iso)
+            } else {
+                (m, None)
+            };
+            let to = p + m;
+            let stands = index.signed_distance(to, reach).unwrap_or(reach);
+            // Never into the body.
+            (stands >= 0.0).then(|| Response {
+                vertex: v,
+                partition: partition.get(v as usize).copied().unwrap_or(0),
+                from: p,
+                to,
+                direction: m.normalize_or_zero(),
+                rule: AppliedRule::EdgeLift,
+                proposed: m.normalize_or_zero(),
+                iso,
+                centre: None,
+                // Edge lifts aim at clearing an edge, not at a gap: where the end stands.
+                ease_error: 0.0,
+                gap: stands,
+                edge_round: round,
+            })
+        })
+        .into_iter()
+        .flatten()
+        .collect();
+        let moved: Vec<Response> = responses.into_iter().chain(moved).collect();
+        for r in &moved {
+            positions[r.vertex as usize] = r.to;
+        }
+        let ends: std::collections::BTreeSet<u32> = moved.iter().map(|r| r.vertex).collect();
+        check = (0..edges.len())
+            .filter(|&e| ends.contains(&edges[e][0]) || ends.contains(&edges[e][1]))
+            .collect();
+        all.extend(moved);
+        if ends.is_empty() {
+            break;
+        }
+    }
+    (all, found)
+}
+
+/// Most an end moves in one round, in lifts (when the other end of its edge is pinned); never
+/// more than its edge is long.
+const CAP: f64 = 10.0;
