@@ -24,6 +24,7 @@ pub mod collision;
 pub mod constraint;
 pub mod garment;
 pub mod geom;
+pub mod input;
 pub mod mannequin;
 pub mod mesh;
 pub mod session;

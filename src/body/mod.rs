@@ -85,12 +85,18 @@ pub struct BodyMesh {
 }
 
 impl BodyMesh {
-    /// Loads and validates a body; `scale` converts file units to metres.
+    /// Loads and validates a body; `scale` converts file units to metres. A file is read
+    /// within [`crate::input::DEFAULT_MAX_INPUT_BYTES`].
     pub fn load(source: &BodySource, scale: f64) -> Result<Self, BodyError> {
+        Self::load_bounded(source, scale, crate::input::DEFAULT_MAX_INPUT_BYTES)
+    }
+
+    /// Loads and validates a body, a file of at most `max_bytes`.
+    pub fn load_bounded(source: &BodySource, scale: f64, max_bytes: u64) -> Result<Self, BodyError> {
         let name = source.name();
         let parsed = match source {
             BodySource::Builtin => obj::parse_obj(BUILTIN_BODY_OBJ, &name, scale)?,
-            BodySource::File(path) => obj::read_obj(path, scale)?,
+            BodySource::File(path) => obj::read_obj(path, scale, max_bytes)?,
         };
         Self::from_obj(name, parsed)
     }

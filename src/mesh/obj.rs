@@ -36,6 +36,9 @@ pub enum ObjError {
         /// What was expected.
         message: String,
     },
+    /// The file cannot be read within bounds (not a regular file, too large, not text).
+    #[error(transparent)]
+    Input(#[from] crate::input::InputError),
     /// The file has no vertices or no faces.
     #[error("{path}: {message}")]
     Empty {
@@ -57,16 +60,15 @@ pub struct ObjMesh {
     pub polygons_triangulated: usize,
 }
 
-/// Reads an OBJ file; coordinates are multiplied by `scale` (e.g. 0.01 for centimetres).
+/// Reads an OBJ file of at most `max_bytes`; coordinates are multiplied by `scale` (e.g.
+/// 0.01 for centimetres).
 ///
 /// # Failures
-/// [`ObjError`]: unreadable file, malformed numbers, non-finite coordinates, invalid or
-/// out-of-range indices, faces with fewer than 3 corners, no vertices or no faces.
-pub fn read_obj(path: &Path, scale: f64) -> Result<ObjMesh, ObjError> {
-    let text = std::fs::read_to_string(path).map_err(|e| ObjError::Io {
-        path: path.display().to_string(),
-        message: e.to_string(),
-    })?;
+/// [`ObjError`]: unreadable file, not a regular file or too large, malformed numbers,
+/// non-finite coordinates, invalid or out-of-range indices, faces with fewer than 3
+/// corners, no vertices or no faces.
+pub fn read_obj(path: &Path, scale: f64, max_bytes: u64) -> Result<ObjMesh, ObjError> {
+    let text = crate::input::read_text(path, max_bytes)?;
     parse_obj(&text, &path.display().to_string(), scale)
 }
 

@@ -28,6 +28,9 @@ pub struct RunOptions {
     pub collision: CollisionOptions,
     /// Check every collision against the brute-force ground truth (`--verify`; slow).
     pub verify: bool,
+    /// The largest body file read, bytes (`--max-input-mb`; default
+    /// [`crate::input::DEFAULT_MAX_INPUT_BYTES`]; 0 means the default).
+    pub max_input_bytes: u64,
 }
 
 /// What a run produced.

@@ -104,3 +104,36 @@ fn unreadable_file() {
         .to_string();
     assert!(e.starts_with("no/such/body.obj: cannot read: "), "{e}");
 }
+
+/// A 2 GB file (sparse zeros) is refused from its size, a device, a folder and a pipe as not
+/// regular files. None is read: the pipe has no writer, so reading it would wait for ever.
+#[test]
+fn huge_files_devices_folders_and_pipes_are_refused_before_reading() {
+    let dir = std::env::temp_dir().join(format!("drape-bounded-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let huge = dir.join("zeros.obj");
+    let file = std::fs::File::create(&huge).unwrap();
+    file.set_len(2 * 1024 * 1024 * 1024).unwrap();
+    let pipe = dir.join("pipe.obj");
+    let made = std::process::Command::new("mkfifo").arg(&pipe).status().is_ok_and(|s| s.success());
+    let limit = drape::input::DEFAULT_MAX_INPUT_BYTES;
+    let mut cases = vec![
+        (huge.clone(), "2147483648 bytes, more than the limit of 268435456 bytes"),
+        (std::path::PathBuf::from("/dev/zero"), "not a regular file (a device)"),
+        (dir.clone(), "not a regular file (a folder)"),
+    ];
+    if made {
+        cases.push((pipe, "not a regular file (a pipe)"));
+    }
+    for (path, expected) in cases {
+        let err = drape::mesh::read_obj(&path, 1.0, limit).expect_err("refused");
+        assert!(err.to_string().contains(expected), "{err}");
+    }
+    // Within the limit once raised past the size, the same file is read (and its zeros are
+    // not text an OBJ reader accepts).
+    let small = dir.join("small.obj");
+    std::fs::write(&small, "v 0 0 0\n".repeat(1000)).unwrap();
+    let err = drape::mesh::read_obj(&small, 1.0, 100).expect_err("over a 100-byte limit");
+    assert!(err.to_string().contains("8000 bytes, more than the limit of 100 bytes"), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -18,6 +18,10 @@ every stage before it, plus the error); 2 bad input (a malformed session, flag o
 pub(crate) struct Cli {
     #[command(subcommand)]
     pub(crate) command: Option<Command>,
+    /// The largest session or body file read, MiB: larger files, and anything that is not a
+    /// regular file (a folder, a device, a pipe), are refused before reading.
+    #[arg(long, global = true, value_name = "MB", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=1_048_576))]
+    pub(crate) max_input_mb: u64,
 }
 
 /// The subcommands.

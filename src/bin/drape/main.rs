@@ -21,6 +21,10 @@ use failure::{Classify, Failure, Result};
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    MAX_INPUT_BYTES.store(
+        cli.max_input_mb.saturating_mul(1024 * 1024),
+        std::sync::atomic::Ordering::Relaxed,
+    );
     let result = match cli.command {
         None => run::run(RunArgs::default()),
         Some(Command::Run(args)) => run::run(args),
@@ -37,12 +41,22 @@ fn main() -> ExitCode {
     }
 }
 
-/// Reads and parses a session file, or the demo; a parse error is bad input.
+/// The input limit of this run, bytes (`--max-input-mb`).
+static MAX_INPUT_BYTES: std::sync::atomic::AtomicU64 =
+    std::sync::atomic::AtomicU64::new(drape::input::DEFAULT_MAX_INPUT_BYTES);
+
+/// The largest input file read, bytes.
+fn max_input_bytes() -> u64 {
+    MAX_INPUT_BYTES.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Reads and parses a session file (a regular file within the input limit), or the demo; a
+/// parse error is bad input.
 fn load_session(path: Option<&Path>) -> Result<Session> {
     match path {
         Some(p) => {
-            let text = std::fs::read_to_string(p)
-                .with_context(|| format!("cannot read session {}", p.display()))
+            let text = drape::input::read_text(p, max_input_bytes())
+                .context("cannot read the session")
                 .bad_input()?;
             let base = p.parent().unwrap_or(Path::new("."));
             parse_session(&text, &p.display().to_string(), base)

@@ -20,7 +20,7 @@ use crate::progress::Progress;
 pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     let session = load_session(args.session.as_deref())?;
     if let Some(body) = &args.body
-        && !body.is_file()
+        && !body.exists()
     {
         return Err(anyhow::anyhow!("--body {}: no such file", body.display())).bad_input();
     }
@@ -53,6 +53,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     let mut options = RunOptions {
         body_override: args.body.clone(),
         verify: args.verify,
+        max_input_bytes: crate::max_input_bytes(),
         ..RunOptions::default()
     };
     if args.brute_force {

@@ -65,7 +65,13 @@ pub(in super::super) fn run(
         .map_or_else(|| session.scene.body.clone(), BodySource::File);
     let mut landmark_options = options.landmarks.clone();
     landmark_options.overrides = session.scene.landmarks.clone();
-    let mesh = scope.timed("body.load", || BodyMesh::load(&source, session.scene.units.scale()))?;
+    let limit = match options.max_input_bytes {
+        0 => crate::input::DEFAULT_MAX_INPUT_BYTES,
+        n => n,
+    };
+    let mesh = scope.timed("body.load", || {
+        BodyMesh::load_bounded(&source, session.scene.units.scale(), limit)
+    })?;
     scope.record(&MeshFigures {
         body: &mesh.name,
         vertices: mesh.mesh.positions.len(),
