@@ -486,7 +486,8 @@ fn export_writes_each_steps_m0_after_response() {
     assert!(report.error.is_none(), "{:?}", report.error);
     for (step, (responded, ..)) in [1, 2].iter().zip(&meshes.0) {
         let path = dir.join(format!("step{step:02}_jumpsuit_m0.obj"));
-        let obj = drape::mesh::read_obj(&path, 1.0, drape::input::DEFAULT_MAX_INPUT_BYTES).expect("the export reads back");
+        let obj =
+            drape::mesh::read_obj(&path, 1.0, drape::input::DEFAULT_MAX_INPUT_BYTES).expect("the export reads back");
         assert_eq!(obj.mesh.triangles, responded.triangles);
         let worst = obj
             .mesh

@@ -115,7 +115,10 @@ fn huge_files_devices_folders_and_pipes_are_refused_before_reading() {
     let file = std::fs::File::create(&huge).unwrap();
     file.set_len(2 * 1024 * 1024 * 1024).unwrap();
     let pipe = dir.join("pipe.obj");
-    let made = std::process::Command::new("mkfifo").arg(&pipe).status().is_ok_and(|s| s.success());
+    let made = std::process::Command::new("mkfifo")
+        .arg(&pipe)
+        .status()
+        .is_ok_and(|s| s.success());
     let limit = drape::input::DEFAULT_MAX_INPUT_BYTES;
     let mut cases = vec![
         (huge.clone(), "2147483648 bytes, more than the limit of 268435456 bytes"),
@@ -134,6 +137,9 @@ fn huge_files_devices_folders_and_pipes_are_refused_before_reading() {
     let small = dir.join("small.obj");
     std::fs::write(&small, "v 0 0 0\n".repeat(1000)).unwrap();
     let err = drape::mesh::read_obj(&small, 1.0, 100).expect_err("over a 100-byte limit");
-    assert!(err.to_string().contains("8000 bytes, more than the limit of 100 bytes"), "{err}");
+    assert!(
+        err.to_string().contains("8000 bytes, more than the limit of 100 bytes"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).ok();
 }

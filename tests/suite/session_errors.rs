@@ -263,7 +263,9 @@ fn set_needs_a_garment_first() {
 fn unknown_dimension_names_the_template_and_the_column() {
     let e = error_of("drape 1\ngarment jumpsuit\nset wasit_girth +0.04\n");
     assert!(
-        e.starts_with("s.drape:3:5: unknown dimension 'wasit_girth' for the jumpsuit: expected one of "),
+        e.starts_with(
+            "s.drape:3:5: unknown dimension 'wasit_girth' for the jumpsuit (did you mean 'waist_girth'?): expected one of "
+        ),
         "{e}"
     );
     assert!(e.contains("waist_girth") && e.contains("inseam"), "{e}");
@@ -374,4 +376,45 @@ fn the_run_and_test_builds_share_their_dependency_features() {
             "{package}: the test build turns on other features, so it would build it again"
         );
     }
+}
+
+/// Static mistakes are caught before anything runs, with the place and the nearest valid
+/// name: a misspelt control point or curve of the session's garment, a statement.
+#[test]
+fn check_names_misspelt_points_curves_and_statements_with_a_suggestion() {
+    assert_eq!(
+        error_of("drape 1\ngarment dress\ndrag hip.frnt by=0,0,0.01\n"),
+        "s.drape:3:6: unknown control point 'hip.frnt' for the dress (did you mean 'hip.front'?): expected one of \
+         waist.front, waist.left, waist.back, waist.right, hip.front, hip.left, hip.back, hip.right, thigh.front, \
+         thigh.left, thigh.back, thigh.right, hem.front, hem.left, hem.back, hem.right"
+    );
+    let e = error_of("drape 1\ngarment jumpsuit\ndrag left_kne by=0,0.01,0\n");
+    assert!(
+        e.starts_with("s.drape:3:6: unknown curve 'left_kne' for the jumpsuit (did you mean 'left_knee'?)"),
+        "{e}"
+    );
+    // A curve of the other template: no suggestion, the list.
+    let e = error_of("drape 1\ngarment dress\ndrag left_knee by=0,0.01,0\n");
+    assert!(
+        e.starts_with("s.drape:3:6: unknown curve 'left_knee' for the dress: expected one of waist"),
+        "{e}"
+    );
+    assert!(
+        error_of("drape 1\nmannequn\n")
+            .starts_with("s.drape:2:1: unknown statement 'mannequn' (did you mean 'mannequin'?)")
+    );
+    // The binary: exit code 2, the place on stderr.
+    let dir = std::env::temp_dir().join(format!("drape-typo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let session = dir.join("typo.drape");
+    std::fs::write(&session, "drape 1\ngarment jumpsuit\ndrag waist.frnt by=0,0,0.01\n").unwrap();
+    let (code, stderr) = drape(&["check", session.to_str().unwrap()]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(
+        stderr.contains(
+            "typo.drape:3:6: unknown control point 'waist.frnt' for the jumpsuit (did you mean 'waist.front'?)"
+        ),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

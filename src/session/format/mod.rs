@@ -32,6 +32,7 @@
 mod args;
 mod lexer;
 mod parser;
+mod suggest;
 pub mod syntax;
 
 pub use parser::parse_session;

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use super::args::{Args, integer_in, number, one_argument, vector};
 use super::lexer::{Line, Token, tokenize};
+use super::suggest::did_you_mean;
 use super::syntax::{Change, Op, ParseError, Scene, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Chains, Edit, SolverOptions, Target};
@@ -106,7 +107,8 @@ impl Parser<'_> {
                 return Err(line.error(
                     head.column,
                     format!(
-                        "unknown statement '{other}': expected a scene statement ({}) or a step ({})",
+                        "unknown statement '{other}'{}: expected a scene statement ({}) or a step ({})",
+                        did_you_mean(other, SCENE_KEYWORDS.into_iter().chain(STEP_KEYWORDS)),
                         SCENE_KEYWORDS.join(", "),
                         STEP_KEYWORDS.join(", ")
                     ),
@@ -185,8 +187,9 @@ impl Parser<'_> {
             line.error(
                 which.column,
                 format!(
-                    "unknown landmark '{}': expected one of {}",
+                    "unknown landmark '{}'{}: expected one of {}",
                     which.text,
+                    did_you_mean(which.text, names.iter().copied()),
                     names.join(", ")
                 ),
             )
@@ -259,6 +262,26 @@ impl Parser<'_> {
         }
         let a = Args::parse(line, args, &["by", "to"], "drag")?;
         let point = which.text.contains('.');
+        if let Some(template) = self.garment {
+            let spec = crate::garment::template::of(template);
+            let (what, known): (&str, Vec<String>) = if point {
+                ("control point", spec.point_names())
+            } else {
+                ("curve", spec.curve_names().iter().map(|c| c.to_string()).collect())
+            };
+            if !known.iter().any(|k| k == which.text) {
+                return Err(line.error(
+                    which.column,
+                    format!(
+                        "unknown {what} '{}' for the {}{}: expected one of {}",
+                        which.text,
+                        template.name(),
+                        did_you_mean(which.text, known.iter().map(String::as_str)),
+                        known.join(", ")
+                    ),
+                ));
+            }
+        }
         let name = which.text.to_string();
         let edit = match (a.get("by"), a.get("to")) {
             (Some(by), None) => {
@@ -319,8 +342,9 @@ impl Parser<'_> {
             line.error(
                 which.column,
                 format!(
-                    "unknown template '{}': expected one of {}",
+                    "unknown template '{}'{}: expected one of {}",
                     which.text,
+                    did_you_mean(which.text, names.iter().copied()),
                     names.join(", ")
                 ),
             )
@@ -366,9 +390,10 @@ impl Parser<'_> {
             return Err(line.error(
                 which.column,
                 format!(
-                    "unknown dimension '{}' for the {}: expected one of {}",
+                    "unknown dimension '{}' for the {}{}: expected one of {}",
                     which.text,
                     template.name(),
+                    did_you_mean(which.text, known.iter().map(String::as_str)),
                     known.join(", ")
                 ),
             ));
