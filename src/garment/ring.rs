@@ -24,6 +24,10 @@ pub struct RingOptions {
     pub fitted_points: usize,
     /// Relative girth tolerance of the ease solve, a ratio (default 1e-9).
     pub girth_tolerance: f64,
+    /// The largest girth a ring may be asked for, as a multiple of the body's tape girth
+    /// there (default 4: a waist of 2.6 m on a 0.65 m waist; a ring any wider is no longer
+    /// a garment on this body).
+    pub max_girth_ratio: f64,
 }
 
 impl Default for RingOptions {
@@ -33,6 +37,7 @@ impl Default for RingOptions {
             control_points: 12,
             fitted_points: 48,
             girth_tolerance: 1e-9,
+            max_girth_ratio: 4.0,
         }
     }
 }
@@ -81,6 +86,22 @@ pub enum RingBuildError {
         target: f64,
         /// Least possible.
         minimum: f64,
+    },
+    /// A girth target above the largest a ring on this body may have.
+    #[error(
+        "ring '{ring}': girth {target:.4} m is more than {ratio} times the body's tape girth there ({body:.4} m): at most {maximum:.4} m"
+    )]
+    GirthTooLarge {
+        /// Ring.
+        ring: String,
+        /// Asked.
+        target: f64,
+        /// The body's tape girth at the ring, m.
+        body: f64,
+        /// The ratio allowed.
+        ratio: f64,
+        /// Largest allowed, m.
+        maximum: f64,
     },
 }
 
@@ -370,6 +391,16 @@ impl GarmentRing {
         let mut result = attempt(0.0)?;
         if let Some(target) = input.target {
             let floor = -least_ease(input.ease);
+            let maximum = options.max_girth_ratio * body_girth;
+            if target > maximum {
+                return Err(RingBuildError::GirthTooLarge {
+                    ring: name,
+                    target,
+                    body: body_girth,
+                    ratio: options.max_girth_ratio,
+                    maximum,
+                });
+            }
             let minimum = attempt(floor)?.girth;
             if !(target.is_finite() && target >= minimum) {
                 return Err(RingBuildError::GirthTooSmall {

@@ -34,6 +34,7 @@ impl<'k, 's> Emitter<'k, 's> {
             step,
             op,
             metrics: StepMetrics::new(step, op),
+            shortfalls: Vec::new(),
         }
     }
 }
@@ -47,6 +48,24 @@ pub(crate) struct StepScope<'e, 'k, 's> {
     pub(crate) op: &'static str,
     /// The step's metrics so far.
     pub(crate) metrics: StepMetrics,
+    /// What the step left short of a promise: the garment inside or crossing the body after
+    /// its collision, or an edit it refused.
+    pub(crate) shortfalls: Vec<Shortfall>,
+}
+
+/// A promise a step could not keep; the session goes on, `--strict` makes the run fail.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shortfall {
+    /// After the step's collision response, vertices are still inside the body or edges
+    /// cross it (the exact quality check).
+    Guarantee {
+        /// Vertices inside.
+        inside: usize,
+        /// Edges crossing.
+        crossing: usize,
+    },
+    /// The step's edit was refused (it names the limit); the garment is as before.
+    Refused(String),
 }
 
 impl StepScope<'_, '_, '_> {
@@ -83,11 +102,11 @@ impl StepScope<'_, '_, '_> {
         self.metrics.record(figures);
     }
 
-    /// Ends the step: its `done` stage, then its metrics.
-    pub(crate) fn done(mut self) -> StepMetrics {
+    /// Ends the step: its `done` stage, then its metrics and shortfalls.
+    pub(crate) fn done(mut self) -> (StepMetrics, Vec<Shortfall>) {
         let done = self.metrics.clone();
         self.emit("done", Stage::Step(StepEnd::Done(&done)));
-        self.metrics
+        (self.metrics, self.shortfalls)
     }
 
     /// Ends the step with `error`: its `failed` stage, then its metrics (with the message)

@@ -8,7 +8,7 @@
 //! * [`metrics`]: per-step figures for `--metrics`; [`error`]: why a run stopped.
 //! * [`export`]: the OBJ exporter, a sink.
 
-mod emit;
+pub mod emit;
 pub mod error;
 pub mod export;
 pub mod format;
@@ -18,6 +18,7 @@ pub mod stage;
 mod state;
 mod steps;
 
+pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, StepError};
 pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;

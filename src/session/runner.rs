@@ -5,7 +5,7 @@
 
 use std::path::PathBuf;
 
-use super::emit::Emitter;
+use super::emit::{Emitter, Shortfall};
 use super::error::{RunError, StepError};
 use super::format::Session;
 use super::metrics::StepMetrics;
@@ -40,6 +40,8 @@ pub struct RunReport {
     pub steps: Vec<StepMetrics>,
     /// The error that stopped the run, or the sinks' failures after it finished.
     pub error: Option<RunError>,
+    /// Promises steps could not keep, by step index (the run went on).
+    pub shortfalls: Vec<(usize, Shortfall)>,
 }
 
 /// Runs a session: the scene (step 0), then each step. Stops at the first failure, which
@@ -51,7 +53,7 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     let mut scope = out.step(0, "scene");
     let mut state = match scene::run(&mut scope, session, options) {
         Ok(body) => {
-            report.steps.push(scope.done());
+            report.steps.push(scope.done().0);
             SessionState::new(body)
         }
         Err(e) => {
@@ -65,7 +67,11 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     for (i, step) in session.steps.iter().enumerate() {
         let mut scope = out.step(i + 1, step.op.keyword());
         match run_step(&mut scope, &mut state, &cx, &step.op) {
-            Ok(()) => report.steps.push(scope.done()),
+            Ok(()) => {
+                let (metrics, shortfalls) = scope.done();
+                report.steps.push(metrics);
+                report.shortfalls.extend(shortfalls.into_iter().map(|s| (i + 1, s)));
+            }
             Err(e) => {
                 let (metrics, error) = scope.fail(&session.name, step.line, e);
                 report.steps.push(metrics);

@@ -97,6 +97,17 @@ pub enum GarmentStage<'a> {
         /// After.
         after: &'a Framework,
     },
+    /// A dimension change that cannot be honoured (out of its range, a girth the body
+    /// cannot have, a drag that cannot be made again after it): refused, the garment is as
+    /// before the step.
+    Refused {
+        /// The dimension.
+        name: &'a str,
+        /// The value asked for.
+        value: f64,
+        /// Why, naming the limit.
+        message: &'a str,
+    },
     /// `undo`: the garment is back to this state (with its constraint network, once one was
     /// built).
     Undone {

@@ -154,6 +154,31 @@ impl RerunLogger {
                 v.quality_agrees
             )
         });
+        // The guarantee: nothing inside, nothing crossing. Said loudly when it is not met.
+        if q.inside.is_empty() && q.crossing.is_empty() {
+            rec.log("collision/guarantee", &Clear::flat()).map_err(to_sink)?;
+        } else {
+            let mut spots: Vec<_> = q.inside.iter().map(|&v| c.mesh.positions[v as usize]).collect();
+            spots.extend(q.crossing.iter().map(|&e| {
+                let [a, b] = g.edges[e as usize];
+                c.mesh.positions[a as usize].lerp(c.mesh.positions[b as usize], 0.5)
+            }));
+            let centre = spots.iter().copied().sum::<glam::DVec3>() / spots.len() as f64;
+            let label = format!(
+                "GUARANTEE NOT MET: {} inside, {} crossing",
+                q.penetrating_vertices, q.crossing_edges
+            );
+            rec.log(
+                "collision/guarantee",
+                &Points3D::new(f32s(&[centre]))
+                    .with_radii([0.03])
+                    .with_colors([[255, 0, 0]])
+                    .with_labels([label.clone()])
+                    .with_show_labels(true),
+            )
+            .map_err(to_sink)?;
+            self.text(TextLogLevel::WARN, format!("{label} after the response"))?;
+        }
         let rounds: Vec<String> = c.edge_rounds.iter().map(ToString::to_string).collect();
         self.text(
             TextLogLevel::INFO,

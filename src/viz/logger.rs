@@ -155,6 +155,10 @@ impl StageSink for RerunLogger {
         match stage {
             GarmentStage::Part(fw, part) => self.log_garment_part(fw, part),
             GarmentStage::Edit { name, before, after } => self.log_garment_edit(name, before, after),
+            GarmentStage::Refused { name, value, message } => self.text(
+                TextLogLevel::WARN,
+                format!("set {name} {value} refused: {message}; the garment is as before"),
+            ),
             GarmentStage::Undone { framework, net } => self.log_undone(framework, net),
         }
     }

@@ -89,6 +89,10 @@ pub(crate) struct RunArgs {
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
     #[arg(long)]
     pub(crate) no_skipping: bool,
+    /// Exit 1 when a step leaves the garment inside the body or crossing it after its
+    /// collision, or refuses an edit (the run goes on and reports every one).
+    #[arg(long)]
+    pub(crate) strict: bool,
 }
 
 #[derive(Args, Debug)]

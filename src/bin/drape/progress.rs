@@ -1,7 +1,9 @@
 //! Progress lines on stderr: each step's compute and logging time, solves, refusals and
 //! collision figures as they happen, so a long run shows where it is.
 
-use drape::session::{CollisionPart, CollisionStage, ConstraintStage, SinkError, StageInfo, StageSink, StepEnd};
+use drape::session::{
+    CollisionPart, CollisionStage, ConstraintStage, GarmentStage, SinkError, StageInfo, StageSink, StepEnd,
+};
 
 use crate::network::solve_line;
 
@@ -47,6 +49,13 @@ impl StageSink for Progress {
         Ok(())
     }
 
+    fn garment(&mut self, info: &StageInfo, stage: GarmentStage<'_>) -> Result<(), SinkError> {
+        if let GarmentStage::Refused { name, message, .. } = stage {
+            eprintln!("  step {} set {name} REFUSED: {message}", info.step);
+        }
+        Ok(())
+    }
+
     fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         if stage.part != CollisionPart::Respond {
             return Ok(());
@@ -65,6 +74,12 @@ impl StageSink for Progress {
             c.quality.penetrating_vertices,
             c.quality.crossing_edges
         );
+        if c.quality.penetrating_vertices > 0 || c.quality.crossing_edges > 0 {
+            eprintln!(
+                "  step {} WARNING: the garment is not clear of the body ({} inside, {} crossing)",
+                info.step, c.quality.penetrating_vertices, c.quality.crossing_edges
+            );
+        }
         if let Some(v) = &outcome.verify {
             eprintln!(
                 "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use drape::session::export::ObjExporter;
 use drape::session::metrics::metrics_json;
-use drape::session::{FailureKind, RunOptions, StageSink, run_session};
+use drape::session::{FailureKind, RunOptions, Shortfall, StageSink, run_session};
 use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
 
 use crate::args::RunArgs;
@@ -115,11 +115,24 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             final_path.display()
         );
     }
+    for (step, shortfall) in &report.shortfalls {
+        match shortfall {
+            Shortfall::Guarantee { inside, crossing } => eprintln!(
+                "{}: step {step}: the garment is not clear of the body: {inside} vertices inside, {crossing} edges crossing",
+                if args.strict { "error" } else { "warning" }
+            ),
+            Shortfall::Refused(message) => eprintln!(
+                "{}: step {step}: edit refused: {message}",
+                if args.strict { "error" } else { "note" }
+            ),
+        }
+    }
     match report.error {
         Some(e) => {
             eprintln!("error: {e}");
             Ok(ExitCode::from(e.kind().exit_code()))
         }
+        None if args.strict && !report.shortfalls.is_empty() => Ok(ExitCode::from(FailureKind::StepFailed.exit_code())),
         None => Ok(ExitCode::SUCCESS),
     }
 }

@@ -92,6 +92,54 @@ pub enum EditError {
         /// Loop length, m.
         loop_length: f64,
     },
+    /// A whole ring dragged out of its band (past the ring next to it on one of its
+    /// contours, or off the body's height).
+    #[error(
+        "ring '{curve}' dragged to y = {y:.4} m would leave its band, {lo:.4}..{hi:.4} m between {below} and {above}: edit refused"
+    )]
+    OutOfBand {
+        /// Ring.
+        curve: String,
+        /// Where it would go (mean height of its control points), m.
+        y: f64,
+        /// Lowest allowed, m.
+        lo: f64,
+        /// Highest allowed, m.
+        hi: f64,
+        /// What is below (a control point, or the floor).
+        below: String,
+        /// What is above.
+        above: String,
+    },
+    /// A point dragged through the body.
+    #[error(
+        "'{point}' would pass through the body (in at ({:.4}, {:.4}, {:.4}), out at ({:.4}, {:.4}, {:.4}) m): edit refused",
+        entry.x, entry.y, entry.z, exit.x, exit.y, exit.z
+    )]
+    ThroughBody {
+        /// The point (or the apex of a dragged open curve).
+        point: String,
+        /// Where the path enters the body, m.
+        entry: DVec3,
+        /// Where it leaves, m.
+        exit: DVec3,
+    },
+    /// A point dragged deep into the body, nearer another part of the surface than the way it
+    /// came in.
+    #[error(
+        "'{point}' would end {depth:.4} m inside the body, nearest its surface at ({:.4}, {:.4}, {:.4}) m, {:.4} m from where it went in: edit refused",
+        nearest.x, nearest.y, nearest.z, nearest.distance(*entry)
+    )]
+    DeepInside {
+        /// The point.
+        point: String,
+        /// How deep, m.
+        depth: f64,
+        /// Where the path enters the body, m.
+        entry: DVec3,
+        /// The surface point nearest the end, m.
+        nearest: DVec3,
+    },
     /// A curve cannot be refitted.
     #[error("curve '{curve}' cannot be refitted: {message}")]
     Refit {

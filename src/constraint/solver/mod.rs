@@ -27,6 +27,7 @@ mod curve;
 mod edit;
 mod layers;
 mod limits;
+mod limits_of_edit;
 mod options;
 mod propagate;
 mod solution;
@@ -115,6 +116,23 @@ pub fn solve(
             (c, (0..n).map(|p| (p, *by)).collect(), None, Some(*by))
         }
     };
+    // What a drag may not do.
+    if let Some(by) = whole {
+        limits_of_edit::check_band(fw, &net.curves[active], by, probe)?;
+        if net.curves[active].kind == CurveKind::Open {
+            let node = &net.curves[active];
+            let apex = curves::points(fw, node)[curves::points(fw, node).len() / 2];
+            limits_of_edit::check_path(&node.name, apex, apex + by, probe)?;
+        }
+    }
+    if let Some((c, p)) = dragged
+        && net.curves[c].kind == CurveKind::Open
+    {
+        let at = curves::points(fw, &net.curves[c])[p];
+        if let Edit::Point { name, .. } = edit {
+            limits_of_edit::check_path(name, at, at + moves[0].1, probe)?;
+        }
+    }
     let mut path = Vec::new();
     if let Some((c, p)) = dragged {
         let at = curves::points(fw, &net.curves[c])[p];

@@ -5,7 +5,7 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
+use super::super::emit::{Shortfall, StepScope};
 use super::super::runner::RunOptions;
 use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, Stage};
 use super::super::state::GarmentState;
@@ -55,6 +55,8 @@ struct CollisionFigures<'a> {
     /// With `--verify`: the brute-force check.
     #[serde(skip_serializing_if = "Option::is_none")]
     verify: Option<&'a VerifyReport>,
+    /// No vertex inside and no edge crossing after the response.
+    guarantee_met: bool,
 }
 
 #[derive(Serialize)]
@@ -102,6 +104,7 @@ impl<'a> CollisionFigures<'a> {
             max_ease_error_m: q.max_ease_error_m,
             mean_ease_error_m: q.mean_ease_error_m,
             verify,
+            guarantee_met: q.penetrating_vertices == 0 && q.crossing_edges == 0,
         }
     }
 }
@@ -136,6 +139,13 @@ pub(super) fn collide_garment(
         })
     });
     scope.record(&CollisionFigures::new(index, &collision, verify.as_ref()));
+    let q = &collision.quality;
+    if q.penetrating_vertices > 0 || q.crossing_edges > 0 {
+        scope.shortfalls.push(Shortfall::Guarantee {
+            inside: q.penetrating_vertices,
+            crossing: q.crossing_edges,
+        });
+    }
     state.collision = Some(CollisionOutcome {
         garment,
         collision,

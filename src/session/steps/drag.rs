@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
+use super::super::emit::{Shortfall, StepScope};
 use super::super::error::{DragRefusal, StepError};
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
@@ -143,6 +143,7 @@ pub(super) fn run(
             let message = refusal.to_string();
             state.history.push(current.clone());
             scope.record(&Refusal { refused: &message });
+            scope.shortfalls.push(Shortfall::Refused(message.clone()));
             scope.emit(
                 "constraints.refused",
                 Stage::Constraints(ConstraintStage::Refused {

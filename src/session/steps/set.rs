@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
+use super::super::emit::{Shortfall, StepScope};
 use super::super::error::StepError;
 use super::super::format::Change;
 use super::super::stage::{GarmentPart, GarmentStage, Stage};
@@ -13,6 +13,8 @@ use super::StepContext;
 use super::collide::{collide_garment, emit_collision};
 use super::drag::replay_edits;
 use super::garment::solve_garment;
+use crate::garment::FrameworkError;
+use crate::garment::ring::RingBuildError;
 
 /// The change asked for.
 #[derive(Serialize)]
@@ -30,6 +32,25 @@ struct SetFigures<'a> {
 struct MoveFigures {
     /// Largest distance between a vertex of M0 before and after, m.
     max_vertex_move_m: f64,
+}
+
+/// A change refused.
+#[derive(Serialize)]
+struct Refusal<'a> {
+    /// Why, naming the limit.
+    refused: &'a str,
+}
+
+/// Whether a failure of the re-solve means the change cannot be honoured (refused, the
+/// session goes on) rather than that the step failed.
+fn refuses(e: &StepError) -> bool {
+    matches!(
+        e,
+        StepError::Framework(
+            FrameworkError::Dimension { .. }
+                | FrameworkError::Ring(RingBuildError::GirthTooSmall { .. } | RingBuildError::GirthTooLarge { .. })
+        ) | StepError::Replay { .. }
+    )
 }
 
 pub(super) fn run(
@@ -55,8 +76,29 @@ pub(super) fn run(
     });
     let mut next = current_state.unsolved();
     next.dims.values.insert(name.to_string(), value);
-    let next = solve_garment(scope, &state.body, &mut state.probe, cx, next)?;
-    let mut next = replay_edits(scope, next, state.probe.as_ref(), &cx.session.scene.solver)?;
+    let solved = solve_garment(scope, &state.body, &mut state.probe, cx, next)
+        .and_then(|next| replay_edits(scope, next, state.probe.as_ref(), &cx.session.scene.solver));
+    let mut next = match solved {
+        Ok(next) => next,
+        Err(e) if refuses(&e) => {
+            // Refused: the garment stays as it was (an `undo` of this step changes nothing);
+            // the session goes on.
+            let message = e.to_string();
+            state.history.push(current_state.clone());
+            scope.record(&Refusal { refused: &message });
+            scope.shortfalls.push(Shortfall::Refused(message.clone()));
+            scope.emit(
+                "garment.refused",
+                Stage::Garment(GarmentStage::Refused {
+                    name,
+                    value,
+                    message: &message,
+                }),
+            );
+            return Ok(());
+        }
+        Err(e) => return Err(e),
+    };
     if let Some(after) = &next.framework {
         let moved = before
             .m0

@@ -1,0 +1,116 @@
+//! What a drag may not do, checked before solving: move a whole ring out of its band (past
+//! the ring next to it on one of its contours, or off the body's height), or take an open
+//! curve (the crotch curve, a strap) through the body: in at one side and out at the other,
+//! or so deep in that its nearest way out is elsewhere. (A ring point dragged through the
+//! body is refused by the solver: the ring would cross itself.)
+
+use glam::DVec3;
+
+use super::EditError;
+use crate::constraint::curves::{self, CurveKind, CurveNode};
+use crate::garment::{BodyProbe, Framework};
+
+/// A ring may come no nearer its neighbours (or the body's ends) than this fraction of the
+/// body's height.
+const BAND_MARGIN: f64 = 0.01;
+
+/// The height of a named control point (`ring.anchor`, `crotch.point`), m.
+fn point_height(fw: &Framework, name: &str) -> Option<f64> {
+    fw.control_points()
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .map(|(_, p)| p.y)
+}
+
+/// The mean height of a curve's control points, m.
+fn height_of(fw: &Framework, c: &CurveNode) -> f64 {
+    let pts = curves::points(fw, c);
+    pts.iter().map(|p| p.y).sum::<f64>() / pts.len().max(1) as f64
+}
+
+/// Refuses a whole-ring drag by `by` that would take the ring out of its band: between the
+/// highest of the points below it and the lowest above it on the contours through it, and
+/// within the body's height, each with a margin of [`BAND_MARGIN`] of the height.
+pub(super) fn check_band(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyProbe) -> Result<(), EditError> {
+    if c.kind != CurveKind::Ring {
+        return Ok(());
+    }
+    let index = probe.index();
+    let (floor, top) = index
+        .positions
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.y), hi.max(p.y))
+        });
+    let margin = BAND_MARGIN * index.height;
+    let (mut lo, mut below) = (floor, "the floor".to_string());
+    let (mut hi, mut above) = (top, "the top of the body".to_string());
+    let prefix = format!("{}.", c.name);
+    for contour in &fw.contours {
+        let Some(k) = contour.through.iter().position(|t| t.starts_with(&prefix)) else {
+            continue;
+        };
+        if let Some(name) = k.checked_sub(1).and_then(|j| contour.through.get(j))
+            && let Some(y) = point_height(fw, name)
+            && y > lo
+        {
+            (lo, below) = (y, name.clone());
+        }
+        if let Some(name) = contour.through.get(k + 1)
+            && let Some(y) = point_height(fw, name)
+            && y < hi
+        {
+            (hi, above) = (y, name.clone());
+        }
+    }
+    let y = height_of(fw, c) + by.y;
+    if y < lo + margin || y > hi - margin {
+        return Err(EditError::OutOfBand {
+            curve: c.name.clone(),
+            y,
+            lo: lo + margin,
+            hi: hi - margin,
+            below,
+            above,
+        });
+    }
+    Ok(())
+}
+
+/// Refuses moving point `name` from `from` to `to` along a straight path that enters the
+/// body and leaves it again, or that ends inside it nearer another part of its surface than
+/// the way it came in (the collision would take the point out there, through the body: the
+/// surface nearest the end lies more than twice the depth from where the path entered). A
+/// drag a little into the body is allowed: the collision brings the point back out.
+pub(super) fn check_path(name: &str, from: DVec3, to: DVec3, probe: &BodyProbe) -> Result<(), EditError> {
+    let index = probe.index();
+    let d = to - from;
+    if d == DVec3::ZERO {
+        return Ok(());
+    }
+    let Some((t_in, _)) = index.cast_ray(from, d, 0.0, 1.0) else {
+        return Ok(());
+    };
+    let skip = 1e-6 * index.height / d.length();
+    let entry = from + d * t_in;
+    let Some((foot, signed, _)) = probe.nearest(to) else {
+        return Ok(());
+    };
+    if signed > 0.0 {
+        if let Some((t_out, _)) = index.cast_ray(from, d, t_in + skip, 1.0) {
+            return Err(EditError::ThroughBody {
+                point: name.to_string(),
+                entry,
+                exit: from + d * t_out,
+            });
+        }
+    } else if foot.distance(entry) > 2.0 * (-signed) {
+        return Err(EditError::DeepInside {
+            point: name.to_string(),
+            depth: -signed,
+            entry,
+            nearest: foot,
+        });
+    }
+    Ok(())
+}
