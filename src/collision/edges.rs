@@ -11,8 +11,9 @@
 //! body ahead: it may go no further than the middle of the free space) leaves the rest of
 //! the lift to the other end, which then moves at most three lifts. An end shared by several
 //! crossing edges takes the longest of its moves. A vertex on a garment ring keeps its height
-//! where that leaves most of the move. A move that would leave the end inside the body is not
-//! made. Only the edges at moved ends are checked again, for a few rounds.
+//! where that leaves most of the move. A move that would leave the end inside the body, or
+//! nearer it than the ease (or than it stood, when it stood nearer), is not made. Only the
+//! edges at moved ends are checked again, for a few rounds.
 
 use std::collections::BTreeMap;
 
@@ -20,7 +21,7 @@ use glam::DVec3;
 
 use super::detect::Hit;
 use super::par::par_map;
-use super::response::{AppliedRule, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
+use super::response::{AppliedRule, EASE_TOLERANCE, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
 use crate::body::index::BodyIndex;
 
 /// A crossing edge: its ends, where along it it is deepest, the way out there and how deep.
@@ -175,8 +176,10 @@ pub fn respond_edges(
             };
             let to = p + m;
             let stands = index.signed_distance(to, reach).unwrap_or(reach);
-            // Never into the body.
-            (stands >= 0.0).then(|| Response {
+            // Never into the body, nor nearer it than the ease (or than it stood, if nearer).
+            let before = index.signed_distance(p, reach).unwrap_or(reach);
+            let least = before.min((1.0 - EASE_TOLERANCE) * ease).max(0.0);
+            (stands >= least).then(|| Response {
                 vertex: v,
                 partition: partition.get(v as usize).copied().unwrap_or(0),
                 from: p,

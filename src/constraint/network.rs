@@ -40,6 +40,9 @@ pub struct ConstraintNet {
     /// Each planar curve's least clearance from the body as built (control points and
     /// samples), m; infinite for contours. The collision never asks more of a curve.
     pub clearance: Vec<f64>,
+    /// The body's height, m: the scale of length tolerances (a tolerance is a fraction of
+    /// it for lengths, radians for angles).
+    pub scale: f64,
 }
 
 impl ConstraintNet {
@@ -217,7 +220,19 @@ impl ConstraintNet {
             constraints: out,
             matrix,
             clearance,
+            scale: h,
         }
+    }
+
+    /// Whether residual `r` of constraint `k` exceeds `tolerance`: a fraction of the body's
+    /// height for a residual in metres, radians for an angle.
+    pub fn violated(&self, k: usize, r: f64, tolerance: f64) -> bool {
+        let unit = if self.constraints[k].kind.unit() == "rad" {
+            1.0
+        } else {
+            self.scale
+        };
+        r > tolerance * unit
     }
 
     /// A curve's index by name.
@@ -288,7 +303,9 @@ impl ConstraintNet {
             let _ = writeln!(s, "  {i:>2} {row}");
         }
         let _ = writeln!(s, "\nentries:");
-        let violated = residuals.iter().filter(|r| **r > tolerance).count();
+        let violated = (0..residuals.len())
+            .filter(|&k| self.violated(k, residuals[k], tolerance))
+            .count();
         for ((i, j), list) in &self.matrix {
             let _ = writeln!(s, "  g[{i},{j}] {} - {}", self.curves[*i].name, self.curves[*j].name);
             for &k in list {
@@ -314,14 +331,18 @@ impl ConstraintNet {
                     if c.directed { "directed" } else { "undirected" },
                     residuals[k],
                     c.kind.unit(),
-                    if residuals[k] > tolerance { " VIOLATED" } else { "" },
+                    if self.violated(k, residuals[k], tolerance) {
+                        " VIOLATED"
+                    } else {
+                        ""
+                    },
                 );
             }
         }
         let worst = residuals.iter().copied().fold(0.0, f64::max);
         let _ = writeln!(
             s,
-            "\n{violated} of {} constraints violated (tolerance {tolerance:e}); largest residual {worst:.3e}",
+            "\n{violated} of {} constraints violated (tolerance {tolerance:e} of the body's height, or rad); largest residual {worst:.3e}",
             self.constraints.len()
         );
         s

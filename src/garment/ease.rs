@@ -155,8 +155,10 @@ pub fn ease_ring(garment: &[DVec3], body: &[DVec3], plane: &Plane, ease: Ease) -
             let dir = (q - o).normalize_or_zero();
             let exit = ray_exit(o, dir, &flat).ok_or(EaseError::RayMissed(i))?;
             let target = ease.at(angle(q), axes);
-            // Bisection on the monotone gap along the ray, beyond the exit.
-            let (mut lo, mut hi) = (exit, exit + target.max(1e-9));
+            // Bisection on the monotone gap along the ray, beyond the exit (tolerances
+            // relative to the ring's size: the exit's distance from the centre).
+            let size = exit.max(f64::MIN_POSITIVE);
+            let (mut lo, mut hi) = (exit, exit + target.max(1e-9 * size));
             while distance_to_ring(o + dir * hi, &flat) < target {
                 hi = exit + 2.0 * (hi - exit);
             }
@@ -167,7 +169,7 @@ pub fn ease_ring(garment: &[DVec3], body: &[DVec3], plane: &Plane, ease: Ease) -
                 } else {
                     hi = mid;
                 }
-                if hi - lo <= 1e-14 {
+                if hi - lo <= 1e-13 * size {
                     break;
                 }
             }

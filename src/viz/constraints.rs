@@ -47,7 +47,7 @@ impl RerunLogger {
             }
             let bad: Vec<String> = own
                 .iter()
-                .filter(|&&k| residuals[k] > tolerance)
+                .filter(|&&k| net.violated(k, residuals[k], tolerance))
                 .map(|&k| format!("{} {:.2e}", net.constraints[k].kind.name(), residuals[k]))
                 .collect();
             own_points.push(centre(fw, net, c));
@@ -64,7 +64,11 @@ impl RerunLogger {
             }
             let (a, b) = con.anchor_points(fw, &net.curves);
             strips.push(f32s(&[centre(fw, net, con.i), a, b, centre(fw, net, con.j)]));
-            colors.push(if residuals[k] > tolerance { VIOLATED } else { MET });
+            colors.push(if net.violated(k, residuals[k], tolerance) {
+                VIOLATED
+            } else {
+                MET
+            });
             labels.push(format!(
                 "{} {} - {}: {:.2e} {}",
                 con.kind.name(),
@@ -92,7 +96,9 @@ impl RerunLogger {
                 .with_show_labels(false),
         )
         .map_err(to_sink)?;
-        let violated = residuals.iter().filter(|r| **r > tolerance).count();
+        let violated = (0..residuals.len())
+            .filter(|&k| net.violated(k, residuals[k], tolerance))
+            .count();
         self.scalar("metrics/constraints/violated", violated as f64)?;
         self.scalar(
             "metrics/constraints/max_residual",
@@ -210,7 +216,7 @@ impl RerunLogger {
                         "{}{other} {:.1e}{}",
                         c.kind.name(),
                         r,
-                        if r > tolerance { "!" } else { "" }
+                        if net.violated(k, r, tolerance) { "!" } else { "" }
                     )
                 })
                 .collect();

@@ -1,3 +1,4 @@
+mod bodies;
 mod collision;
 mod common;
 mod constraints;
@@ -15,3 +16,4 @@ mod session_errors;
 mod snapshot;
 mod spline_properties;
 mod splines;
+mod units;

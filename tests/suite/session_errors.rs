@@ -81,7 +81,7 @@ fn out_of_range() {
 fn unknown_units() {
     assert_eq!(
         error_of("drape 1\nunits ft\n"),
-        "s.drape:2:7: unknown units 'ft': expected m, cm or mm"
+        "s.drape:2:7: unknown units 'ft': expected km, m, cm or mm"
     );
 }
 

@@ -22,6 +22,8 @@ impl Run<'_> {
         solved: &BTreeSet<usize>,
     ) -> Result<Iteration, EditError> {
         let tol = self.options.tolerance;
+        // The tolerance of a length: the same fraction of the body's height.
+        let tol_m = tol * self.net.scale;
         let node = self.node(c).clone();
         let mut driven_by = Vec::new();
         let mut moved: Vec<(usize, DVec3)> = moves.to_vec();
@@ -42,7 +44,7 @@ impl Run<'_> {
             if let Kind::Coincident { a, b } = con.kind {
                 pinned.insert(if con.i == c { a } else { b });
             }
-            if !con.drives(o, c) || con.residual(&self.fw, &self.net.curves) <= tol {
+            if !con.drives(o, c) || !self.net.violated(k, con.residual(&self.fw, &self.net.curves), tol) {
                 continue;
             }
             driven_by.push(k);
@@ -124,14 +126,14 @@ impl Run<'_> {
                                         .collect();
                                     !self_crossings(&flat, curves::closed(&node)).is_empty()
                                 };
-                                let fix = |k: usize, p: DVec3| (limits.apply(k, p, tol) - p).length();
+                                let fix = |k: usize, p: DVec3| (limits.apply(k, p, tol_m) - p).length();
                                 let sd = |p: DVec3| self.probe.signed_distance(p);
                                 let (fix_i, fix_j) =
                                     (fix(i, control[i]) + fix(j, from_i), fix(i, from_j) + fix(j, control[j]));
                                 match (crosses(j, from_i), crosses(i, from_j)) {
                                     (false, true) => true,
                                     (true, false) => false,
-                                    _ if (fix_i - fix_j).abs() > tol => fix_i < fix_j,
+                                    _ if (fix_i - fix_j).abs() > tol_m => fix_i < fix_j,
                                     _ => sd(control[i]).min(sd(from_i)) >= sd(from_j).min(sd(control[j])),
                                 }
                             }
@@ -144,7 +146,7 @@ impl Run<'_> {
                     }
                 }
             }
-            limits.hold(&self.mirror_pairs(c), &BTreeSet::new(), &mut control, tol);
+            limits.hold(&self.mirror_pairs(c), &BTreeSet::new(), &mut control, tol_m);
             for p in control.iter_mut() {
                 *p = plane.snap(*p);
             }

@@ -31,7 +31,7 @@ impl Run<'_> {
             return p;
         }
         let sd = |t: f64| self.probe.signed_distance(p + u * t);
-        let (mut lo, mut hi) = (0.0, (gap - d).max(1e-6));
+        let (mut lo, mut hi) = (0.0, (gap - d).max(1e-6 * self.net.scale));
         let mut grow = 0;
         while sd(hi) < gap && grow < 40 {
             lo = hi;
@@ -45,7 +45,7 @@ impl Run<'_> {
             } else {
                 hi = mid;
             }
-            if hi - lo <= 1e-12 {
+            if hi - lo <= 1e-12 * self.net.scale {
                 break;
             }
         }
@@ -83,7 +83,7 @@ impl Run<'_> {
                     *p = plane.snap(*p + *d);
                 }
             }
-            ease.hold(&pairs, keep, &mut now, self.options.tolerance);
+            ease.hold(&pairs, keep, &mut now, self.options.tolerance * self.net.scale);
         }
         let out: Vec<NodeHit> = (0..start.len())
             .filter(|&i| now[i] != start[i])
@@ -204,7 +204,7 @@ impl Run<'_> {
                     moved.insert(i);
                 }
             }
-            ease.hold(&pairs, keep, &mut next, self.options.tolerance);
+            ease.hold(&pairs, keep, &mut next, self.options.tolerance * self.net.scale);
             curves::set_points(&mut self.fw, &node, next, &self.options.ring).map_err(|m| refit_error(&node, m))?;
         }
         hits.moved = moved.into_iter().collect();

@@ -173,7 +173,7 @@ pub fn solve(
     let violations = residuals
         .iter()
         .enumerate()
-        .filter(|(_, r)| **r > options.tolerance)
+        .filter(|(k, r)| net.violated(*k, **r, options.tolerance))
         .map(|(k, r)| (k, *r))
         .collect();
     let solved: Vec<usize> = solved_all.into_iter().collect();

@@ -35,8 +35,9 @@ pub struct SolverOptions {
     pub chains: Chains,
     /// Most passes over the network (default 8).
     pub passes: usize,
-    /// A constraint is met when its residual is at most this, m or rad (default 1e-6: a
-    /// micrometre; coincident points are copied and meet exactly).
+    /// A constraint is met when its residual is at most this: a fraction of the body's height
+    /// for a residual in metres, radians for an angle (default 6e-7: about a micrometre on a
+    /// 1.6 m body; coincident points are copied and meet exactly).
     pub tolerance: f64,
     /// Rounds of the curve-layer response per curve (default 4).
     pub response_rounds: usize,
@@ -57,7 +58,7 @@ impl Default for SolverOptions {
         Self {
             chains: Chains::Iterate,
             passes: 8,
-            tolerance: 1e-6,
+            tolerance: 6e-7,
             response_rounds: 4,
             response_margin: 0.05,
             gap_fraction: 0.5,

@@ -43,7 +43,7 @@ impl Run<'_> {
                 let r = self.residual(k);
                 it.residuals.push((k, r));
                 let o = self.net.constraints[k].other(c);
-                if r > tol && solved.contains(&o) {
+                if self.net.violated(k, r, tol) && solved.contains(&o) {
                     it.broken.push(k);
                     broken.push((k, c));
                 }
@@ -56,7 +56,7 @@ impl Run<'_> {
                 if o == c || solved.contains(&o) || queued.contains(&o) || !con.drives(c, o) {
                     continue;
                 }
-                if self.residual(k) > tol {
+                if self.net.violated(k, self.residual(k), tol) {
                     queue.push_back(o);
                     queued.insert(o);
                 }

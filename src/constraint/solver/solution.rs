@@ -86,7 +86,8 @@ pub struct Solution {
     pub gap: f64,
     /// Largest shortfall of the gap left on a solved planar curve's samples, m.
     pub clearance_deficit: f64,
-    /// The tolerance the constraints were solved to (m, or rad for tangents).
+    /// The tolerance the constraints were solved to (a fraction of the body's height for
+    /// lengths, rad for tangents; see [`crate::constraint::ConstraintNet::violated`]).
     pub tolerance: f64,
 }
 

@@ -4,7 +4,7 @@
 //! # comment (to the end of the line)
 //! drape 1                            # required first statement: format version
 //! body builtin                       # or: body "path/to/body.obj" (relative to the session file)
-//! units m                            # m | cm | mm: the units of the body file's coordinates
+//! units m                            # km | m | cm | mm: the units of the body file's coordinates
 //! landmark waist y=0.98              # override a landmark's height (metres)
 //! landmark front_neck at=0,1.31,0.08 # or its point
 //!

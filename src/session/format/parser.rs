@@ -166,12 +166,13 @@ impl Parser<'_> {
         if let Some((_, first)) = self.units {
             return Err(line.error(head.column, format!("units are already set on line {first}")));
         }
-        let t = one_argument(line, rest, ("units", "units"), "m, cm or mm")?;
+        let t = one_argument(line, rest, ("units", "units"), "km, m, cm or mm")?;
         let u = match t.text {
+            "km" => Units::Kilometres,
             "m" => Units::Metres,
             "cm" => Units::Centimetres,
             "mm" => Units::Millimetres,
-            other => return Err(line.error(t.column, format!("unknown units '{other}': expected m, cm or mm"))),
+            other => return Err(line.error(t.column, format!("unknown units '{other}': expected km, m, cm or mm"))),
         };
         self.units = Some((u, line.number));
         Ok(())

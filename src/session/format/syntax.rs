@@ -24,6 +24,8 @@ pub struct ParseError {
 /// Units of the body file's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Units {
+    /// Kilometres (a body scaled by 1e-3).
+    Kilometres,
     /// Metres.
     Metres,
     /// Centimetres.
@@ -36,6 +38,7 @@ impl Units {
     /// Factor to metres.
     pub fn scale(self) -> f64 {
         match self {
+            Self::Kilometres => 1000.0,
             Self::Metres => 1.0,
             Self::Centimetres => 0.01,
             Self::Millimetres => 0.001,
@@ -45,6 +48,7 @@ impl Units {
     /// Session spelling.
     pub fn name(self) -> &'static str {
         match self {
+            Self::Kilometres => "km",
             Self::Metres => "m",
             Self::Centimetres => "cm",
             Self::Millimetres => "mm",

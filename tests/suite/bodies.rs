@@ -1,0 +1,95 @@
+//! Every body, every accepted edit: the demo session and the drag session run on each of the
+//! five shipped bodies end every step with no vertex inside and no edge crossing by the
+//! exact quality check, and the last step of each by the brute-force truth (winding number
+//! for every vertex, every edge against every body triangle); every responded vertex of
+//! that step meets its gap by the test's own distance.
+
+use std::path::{Path, PathBuf};
+
+use drape::collision::{Collision, ground_truth};
+use drape::mesh::TriMesh;
+use drape::session::{
+    CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session,
+};
+
+/// Each step's collision, with M0's edges.
+#[derive(Default)]
+struct Collisions(Vec<(usize, Collision, Vec<[u32; 2]>)>);
+
+impl StageSink for Collisions {
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            let o = stage.outcome;
+            self.0.push((info.step, o.collision.clone(), o.garment.edges.clone()));
+        }
+        Ok(())
+    }
+}
+
+fn bodies() -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
+        .expect("assets/bodies")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    out.sort();
+    assert_eq!(out.len(), 5, "{out:?}");
+    out
+}
+
+/// Runs `session` on `body`; checks every step and the last one by brute force.
+fn check(session: &str, body: &Path) {
+    let text = std::fs::read_to_string(session).expect("session");
+    let parsed = parse_session(&text, session, Path::new(".")).expect("parses");
+    let options = RunOptions {
+        body_override: Some(body.to_path_buf()),
+        ..RunOptions::default()
+    };
+    let mut sink = Collisions::default();
+    let report = run_session(&parsed, &options, &mut [&mut sink]);
+    let name = format!("{} on {}", session, body.display());
+    assert!(report.error.is_none(), "{name}: {:?}", report.error);
+    let unmet: Vec<_> = report
+        .shortfalls
+        .iter()
+        .filter(|(_, s)| matches!(s, drape::session::Shortfall::Guarantee { .. }))
+        .collect();
+    assert!(unmet.is_empty(), "{name}: {unmet:?}");
+    for (step, c, _) in &sink.0 {
+        let q = &c.quality;
+        assert_eq!(
+            (q.penetrating_vertices, q.crossing_edges),
+            (0, 0),
+            "{name}: step {step} leaves vertices inside or edges crossing"
+        );
+    }
+    let (step, last, edges) = sink.0.last().expect("a collision");
+    let mesh = drape::body::BodyMesh::load(&drape::body::BodySource::File(body.to_path_buf()), 1.0).expect("loads");
+    let truth = ground_truth(&mesh.mesh, &last.mesh.positions, edges);
+    assert_eq!(
+        truth.inside_count(),
+        0,
+        "{name}: step {step}, vertices inside by the winding number"
+    );
+    assert_eq!(
+        truth.crossing_count(),
+        0,
+        "{name}: step {step}, edges crossing a body triangle"
+    );
+    let body_mesh: &TriMesh = &mesh.mesh;
+    super::collision::assert_meets_the_ease(last, body_mesh);
+}
+
+#[test]
+fn the_demo_leaves_every_body_clear() {
+    for body in bodies() {
+        check("assets/sessions/demo.drape", &body);
+    }
+}
+
+#[test]
+fn the_drag_session_leaves_every_body_clear() {
+    for body in bodies() {
+        check("assets/sessions/drags.drape", &body);
+    }
+}
