@@ -10,6 +10,7 @@ mod landmarks;
 mod mannequin;
 mod meshes;
 mod obj_errors;
+mod refusals;
 mod resample;
 mod sections;
 mod session_errors;
