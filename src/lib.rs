@@ -27,5 +27,6 @@ pub mod geom;
 pub mod input;
 pub mod mannequin;
 pub mod mesh;
+pub mod par;
 pub mod session;
 pub mod viz;

@@ -1,14 +1,16 @@
 //! The body prepared for distance, inside and ray queries, built once per body and shared
 //! by the garment (curve clearance) and the collision: `f64` triangles with face, edge and
 //! vertex pseudo-normals (Bærentzen and Aanæs 2005: angle-weighted at vertices, the two
-//! faces' sum on edges), one parry3d BVH over all triangles (nearest point, rays) and one
-//! per partition A-G (detection), and the horizontal slice stack the line-line test and
-//! the ring-centre response read.
+//! faces' sum on edges), one parry3d BVH for nearest points and rays and one per partition
+//! A-G (detection), all over the body's outer shell (the triangles of a self-crossing body
+//! that lie inside another part left out, see [`super::shell`]), and the horizontal slice
+//! stack the line-line test and the ring-centre response read.
 
 use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, TraversalAction};
 
+use super::shell::{Shell, find_shell};
 use super::slices::{SliceOptions, SliceStack};
 use super::{Body, DetectionMethod, PartitionId, ResponseRule};
 use crate::geom::closest::{Feature, closest_on_triangle};
@@ -80,9 +82,27 @@ pub struct BodyIndex {
     pub slices: SliceStack,
     /// Body height, m (scale of every tolerance).
     pub height: f64,
+    /// Which triangles lie inside another part of the body (see [`super::shell`]); the
+    /// nearest-point and ray queries see only the others.
+    pub shell: Shell,
     whole: Bvh,
+    /// Triangle of each leaf of `whole`.
+    leaves: Vec<u32>,
+    /// Per triangle: it shares a vertex with a triangle where the surface crosses itself, so
+    /// its pseudo-normals may point the wrong way; the sign of a point nearest to it is
+    /// counted along rays instead.
+    tangled: Vec<bool>,
+    /// Every triangle (buried ones too), for those counts; only on a self-crossing body.
+    all: Option<Bvh>,
     slack: f64,
 }
+
+/// Directions of the rays that count windings (fixed, off every axis and diagonal).
+const WINDING_RAYS: [DVec3; 3] = [
+    DVec3::new(0.267_261_2, 0.534_522_5, 0.801_783_7),
+    DVec3::new(-0.801_783_7, 0.267_261_2, -0.534_522_5),
+    DVec3::new(0.534_522_5, -0.801_783_7, -0.267_261_2),
+];
 
 impl std::fmt::Debug for BodyIndex {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -201,22 +221,57 @@ impl BodyIndex {
             .map(|t| aabb_of(t.map(|i| positions[i as usize]), slack))
             .collect();
         let whole = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
-        for p in &mut partitions {
-            let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
-            p.bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &local);
-        }
-        Self {
+        let mut index = Self {
             positions,
             triangles,
             face_normals,
             edge_normals,
             vertex_normals,
-            partitions,
+            partitions: Vec::new(),
             slices,
             height,
+            shell: Shell::default(),
             whole,
+            leaves: (0..boxes.len() as u32).collect(),
+            tangled: Vec::new(),
+            all: None,
             slack: 1e-5 * height,
+        };
+        index.shell = find_shell(
+            mesh,
+            neighbours,
+            height,
+            |o, d, a, b| index.cast_ray(o, d, a, b),
+            |p| index.winding(p),
+        );
+        if index.shell.crossing > 0 {
+            let mut near_crossing = vec![false; index.positions.len()];
+            for (t, tri) in index.triangles.iter().enumerate() {
+                if index.shell.crossing_at[t] {
+                    for &v in tri {
+                        near_crossing[v as usize] = true;
+                    }
+                }
+            }
+            index.tangled = index
+                .triangles
+                .iter()
+                .map(|tri| tri.iter().any(|&v| near_crossing[v as usize]))
+                .collect();
+            index.leaves.retain(|&t| !index.shell.buried[t as usize]);
+            let kept: Vec<Aabb> = index.leaves.iter().map(|&t| boxes[t as usize]).collect();
+            let shell = Bvh::from_leaves(BvhBuildStrategy::Binned, &kept);
+            index.all = Some(std::mem::replace(&mut index.whole, shell));
+            for p in &mut partitions {
+                p.triangles.retain(|&t| !index.shell.buried[t as usize]);
+            }
         }
+        for p in &mut partitions {
+            let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
+            p.bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &local);
+        }
+        index.partitions = partitions;
+        index
     }
 
     /// The corners of triangle `t`.
@@ -264,7 +319,49 @@ impl BodyIndex {
                 best = Some(n);
             }
         }
-        best
+        best.map(|n| self.settle(p, n))
+    }
+
+    /// The shell's triangles (every triangle not buried), ascending.
+    pub fn shell_triangles(&self) -> impl Iterator<Item = u32> + '_ {
+        self.leaves.iter().copied()
+    }
+
+    /// `n` with a normal that gives `p` its true side where the pseudo-normals cannot be
+    /// trusted (next to a self-crossing): the side counted along rays.
+    fn settle(&self, p: DVec3, mut n: Nearest) -> Nearest {
+        if n.distance > 0.0 && self.tangled.get(n.triangle as usize).copied().unwrap_or(false) {
+            let away = (p - n.foot) / n.distance;
+            n.normal = if self.winding(p) >= 1 { -away } else { away };
+        }
+        n
+    }
+
+    /// The winding number of the whole surface (buried triangles too) about `p`, counted as
+    /// the signed crossings of a ray (leaving the body +1, entering -1); the median of
+    /// three rays in fixed directions, so that one ray grazing an edge cannot decide.
+    pub fn winding(&self, p: DVec3) -> i32 {
+        let bvh = self.all.as_ref().unwrap_or(&self.whole);
+        let reach = 4.0 * self.height + p.length();
+        let mut counts = WINDING_RAYS.map(|dir| {
+            let ray = parry3d::query::Ray::new(p.as_vec3(), dir.as_vec3());
+            bvh.leaves(|node| node.cast_ray(&ray, reach as f32) < f32::MAX)
+                .map(|leaf| {
+                    let t = if self.all.is_some() {
+                        leaf
+                    } else {
+                        self.leaves[leaf as usize]
+                    };
+                    match ray_triangle(p, dir, self.corners(t), 0.0, reach) {
+                        Some(_) if dir.dot(self.face_normals[t as usize]) > 0.0 => 1,
+                        Some(_) => -1,
+                        None => 0,
+                    }
+                })
+                .sum::<i32>()
+        });
+        counts.sort_unstable();
+        counts[1]
     }
 
     /// The nearest point within `reach` of `p` in a BVH whose leaf `i` is triangle `map(i)`.
@@ -296,12 +393,12 @@ impl BodyIndex {
             }
             TraversalAction::Continue
         });
-        best
+        best.map(|n| self.settle(p, n))
     }
 
     /// The nearest body point within `reach`, over the whole body.
     pub fn nearest(&self, p: DVec3, reach: f64) -> Option<Nearest> {
-        self.nearest_in(&self.whole, |i| i, p, reach)
+        self.nearest_in(&self.whole, |i| self.leaves[i as usize], p, reach)
     }
 
     /// The nearest point of partition `k`'s triangles within `reach`.
@@ -323,9 +420,10 @@ impl BodyIndex {
         let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
         let len = dir.length().max(f64::MIN_POSITIVE);
         let pad = self.slack / len;
-        let (triangle, _) = self.whole.cast_ray(&ray, (t_max + pad) as f32, |leaf, _| {
-            ray_triangle(origin, dir, self.corners(leaf), t_min, t_max).map(|t| t as f32)
+        let (leaf, _) = self.whole.cast_ray(&ray, (t_max + pad) as f32, |leaf, _| {
+            ray_triangle(origin, dir, self.corners(self.leaves[leaf as usize]), t_min, t_max).map(|t| t as f32)
         })?;
+        let triangle = self.leaves[leaf as usize];
         ray_triangle(origin, dir, self.corners(triangle), t_min, t_max).map(|hit| (hit, triangle))
     }
 

@@ -5,6 +5,7 @@ pub mod landmarks;
 pub mod partition;
 pub mod profile;
 pub mod rings;
+pub mod shell;
 pub mod slices;
 
 use std::path::{Path, PathBuf};

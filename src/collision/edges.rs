@@ -7,9 +7,13 @@
 //! split of the lift, `u_a = lift (1 - t) / w` and `u_b = lift t / w` with
 //! `w = (1 - t)^2 + t^2` (so that `(1 - t) u_a + t u_b = lift`). Each end moves along `n`
 //! where that leads away from the body at the end too (within 75 degrees of the end's own
-//! shortest way out), else along its own way out. An end with no room (another part of the
-//! body ahead: it may go no further than the middle of the free space) leaves the rest of
-//! the lift to the other end, which then moves at most three lifts. An end shared by several
+//! shortest way out), else along its own way out. An end with too little room to rise by its
+//! share (another part of the body ahead: it may go no further than the middle of the free
+//! space) rises as far as it may and slides the rest along the skin, towards the other end
+//! of its edge: out of the squeeze, shortening the edge where it bends round the body (at
+//! most half the edge, and half the way to the body ahead). The other end keeps its own
+//! share: handing it the pinned end's share as well sends it off the body by many times
+//! the lift on a short edge, each round, without clearing the edge. An end shared by several
 //! crossing edges takes the longest of its moves. A vertex on a garment ring keeps its height
 //! where that leaves most of the move. A move that would leave the end inside the body, or
 //! nearer it than the ease (or than it stood, when it stood nearer), is not made. Only the
@@ -20,14 +24,13 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::detect::Hit;
-use super::par::par_map;
 use super::response::{AppliedRule, EASE_TOLERANCE, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
 use crate::body::index::BodyIndex;
+use crate::par::par_map;
 
 /// A crossing edge: its ends, where along it it is deepest, the way out there and how deep.
 struct Crossing {
     ends: [u32; 2],
-    length: f64,
     t: f64,
     out: DVec3,
     depth: f64,
@@ -49,18 +52,19 @@ fn crossing(index: &BodyIndex, ends: [u32; 2], pa: DVec3, pb: DVec3) -> Option<C
     };
     Some(Crossing {
         ends,
-        length: pa.distance(pb),
         t: t.clamp(0.0, 1.0),
         out,
         depth: (-signed).max(0.0),
     })
 }
 
-/// Where an end can go: its direction out and how far before the middle of the free space.
+/// Where an end can go: its direction out, how far before the middle of the free space, and
+/// its own shortest way out of the body.
 #[derive(Clone, Copy)]
 struct Way {
     dir: DVec3,
     room: f64,
+    own: DVec3,
 }
 
 /// The way out for the end at `p` when its edge is lifted along `n`.
@@ -82,7 +86,24 @@ fn way(index: &BodyIndex, p: DVec3, n: DVec3, ease: f64) -> Option<Way> {
         Some((ahead, _)) => (0.5 * (behind + ahead) - behind).max(0.0),
         None => f64::INFINITY,
     };
-    Some(Way { dir, room })
+    Some(Way { dir, room, own })
+}
+
+/// Where an end without room to rise (squeezed between two parts of the body) slides
+/// instead: along the surface, towards the other end of its crossing edge, out of the
+/// squeeze. At most `want`, half the edge, and half the way to the body ahead.
+fn slide(index: &BodyIndex, p: DVec3, way: &Way, towards: DVec3, want: f64, ease: f64) -> DVec3 {
+    let to = towards - p;
+    let along = to - way.own * to.dot(way.own);
+    let Some(dir) = along.try_normalize() else {
+        return DVec3::ZERO;
+    };
+    let most = want.min(0.5 * to.length());
+    let most = match index.cast_ray(p, dir, 1e-6 * index.height, most + 2.0 * ease) {
+        Some((ahead, _)) => most.min(0.5 * ahead),
+        None => most,
+    };
+    dir * most
 }
 
 /// Edge rounds on `positions` (updated): returns the lifts made, as responses, and the
@@ -122,19 +143,19 @@ pub fn respond_edges(
         for (c, ways) in &crossings {
             let lift = c.depth + 0.25 * ease;
             let w = (1.0 - c.t).powi(2) + c.t * c.t;
-            let room = ways.map(|x| x.map_or(0.0, |x| x.room));
-            let mut u = [lift * (1.0 - c.t) / w, lift * c.t / w];
-            if u[0] > room[0] && c.t > 1e-3 {
-                u = [room[0], (lift - (1.0 - c.t) * room[0]) / c.t];
-            } else if u[1] > room[1] && c.t < 1.0 - 1e-3 {
-                u = [(lift - c.t * room[1]) / (1.0 - c.t), room[1]];
-            }
-            for ((v, way), u) in c.ends.into_iter().zip(ways).zip(u) {
-                let Some(way) = way else {
+            let share = [lift * (1.0 - c.t) / w, lift * c.t / w];
+            let ends = c.ends.map(|v| positions_now[v as usize]);
+            for k in 0..2 {
+                let Some(way) = ways[k] else {
                     continue;
                 };
-                let m = way.dir * u.min(CAP * lift).min(c.length).min(way.room);
-                let slot = moves.entry(v).or_insert(DVec3::ZERO);
+                // The end rises by its share as far as it has room; what is left it slides.
+                let rise = share[k].min(way.room);
+                let mut m = way.dir * rise;
+                if share[k] > rise {
+                    m += slide(index, ends[k], &way, ends[1 - k], share[k] - rise, ease);
+                }
+                let slot = moves.entry(c.ends[k]).or_insert(DVec3::ZERO);
                 if m.length_squared() > slot.length_squared() {
                     *slot = m;
                 }
@@ -213,7 +234,3 @@ pub fn respond_edges(
     }
     (all, found)
 }
-
-/// Most an end moves in one round, in lifts (when the other end of its edge is pinned); never
-/// more than its edge is long.
-const CAP: f64 = 10.0;

@@ -12,7 +12,6 @@
 pub mod detect;
 pub mod edges;
 pub mod line_line;
-pub mod par;
 pub mod point_face;
 pub mod quality;
 pub mod response;
@@ -234,7 +233,7 @@ pub fn collide(
     });
     responses.extend(edge_responses);
     let quality = timed(&mut timings.quality, || {
-        quality(index, &positions, &garment.edges, &responses)
+        quality(index, &garment.mesh.positions, &positions, &garment.edges, &responses)
     });
     Collision {
         detection,

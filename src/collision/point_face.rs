@@ -60,7 +60,7 @@ pub fn point_face(index: &BodyIndex, search: Search, p: DVec3, reach: &Reach) ->
     let r = reach.inside.max(reach.outside);
     let nearest = match search {
         Search::Brute => index
-            .nearest_among(p, 0..index.triangles.len() as u32)
+            .nearest_among(p, index.shell_triangles())
             .filter(|n| n.distance <= r),
         Search::Partition(k) => index
             .nearest_among(p, index.partitions[k].triangles.iter().copied())

@@ -4,9 +4,9 @@
 
 use glam::DVec3;
 
-use super::par::par_map;
 use super::response::Response;
 use crate::body::index::BodyIndex;
+use crate::par::par_map;
 
 /// Quality figures of a garment mesh against the body.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
@@ -23,6 +23,11 @@ pub struct Quality {
     pub max_ease_error_m: f64,
     /// Mean of it, m.
     pub mean_ease_error_m: f64,
+    /// Farthest any vertex was moved by the response, m.
+    pub max_move_m: f64,
+    /// Largest ratio of an edge's length after the response to its length before (1 when
+    /// nothing was stretched).
+    pub max_stretch: f64,
     /// The penetrating vertices.
     #[serde(skip)]
     pub inside: Vec<u32>,
@@ -31,8 +36,15 @@ pub struct Quality {
     pub crossing: Vec<u32>,
 }
 
-/// Measures `positions` (with `edges`) against the body; `responses` give the ease error.
-pub fn quality(index: &BodyIndex, positions: &[DVec3], edges: &[[u32; 2]], responses: &[Response]) -> Quality {
+/// Measures `positions` (with `edges`) against the body; `responses` give the ease error and
+/// `before` (the positions before the response) the moves and stretches.
+pub fn quality(
+    index: &BodyIndex,
+    before: &[DVec3],
+    positions: &[DVec3],
+    edges: &[[u32; 2]],
+    responses: &[Response],
+) -> Quality {
     let reach = 0.2 * index.height;
     let surface = 1e-12 * index.height;
     let mut q = Quality::default();
@@ -67,6 +79,18 @@ pub fn quality(index: &BodyIndex, positions: &[DVec3], edges: &[[u32; 2]], respo
             q.crossing.push(e as u32);
         }
     }
+    q.max_move_m = before
+        .iter()
+        .zip(positions)
+        .map(|(a, b)| a.distance(*b))
+        .fold(0.0, f64::max);
+    q.max_stretch = edges
+        .iter()
+        .filter_map(|&[a, b]| {
+            let was = before[a as usize].distance(before[b as usize]);
+            (was > 0.0).then(|| positions[a as usize].distance(positions[b as usize]) / was)
+        })
+        .fold(1.0, f64::max);
     if !responses.is_empty() {
         let errs = responses.iter().map(|r| r.ease_error.abs());
         q.max_ease_error_m = errs.clone().fold(0.0, f64::max);

@@ -35,10 +35,10 @@
 use glam::{DVec2, DVec3};
 
 use super::detect::Hit;
-use super::par::par_map;
 use crate::body::ResponseRule;
 use crate::body::index::BodyIndex;
 use crate::body::slices::flat;
+use crate::par::par_map;
 
 /// Response settings.
 #[derive(Clone, Debug, PartialEq)]

@@ -7,12 +7,12 @@
 use glam::DVec3;
 
 use super::detect::Detection;
-use super::par::par_map as parallel;
 use super::quality::Quality;
 use crate::body::DetectionMethod;
 use crate::geom::inside::winding_number;
 use crate::geom::ray::ray_triangle;
 use crate::mesh::TriMesh;
+use crate::par::par_map as parallel;
 
 /// The ground truth for one garment mesh.
 #[derive(Clone, Debug, PartialEq)]

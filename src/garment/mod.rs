@@ -11,6 +11,7 @@
 pub mod adjust;
 pub mod anchors;
 pub mod assemble;
+pub mod bridge;
 pub mod build;
 pub mod contour;
 pub mod convexify;

@@ -1,13 +1,15 @@
 //! Open garment curves cut by a plane (a strap over the shoulder, the crotch curve in the
 //! vertical crotch plane), through the same sub-steps as a ring: the raw section between
 //! two cut heights, convexified with its ends and apex kept, resampled as two arcs about the
-//! apex, eased, its ends pinned to the rings they meet (virtual control points: the
+//! apex, eased (bridging gaps of the body narrower than twice the ease), its ends pinned to the rings they meet (virtual control points: the
 //! difference fades linearly to zero at the apex), then fitted and resampled.
 
 use glam::{DVec2, DVec3};
 
+use super::bridge::{Bridging, bridge_all};
 use super::convexify::convexify_open;
 use super::ease::{Ease, ease_ring};
+use super::probe::BodyProbe;
 use super::resample::resample_open_at;
 use super::ring::{RingBuildError, RingStages};
 use crate::geom::{ChordSpline3, CurveEnds, Plane, SectionLoop};
@@ -112,6 +114,8 @@ pub struct OpenInput<'a> {
     pub control_per_half: usize,
     /// Fitted samples per half.
     pub fitted_per_half: usize,
+    /// The body and how eased points bridge its gaps ([`super::bridge`]).
+    pub bridge: Option<(&'a BodyProbe, Bridging)>,
 }
 
 impl OpenCurve {
@@ -125,8 +129,13 @@ impl OpenCurve {
         let convex: Vec<DVec3> = kept.iter().map(|&i| raw[i]).collect();
         let resampled = resample_open_at(&convex, apex_at, input.per_half)
             .map_err(|e| RingBuildError::Resample(name.clone(), e))?;
-        let eased =
+        let mut eased =
             ease_ring(&resampled, &convex, &plane, input.ease).map_err(|e| RingBuildError::Ease(name.clone(), e))?;
+        if let Some((probe, b)) = &input.bridge {
+            // On the way each point was eased (from the deformation centre, in the plane).
+            let dirs: Vec<DVec3> = eased.iter().zip(&resampled).map(|(e, r)| *e - *r).collect();
+            bridge_all(probe, &mut eased, &dirs, b, 1);
+        }
         // Pin the ends; the correction fades to nothing at the apex.
         let h = input.per_half;
         let last = eased.len() - 1;

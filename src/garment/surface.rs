@@ -13,6 +13,7 @@ use super::model::{FeatureLine, Framework, FrameworkError, Layout};
 use super::open_curve::OpenCurve;
 use super::probe::BodyProbe;
 use super::ring::GarmentRing;
+use crate::par::par_map_from;
 
 /// A framework error: `what` is wrong with curve `curve`.
 pub fn missing(curve: &str, what: &str) -> FrameworkError {
@@ -106,6 +107,8 @@ pub struct Surfacer<'a> {
     shapes: BTreeMap<String, Vec<DVec3>>,
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
+    /// Patches surfaced anew whose interior the clearing moved: (index, samples moved).
+    to_relax: Vec<(usize, Vec<bool>)>,
 }
 
 impl<'a> Surfacer<'a> {
@@ -125,6 +128,7 @@ impl<'a> Surfacer<'a> {
             shapes: curve_shapes(fw, lines),
             patches: Vec::new(),
             resurfaced: Vec::new(),
+            to_relax: Vec::new(),
         }
     }
 
@@ -138,8 +142,21 @@ impl<'a> Surfacer<'a> {
         self.layout
     }
 
-    /// The patches made (or kept), and the names of those surfaced anew.
-    pub fn finish(self) -> (Vec<PatchGrid>, Vec<String>) {
+    /// The patches made (or kept), and the names of those surfaced anew; the cleared ones
+    /// relaxed (on all cores: each patch on its own).
+    pub fn finish(mut self) -> (Vec<PatchGrid>, Vec<String>) {
+        let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
+        let patches = &self.patches;
+        let jobs = &self.to_relax;
+        let relaxed = par_map_from(jobs.len(), 2, |k| {
+            let (i, moved) = &jobs[k];
+            let mut grid = patches[*i].clone();
+            relax(&mut grid, moved, probe, gap, scale);
+            grid
+        });
+        for ((i, _), grid) in self.to_relax.iter().zip(relaxed) {
+            self.patches[*i] = grid;
+        }
         (self.patches, self.resurfaced)
     }
 
@@ -174,12 +191,9 @@ impl<'a> Surfacer<'a> {
         // The blend of four boundaries that stand off the body can still dip into it where
         // the body bulges between them (the inner thigh and the belly over a tall crotch
         // junction): interior samples stand the clearance off, as contour spans do.
-        let (nu, nv) = (grid.nu, grid.nv);
-        for j in 1..nv {
-            for i in 1..nu {
-                let k = j * (nu + 1) + i;
-                grid.points[k] = self.probe.clear(grid.points[k], self.layout.clearance);
-            }
+        let moved = clear_interior(&mut grid, self.probe, self.layout.clearance);
+        if moved.contains(&true) {
+            self.to_relax.push((self.patches.len(), moved));
         }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
@@ -213,4 +227,60 @@ pub fn curve_shapes(fw: &Framework, lines: &[FeatureLine]) -> BTreeMap<String, V
         out.insert(l.name.clone(), l.points.clone());
     }
     out
+}
+
+/// Clears every interior sample of `grid` off the body by `gap` (m); which ones moved.
+fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> Vec<bool> {
+    let (nu, nv) = (grid.nu, grid.nv);
+    let mut moved = vec![false; grid.points.len()];
+    for j in 1..nv {
+        for i in 1..nu {
+            let k = j * (nu + 1) + i;
+            let p = probe.clear(grid.points[k], gap);
+            moved[k] = p != grid.points[k];
+            grid.points[k] = p;
+        }
+    }
+    moved
+}
+
+/// Most rounds of relaxation of a cleared patch.
+pub const RELAX_ROUNDS: usize = 12;
+
+/// Evens out the samples the clearing moved: clearing sends each sample to its own nearest
+/// skin, so samples over a fold bunch on its lips and leave long edges across it. Each round
+/// moves every moved sample half way to its four neighbours' mean, within the patch's
+/// tangent plane there (so the patch does not flatten), and clears it again; the samples
+/// the clearing left alone keep the Coons blend and hold the rest in place. Stops early
+/// once no sample moves more than 1e-4 of `scale` (m) in a round.
+fn relax(grid: &mut PatchGrid, moved: &[bool], probe: &BodyProbe, gap: f64, scale: f64) {
+    let (nu, nv) = (grid.nu, grid.nv);
+    let at = |i: usize, j: usize| j * (nu + 1) + i;
+    for _ in 0..RELAX_ROUNDS {
+        let before = grid.points.clone();
+        let mut most: f64 = 0.0;
+        for j in 1..nv {
+            for i in 1..nu {
+                if !moved[at(i, j)] {
+                    continue;
+                }
+                let p = before[at(i, j)];
+                let (l, r, d, u) = (
+                    before[at(i - 1, j)],
+                    before[at(i + 1, j)],
+                    before[at(i, j - 1)],
+                    before[at(i, j + 1)],
+                );
+                let n = (r - l).cross(u - d).normalize_or_zero();
+                let lap = 0.25 * (l + r + d + u) - p;
+                let tangential = lap - n * lap.dot(n);
+                let q = probe.clear(p + 0.5 * tangential, gap);
+                most = most.max(q.distance(p));
+                grid.points[at(i, j)] = q;
+            }
+        }
+        if most <= 1e-4 * scale {
+            break;
+        }
+    }
 }

@@ -141,6 +141,8 @@ impl RerunLogger {
         self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
         self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
         self.scalar("metrics/collision/max_ease_error_m", q.max_ease_error_m)?;
+        self.scalar("metrics/collision/max_move_m", q.max_move_m)?;
+        self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
             format!(
                 "; verified by brute force: {} inside before ({} missed, {} false hits; line-line {} and {}), {} inside and {} crossing after, quality agrees: {}",
@@ -183,7 +185,7 @@ impl RerunLogger {
         self.text(
             TextLogLevel::INFO,
             format!(
-                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, ease error max {:.3} mm{}",
+                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, ease error max {:.3} mm, farthest move {:.1} mm, largest edge stretch {:.2}x{}",
                 c.ease * 1e3,
                 c.responses.len(),
                 if counts.is_empty() { "none".to_string() } else { counts.join(", ") },
@@ -192,6 +194,8 @@ impl RerunLogger {
                 q.max_depth_m * 1e3,
                 q.crossing_edges,
                 q.max_ease_error_m * 1e3,
+                q.max_move_m * 1e3,
+                q.max_stretch,
                 verify
             ),
         )

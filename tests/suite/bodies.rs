@@ -2,7 +2,8 @@
 //! five shipped bodies end every step with no vertex inside and no edge crossing by the
 //! exact quality check, and the last step of each by the brute-force truth (winding number
 //! for every vertex, every edge against every body triangle); every responded vertex of
-//! that step meets its gap by the test's own distance.
+//! that step meets its gap by the test's own distance; and no step's response stretches an
+//! edge past twice its length (lifting edges, not flinging their ends).
 
 use std::path::{Path, PathBuf};
 
@@ -12,19 +13,36 @@ use drape::session::{
     CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session,
 };
 
-/// Each step's collision, with M0's edges.
+/// One step's collision, with M0's edges and its positions before the response.
+struct StepCollision {
+    step: usize,
+    collision: Collision,
+    edges: Vec<[u32; 2]>,
+    before: Vec<glam::DVec3>,
+}
+
+/// Each step's collision.
 #[derive(Default)]
-struct Collisions(Vec<(usize, Collision, Vec<[u32; 2]>)>);
+struct Collisions(Vec<StepCollision>);
 
 impl StageSink for Collisions {
     fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         if stage.part == CollisionPart::Respond {
             let o = stage.outcome;
-            self.0.push((info.step, o.collision.clone(), o.garment.edges.clone()));
+            self.0.push(StepCollision {
+                step: info.step,
+                collision: o.collision.clone(),
+                edges: o.garment.edges.clone(),
+                before: o.garment.mesh.positions.clone(),
+            });
         }
         Ok(())
     }
 }
+
+/// The response may lift an edge's ends, not fling them: no edge ends longer than twice
+/// its length before the response (measured here from the two meshes).
+const MOST_STRETCH: f64 = 2.0;
 
 fn bodies() -> Vec<PathBuf> {
     let mut out: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
@@ -55,15 +73,38 @@ fn check(session: &str, body: &Path) {
         .filter(|(_, s)| matches!(s, drape::session::Shortfall::Guarantee { .. }))
         .collect();
     assert!(unmet.is_empty(), "{name}: {unmet:?}");
-    for (step, c, _) in &sink.0 {
+    for StepCollision {
+        step,
+        collision: c,
+        edges,
+        before,
+    } in &sink.0
+    {
         let q = &c.quality;
         assert_eq!(
             (q.penetrating_vertices, q.crossing_edges),
             (0, 0),
             "{name}: step {step} leaves vertices inside or edges crossing"
         );
+        let after = &c.mesh.positions;
+        let stretch = edges
+            .iter()
+            .map(|&[a, b]| {
+                let (a, b) = (a as usize, b as usize);
+                after[a].distance(after[b]) / before[a].distance(before[b])
+            })
+            .fold(1.0, f64::max);
+        assert!(
+            stretch <= MOST_STRETCH,
+            "{name}: step {step} stretches an edge {stretch:.2} times"
+        );
     }
-    let (step, last, edges) = sink.0.last().expect("a collision");
+    let StepCollision {
+        step,
+        collision: last,
+        edges,
+        ..
+    } = sink.0.last().expect("a collision");
     let mesh = drape::body::BodyMesh::load(&drape::body::BodySource::File(body.to_path_buf()), 1.0).expect("loads");
     let truth = ground_truth(&mesh.mesh, &last.mesh.positions, edges);
     assert_eq!(

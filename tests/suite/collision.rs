@@ -126,7 +126,18 @@ fn line_line_misses_are_reported_and_bounded() {
         false_hits
     );
     assert!(missed.len() * 50 <= inside_line, "line-line misses more than 2%");
-    assert!(false_hits * 50 <= inside_line, "line-line false hits more than 2%");
+    // A false hit is only pushed out to the ease; it must lie at the skin (brute-force
+    // distance), and be rare.
+    let worst_false = line
+        .iter()
+        .filter(|&&v| !truth.inside[v] && found.contains(&(v as u32)))
+        .map(|&v| brute_distance(&real_body().mesh.mesh, g.mesh.positions[v]))
+        .fold(0.0, f64::max);
+    assert!(
+        worst_false < 0.001,
+        "a line-line false hit {worst_false} m off the skin"
+    );
+    assert!(false_hits * 20 <= inside_line, "line-line false hits more than 5%");
     assert!(worst_missed < 0.005, "a line-line miss 5 mm deep");
     // Point-face partitions stay exact under the default (mixed) methods.
     let pf_wrong = (0..g.mesh.positions.len())
@@ -556,7 +567,7 @@ fn verify_catches_a_vertex_planted_inside_the_body() {
     assert_eq!(missed.crossing_after, incident.len(), "every edge at the plant crosses");
     assert!(!missed.quality_agrees);
     // The quality measured on the planted mesh finds it and agrees.
-    let honest = quality(index(), &planted, &g.edges, &c.responses);
+    let honest = quality(index(), &c.mesh.positions, &planted, &g.edges, &c.responses);
     assert_eq!(honest.inside, vec![v as u32]);
     assert_eq!(honest.crossing, incident);
     let depth = brute_distance(body, plant);

@@ -14,6 +14,7 @@ mod refusals;
 mod resample;
 mod sections;
 mod session_errors;
+mod shell;
 mod snapshot;
 mod spline_properties;
 mod splines;

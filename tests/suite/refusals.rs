@@ -115,7 +115,11 @@ fn a_step_that_leaves_the_garment_in_the_body_says_so_and_strict_fails_the_run()
     }
     // In the recording: a red mark at `collision/guarantee` and a WARN line.
     let summary = super::snapshot::summarize(storage.take());
-    assert!(summary.contains("/collision/guarantee\n  Points3D:colors"), "{summary}");
+    let mark: Vec<&str> = summary
+        .split("\n/")
+        .filter(|block| block.starts_with("collision/guarantee\n"))
+        .collect();
+    assert!(mark.len() == 1 && mark[0].contains("  Points3D:colors"), "{summary}");
     assert!(summary.contains("GUARANTEE NOT MET"), "{summary}");
     assert!(summary.contains("WARN"), "{summary}");
 }

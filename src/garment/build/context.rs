@@ -173,10 +173,15 @@ impl BuildCtx<'_> {
         }
     }
 
+    /// The garment mesh's nominal edge at the resolution, m.
+    pub fn edge_length(&self) -> f64 {
+        self.height * 0.09 / self.options.resolution.max(1) as f64
+    }
+
     /// Segments for a band `dy` high (stretched by `stretch`), so that the band's edges are
     /// about as long as a ring's at the resolution: at least 2.
     pub fn segments(&self, dy: f64, stretch: f64) -> usize {
-        let edge = self.height * 0.09 / self.options.resolution.max(1) as f64;
+        let edge = self.edge_length();
         ((dy.abs() * stretch / edge).round() as usize).max(2)
     }
 

@@ -30,6 +30,10 @@ use super::surface::Surfacer;
 /// templates cut their thigh ring there).
 pub const THIGH_DROP: f64 = 0.025;
 
+/// Farthest a curve point goes to bridge a gap of the body, as a fraction of the body's
+/// height (a gap deeper than this is left, and the collision answers for it).
+pub const BRIDGE_REACH: f64 = 0.1;
+
 /// A garment template: what its framework is made of, how it is solved on a body and
 /// surfaced, and what its curves are to the constraint layer.
 pub trait Template: Sync {

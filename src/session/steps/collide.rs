@@ -52,6 +52,9 @@ struct CollisionFigures<'a> {
     /// Largest and mean ease error of the moved vertices, m.
     max_ease_error_m: f64,
     mean_ease_error_m: f64,
+    /// Farthest a vertex was moved, m, and the largest stretch of an edge (after / before).
+    max_move_m: f64,
+    max_stretch: f64,
     /// With `--verify`: the brute-force check.
     #[serde(skip_serializing_if = "Option::is_none")]
     verify: Option<&'a VerifyReport>,
@@ -103,6 +106,8 @@ impl<'a> CollisionFigures<'a> {
             response_ease_m: c.ease,
             max_ease_error_m: q.max_ease_error_m,
             mean_ease_error_m: q.mean_ease_error_m,
+            max_move_m: q.max_move_m,
+            max_stretch: q.max_stretch,
             verify,
             guarantee_met: q.penetrating_vertices == 0 && q.crossing_edges == 0,
         }

@@ -6,9 +6,10 @@
 
 use glam::DVec3;
 
-use super::super::THIGH_DROP;
+use super::super::{BRIDGE_REACH, THIGH_DROP};
 use crate::body::{LandmarkKind, Side};
 use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
+use crate::garment::bridge::{Bridging, bridge};
 use crate::garment::build::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
 use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, Fit, FrameworkError};
@@ -25,7 +26,20 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
     let y_of = |k: LandmarkKind| lm.height(k);
     let chest_y = y_of(LandmarkKind::Armpit) - eps;
     let crotch_y = y_of(LandmarkKind::Crotch);
-    let thigh_y = crotch_y - THIGH_DROP * h;
+    // Where the legs part: the crotch, or lower where the thighs meet below it and leave
+    // the garment no room (the crotch curve bridges that gap, so the thigh rings go below).
+    let crotch_ref = landmark(body, LandmarkKind::Crotch, Side::Centre)?;
+    let edge = ctx.edge_length();
+    let bridging = move |gap: f64| Bridging {
+        gap,
+        width: (2.0 * gap).max(edge),
+        reach: BRIDGE_REACH * h,
+    };
+    let below = DVec3::new(ctx.mid_x, crotch_y - ctx.ease, crotch_ref.z);
+    let legs_part_y = (bridge(ctx.probe, below, DVec3::NEG_Y, &bridging(ctx.ease)).y + ctx.ease).min(crotch_y);
+    let thigh_y = legs_part_y - THIGH_DROP * h;
+    // The mesh's counts come from the landmarks (the topology must not depend on the ease).
+    let thigh_count_y = crotch_y - THIGH_DROP * h;
     let knee_y = y_of(LandmarkKind::Knee);
     let ankle_y = y_of(LandmarkKind::Ankle);
     let inseam = ctx.value(
@@ -184,7 +198,6 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
     // through the crotch and up to its centre back.
     let hip_y = y_of(LandmarkKind::Hip);
     let crotch_plane = Plane::from_point_normal(DVec3::new(ctx.mid_x, 0.0, 0.0), DVec3::X);
-    let crotch_ref = landmark(body, LandmarkKind::Crotch, Side::Centre)?;
     planes.push(ctx.plane_for(
         "crotch",
         crotch_plane,
@@ -206,6 +219,7 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         per_half,
         control_per_half: 4,
         fitted_per_half: ctx.options.ring.fitted_points / 4,
+        bridge: Some((ctx.probe, bridging(ctx.ease))),
     })?;
     let mut open_curves = vec![crotch];
     for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
@@ -241,6 +255,7 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
             per_half,
             control_per_half: 4,
             fitted_per_half: ctx.options.ring.fitted_points / 4,
+            bridge: Some((ctx.probe, bridging(e))),
         })?;
         open_curves.push(strap);
     }
@@ -317,7 +332,7 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
 
     let k = ctx.options.resolution.max(2);
     let seam = (k / 3).max(1);
-    let junction = ctx.segments(hip_y - thigh_y, 1.0);
+    let junction = ctx.segments(hip_y - thigh_count_y, 1.0);
     let inner = (junction / 3).max(1);
     let mut torso = [0; 3];
     for (n, (lo, hi)) in torso
@@ -328,7 +343,7 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         *n = ctx.segments(yhi - ylo, 1.0);
     }
     // Counts from the landmarks, not the hem dimension: the topology stays fixed.
-    let leg = [knee_y - ankle_y, thigh_y - knee_y].map(|dy| ctx.segments(dy, 1.0));
+    let leg = [knee_y - ankle_y, thigh_count_y - knee_y].map(|dy| ctx.segments(dy, 1.0));
     let layout = ctx.layout(Counts::Jumpsuit {
         seam,
         neck: k - seam,

@@ -1,10 +1,16 @@
 //! Data parallelism over independent items, results in input order (so output does not
 //! depend on the number of threads): vertex and edge checks, the ground truth.
 
-/// `f(0..n)` on all cores, in order. Small inputs run on the calling thread.
+/// `f(0..n)` on all cores, in order. Small inputs (fewer than 256 items) run on the
+/// calling thread.
 pub fn par_map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    par_map_from(n, 256, f)
+}
+
+/// [`par_map`] for items heavy enough to share out from `min` of them on.
+pub fn par_map_from<T: Send>(n: usize, min: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
     let threads = std::thread::available_parallelism().map_or(1, |t| t.get()).min(16);
-    if threads <= 1 || n < 256 {
+    if threads <= 1 || n < min.max(2) {
         return (0..n).map(f).collect();
     }
     let chunk = n.div_ceil(threads);
