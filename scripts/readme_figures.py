@@ -94,12 +94,26 @@ def landmarks(steps):
     return f"On the shipped body: {listed} m{tape}."
 
 
+def bodies_tables():
+    """The demo and the drag session on every shipped body (scripts/body_figures.py)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import body_figures
+
+    drape = os.path.join(ROOT, "target", "release", "drape")
+    out = []
+    for name in ["demo", "drags"]:
+        session = os.path.join("assets", "sessions", f"{name}.drape")
+        out.append(f"`{session}`:\n\n" + body_figures.summary(drape, session))
+    return "\n\n".join(out)
+
+
 def sections(steps):
     texts = step_texts()
     return {
         "demo-collision": collision_table(steps, texts),
         "demo-busiest": busiest_step(steps),
         "landmarks": landmarks(steps),
+        "bodies": bodies_tables(),
     }
 
 
