@@ -13,6 +13,7 @@ pub mod detect;
 pub mod edges;
 pub mod line_line;
 pub mod point_face;
+mod push;
 pub mod quality;
 pub mod response;
 pub mod verify;
