@@ -57,7 +57,7 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
             SessionState::new(body)
         }
         Err(e) => {
-            let (metrics, error) = scope.fail(&session.name, 1, e);
+            let (metrics, error) = scope.fail(&session.name, session.scene.body_line, e);
             report.steps.push(metrics);
             report.error = Some(error);
             return report;

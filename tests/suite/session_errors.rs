@@ -318,10 +318,12 @@ fn exit_codes_tell_bad_input_from_a_failed_step_from_an_internal_failure() {
     let save = dir.join("out.rrd");
     let save = save.to_str().unwrap();
     // A body file that does not exist: bad input.
-    let missing = write("missing.drape", "drape 1\nbody \"no/such/body.obj\"\n");
+    let missing = write("missing.drape", "drape 1\n# the body:\nbody \"no/such/body.obj\"\n");
     let (code, stderr) = drape(&["run", missing.to_str().unwrap(), "--save", save]);
     assert_eq!(code, 2, "{stderr}");
     assert!(stderr.contains("no/such/body.obj: cannot read"), "{stderr}");
+    // The failure is placed at the `body` statement, line 3.
+    assert!(stderr.contains("missing.drape:3: step 0 (scene) failed"), "{stderr}");
     // A malformed body file: bad input, with its line.
     let obj = write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
     let broken = write("broken.drape", "drape 1\nbody \"broken.obj\"\n");

@@ -49,6 +49,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
     Ok(Session {
         name: name.to_string(),
         scene: Scene {
+            body_line: p.body.as_ref().map_or(1, |b| b.1),
             body: p.body.map_or(BodySource::Builtin, |b| b.0),
             units: p.units.map_or(Units::Metres, |u| u.0),
             landmarks: p.landmarks,

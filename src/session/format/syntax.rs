@@ -61,6 +61,9 @@ impl Units {
 pub struct Scene {
     /// The body.
     pub body: BodySource,
+    /// 1-based line of the `body` statement (1, the header, when the body is the default):
+    /// where a scene that fails to load is reported.
+    pub body_line: usize,
     /// Units of the body file.
     pub units: Units,
     /// Landmark corrections, in file order.
