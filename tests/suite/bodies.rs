@@ -5,7 +5,7 @@
 //! that step meets its gap by the test's own distance; and no step's response stretches an
 //! edge past twice its length (lifting edges, not flinging their ends).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use drape::collision::{Collision, ground_truth};
 use drape::mesh::TriMesh;
@@ -43,17 +43,6 @@ impl StageSink for Collisions {
 /// The response may lift an edge's ends, not fling them: no edge ends longer than twice
 /// its length before the response (measured here from the two meshes).
 const MOST_STRETCH: f64 = 2.0;
-
-fn bodies() -> Vec<PathBuf> {
-    let mut out: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
-        .expect("assets/bodies")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    out.sort();
-    assert_eq!(out.len(), 5, "{out:?}");
-    out
-}
 
 /// Runs `session` on `body`; checks every step and the last one by brute force.
 fn check(session: &str, body: &Path) {
@@ -123,14 +112,14 @@ fn check(session: &str, body: &Path) {
 
 #[test]
 fn the_demo_leaves_every_body_clear() {
-    for body in bodies() {
+    for body in super::common::shipped_bodies() {
         check("assets/sessions/demo.drape", &body);
     }
 }
 
 #[test]
 fn the_drag_session_leaves_every_body_clear() {
-    for body in bodies() {
+    for body in super::common::shipped_bodies() {
         check("assets/sessions/drags.drape", &body);
     }
 }

@@ -191,3 +191,15 @@ pub fn inside_by_parity(mesh: &TriMesh, p: DVec3) -> bool {
     }
     count % 2 == 1
 }
+
+/// The five shipped bodies, `assets/bodies/*.obj`, sorted.
+pub fn shipped_bodies() -> Vec<std::path::PathBuf> {
+    let mut out: Vec<std::path::PathBuf> = std::fs::read_dir("assets/bodies")
+        .expect("assets/bodies")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    out.sort();
+    assert_eq!(out.len(), 5, "{out:?}");
+    out
+}

@@ -186,16 +186,9 @@ fn solid_angle_winding(mesh: &TriMesh, p: DVec3) -> f64 {
 fn on_every_shipped_body_the_sign_is_the_winding_numbers_at_the_crotch_and_every_self_crossing() {
     use drape::body::{Body, BodyMesh, BodySource, LandmarkKind, LandmarkOptions, PartitionOptions, Side};
     use drape::collision::SliceOptions;
-    let mut bodies: Vec<_> = std::fs::read_dir("assets/bodies")
-        .expect("assets/bodies")
-        .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    bodies.sort();
-    assert_eq!(bodies.len(), 5);
     // Points next to a self-crossing, outside and inside, over all bodies.
     let mut near_crossing = [0usize; 2];
-    for path in bodies {
+    for path in super::common::shipped_bodies() {
         let mesh = BodyMesh::load(&BodySource::File(path.clone()), 1.0).expect("loads");
         let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("analyses");
         let index = BodyIndex::new(&body, &SliceOptions::default());
