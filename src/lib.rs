@@ -25,6 +25,7 @@ pub mod constraint;
 pub mod garment;
 pub mod geom;
 pub mod input;
+pub mod m1;
 pub mod mannequin;
 pub mod mesh;
 pub mod par;

@@ -16,8 +16,10 @@
 //! the lift on a short edge, each round, without clearing the edge. An end shared by several
 //! crossing edges takes the longest of its moves. A vertex on a garment ring keeps its height
 //! where that leaves most of the move. A move that would leave the end inside the body, or
-//! nearer it than the ease (or than it stood, when it stood nearer), is not made. Only the
-//! edges at moved ends are checked again, for a few rounds.
+//! nearer it than the ease (or than it stood, when it stood nearer), is not made. A pinned
+//! end ([`VertexRoles::pinned`]: M0's vertices when M1 is collided) does not move; the other
+//! end takes the whole lift. Only the edges at moved ends are checked again, for a few
+//! rounds.
 
 use std::collections::BTreeMap;
 
@@ -129,7 +131,11 @@ pub fn respond_edges(
             let ends = edges[check[k]];
             let [pa, pb] = ends.map(|v| positions_now[v as usize]);
             let c = crossing(index, ends, pa, pb)?;
-            let ways = [pa, pb].map(|p| way(index, p, c.out, ease));
+            let ways = [0, 1].map(|k| {
+                (!roles.is_pinned(ends[k]))
+                    .then(|| way(index, [pa, pb][k], c.out, ease))
+                    .flatten()
+            });
             Some((c, ways))
         })
         .into_iter()
@@ -143,7 +149,16 @@ pub fn respond_edges(
         for (c, ways) in &crossings {
             let lift = c.depth + 0.25 * ease;
             let w = (1.0 - c.t).powi(2) + c.t * c.t;
-            let share = [lift * (1.0 - c.t) / w, lift * c.t / w];
+            let mut share = [lift * (1.0 - c.t) / w, lift * c.t / w];
+            // A pinned end leaves the whole lift to the other: `t u_b = lift` (or
+            // `(1 - t) u_a`), at most four times the lift.
+            let weight = [1.0 - c.t, c.t];
+            for k in 0..2 {
+                if roles.is_pinned(c.ends[k]) {
+                    share[k] = 0.0;
+                    share[1 - k] = lift / weight[1 - k].max(0.25);
+                }
+            }
             let ends = c.ends.map(|v| positions_now[v as usize]);
             for k in 0..2 {
                 let Some(way) = ways[k] else {
@@ -164,6 +179,7 @@ pub fn respond_edges(
         let moves: Vec<(u32, DVec3)> = moves.into_iter().filter(|(_, m)| *m != DVec3::ZERO).collect();
         // Ends inside the body: pushed out by their partition's rule, as penetrating vertices.
         let mut inside: Vec<u32> = crossings.iter().flat_map(|(c, _)| c.ends).collect();
+        inside.retain(|&v| !roles.is_pinned(v));
         inside.sort_unstable();
         inside.dedup();
         let hits: Vec<Hit> = inside

@@ -152,6 +152,7 @@ impl GarmentMesh {
             normals: &self.normals,
             boundary: &self.boundary,
             ring_normal: &self.ring_normal,
+            pinned: &[],
         }
     }
 }

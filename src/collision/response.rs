@@ -134,6 +134,15 @@ pub struct VertexRoles<'a> {
     pub boundary: &'a [bool],
     /// The plane normal of the garment ring it lies on, if any.
     pub ring_normal: &'a [Option<DVec3>],
+    /// Vertices the edge rounds must not move (M0's vertices in M1); empty: none.
+    pub pinned: &'a [bool],
+}
+
+impl VertexRoles<'_> {
+    /// Whether the edge rounds must leave vertex `v` where it is.
+    pub fn is_pinned(&self, v: u32) -> bool {
+        self.pinned.get(v as usize).copied().unwrap_or(false)
+    }
 }
 
 /// One moved vertex.

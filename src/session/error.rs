@@ -89,7 +89,7 @@ pub enum StepError {
         verb: &'static str,
     },
     /// `undo` with nothing to take back.
-    #[error("nothing to undo: no drag or set step of the current garment ran")]
+    #[error("nothing to undo: no drag, set or cut step of the current garment ran")]
     NothingToUndo,
     /// Sinks failed (the recording, the export), at these stages.
     #[error("{}", join(.0))]

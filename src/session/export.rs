@@ -1,10 +1,11 @@
 //! `--export DIR`: the body and every mesh a step produced, as OBJ files named by step
 //! and mesh (`step00_body.obj`, `step01_mannequin_polar.obj`, `step03_jumpsuit_m0.obj`, ...).
-//! A garment's M0 is written after the collision response.
+//! A garment's M0 is written after the collision response, and its M1 (when the scene has
+//! one) beside it after M1's (`step03_jumpsuit_m1.obj`).
 
 use std::path::PathBuf;
 
-use super::stage::{BodyStage, CollisionPart, CollisionStage, SinkError, StageInfo, StageSink};
+use super::stage::{BodyStage, CollisionPart, CollisionStage, M1Stage, SinkError, StageInfo, StageSink};
 use crate::mannequin::MannequinResult;
 use crate::mesh::{TriMesh, write_obj};
 
@@ -76,5 +77,13 @@ impl StageSink for ObjExporter {
             }
             CollisionPart::Detect => Ok(()),
         }
+    }
+
+    fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        let mesh = TriMesh {
+            positions: stage.outcome.collision.positions.clone(),
+            triangles: stage.outcome.m1.mesh.triangles.clone(),
+        };
+        self.write(info, &format!("{}_m1", stage.m0.template), &mesh)
     }
 }

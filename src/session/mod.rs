@@ -24,8 +24,8 @@ pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_sess
 pub use metrics::StepMetrics;
 pub use runner::{RunOptions, RunReport, run_session};
 pub use stage::{
-    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, RingStep,
-    SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
+    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
+    M1Stage, RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

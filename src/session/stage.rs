@@ -22,6 +22,7 @@ use crate::collision::{BodyIndex, Collision, GarmentMesh, VerifyReport};
 use crate::constraint::{ConstraintNet, Edit, Solution};
 use crate::garment::Framework;
 use crate::geom::SectionLoop;
+use crate::m1::{M1, M1Collision, StoredCut};
 use crate::mannequin::MannequinResult;
 
 /// Where a stage sits: its step and its global stage number.
@@ -53,6 +54,8 @@ pub enum Stage<'a> {
     Collision(CollisionStage<'a>),
     /// The constraint layer: the network, a solve, a refusal.
     Constraints(ConstraintStage<'a>),
+    /// M1, the display mesh: the refined patches, its collision, the cut lines.
+    M1(M1Stage<'a>),
     /// The end of a step: done with its metrics, or failed.
     Step(StepEnd<'a>),
 }
@@ -238,6 +241,31 @@ pub struct CollisionOutcome {
     pub template: &'static str,
 }
 
+/// M1 of a step: built over the step's collided M0, collided where it differs from M0, with
+/// the cut lines rebuilt on it.
+#[derive(Clone, Copy, Debug)]
+pub struct M1Stage<'a> {
+    /// M1 and its collision.
+    pub outcome: &'a M1Outcome,
+    /// M0's collision the M1 was built on.
+    pub m0: &'a CollisionOutcome,
+}
+
+/// M1 and what became of it.
+#[derive(Clone, Debug)]
+pub struct M1Outcome {
+    /// M1 before its collision, with the selection.
+    pub m1: M1,
+    /// Its collision (positions after response, quality).
+    pub collision: M1Collision,
+    /// The cut lines as stored on M0.
+    pub stored: Vec<StoredCut>,
+    /// Each cut line rebuilt on this M1 (pieces of positions, closed or not).
+    pub cuts: Vec<Vec<(Vec<glam::DVec3>, bool)>>,
+    /// Each cut line's stored points placed on M0 (after its collision).
+    pub cuts_on_m0: Vec<Vec<(Vec<glam::DVec3>, bool)>>,
+}
+
 /// The constraint-layer stages.
 #[derive(Clone, Copy, Debug)]
 #[non_exhaustive]
@@ -341,6 +369,11 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// M1: the display mesh of a step.
+    fn m1(&mut self, _info: &StageInfo, _stage: M1Stage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// The end of a step.
     fn step_end(&mut self, _info: &StageInfo, _end: StepEnd<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -364,6 +397,7 @@ impl Stage<'_> {
             Self::Garment(s) => sink.garment(info, s),
             Self::Collision(s) => sink.collision(info, s),
             Self::Constraints(s) => sink.constraints(info, s),
+            Self::M1(s) => sink.m1(info, s),
             Self::Step(e) => sink.step_end(info, e),
         }
     }

@@ -6,7 +6,8 @@ use crate::collision::DetectState;
 use crate::constraint::{ConstraintNet, Edit};
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind};
 
-use super::stage::CollisionOutcome;
+use super::stage::{CollisionOutcome, M1Outcome};
+use crate::m1::StoredCut;
 
 /// The state between steps.
 pub(crate) struct SessionState {
@@ -59,6 +60,13 @@ pub(crate) struct GarmentState {
     pub(crate) net: Option<ConstraintNet>,
     /// Drags made since the last dimension change, replayed after the next one.
     pub(crate) edits: Vec<Edit>,
+    /// M0's positions as the garment was first built (the standard size M1's stretch rule
+    /// compares with; the topology never changes).
+    pub(crate) standard: Option<Vec<glam::DVec3>>,
+    /// The last M1, when the scene asks for one.
+    pub(crate) m1: Option<M1Outcome>,
+    /// The cut lines, stored on M0.
+    pub(crate) cuts: Vec<StoredCut>,
 }
 
 impl GarmentState {
@@ -73,6 +81,9 @@ impl GarmentState {
             collision: None,
             net: None,
             edits: Vec::new(),
+            standard: None,
+            m1: None,
+            cuts: Vec::new(),
         }
     }
 
@@ -88,6 +99,9 @@ impl GarmentState {
             collision: None,
             net: None,
             edits: self.edits.clone(),
+            standard: self.standard.clone(),
+            m1: None,
+            cuts: self.cuts.clone(),
         }
     }
 }

@@ -51,3 +51,13 @@ pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
         AppliedRule::Fallback => [140, 140, 140],
     }
 }
+
+/// Colour of the M1 selection rule that first selected a patch.
+pub fn m1_rule_color(rule: crate::m1::Rule) -> [u8; 3] {
+    match rule {
+        crate::m1::Rule::Stretch => [230, 120, 40],
+        crate::m1::Rule::Angle => [60, 140, 230],
+        crate::m1::Rule::Edges => [170, 90, 210],
+        crate::m1::Rule::Body => [60, 180, 120],
+    }
+}

@@ -5,8 +5,8 @@ use rerun::{RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, ViewC
 
 use crate::mannequin::{MannequinResult, Region};
 use crate::session::{
-    BodyStage, CollisionStage, ConstraintStage, GarmentStage, SectionCut, SinkError, Stage, StageInfo, StageSink,
-    StepEnd,
+    BodyStage, CollisionStage, ConstraintStage, GarmentStage, M1Stage, SectionCut, SinkError, Stage, StageInfo,
+    StageSink, StepEnd,
 };
 
 /// What the logger logs.
@@ -175,6 +175,10 @@ impl StageSink for RerunLogger {
             } => self.log_solve(edit, net, solution),
             ConstraintStage::Refused { edit, message } => self.log_refused(edit, message),
         }
+    }
+
+    fn m1(&mut self, _info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        self.log_m1(stage)
     }
 
     fn step_end(&mut self, _info: &StageInfo, end: StepEnd<'_>) -> Result<(), SinkError> {

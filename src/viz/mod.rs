@@ -22,6 +22,7 @@ pub mod colors;
 mod constraints;
 mod garment;
 pub mod logger;
+mod m1;
 mod mannequin;
 pub mod target;
 

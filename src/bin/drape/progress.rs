@@ -2,7 +2,7 @@
 //! collision figures as they happen, so a long run shows where it is.
 
 use drape::session::{
-    CollisionPart, CollisionStage, ConstraintStage, GarmentStage, SinkError, StageInfo, StageSink, StepEnd,
+    CollisionPart, CollisionStage, ConstraintStage, GarmentStage, M1Stage, SinkError, StageInfo, StageSink, StepEnd,
 };
 
 use crate::network::solve_line;
@@ -94,6 +94,30 @@ impl StageSink for Progress {
                 v.quality_agrees
             );
         }
+        Ok(())
+    }
+
+    fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        let m1 = &stage.outcome.m1;
+        let c = &stage.outcome.collision;
+        eprintln!(
+            "  step {} M1: {} of {} patches refined, {} faces; {} new vertices tested, {} inside; crossing edges {} -> {}; after: {} inside, {} crossing edges; {} cut line(s)",
+            info.step,
+            m1.selection.count(),
+            m1.selection.rules.len(),
+            m1.mesh.triangles.len(),
+            c.tested,
+            c.hits,
+            c.crossing_before,
+            c.edge_rounds
+                .iter()
+                .map(ToString::to_string)
+                .collect::<Vec<_>>()
+                .join(", "),
+            c.quality.penetrating_vertices,
+            c.quality.crossing_edges,
+            stage.outcome.stored.len()
+        );
         Ok(())
     }
 }

@@ -5,6 +5,7 @@ use thiserror::Error;
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Edit, SolverOptions};
 use crate::garment::{Fit, TemplateKind};
+use crate::m1::{CutPlane, M1Options};
 use crate::mannequin::MannequinOptions;
 
 /// A parse or validation error at a place in the session text.
@@ -70,6 +71,8 @@ pub struct Scene {
     pub landmarks: Vec<(LandmarkKind, LandmarkOverride)>,
     /// Constraint solver settings (`solver chains=iterate|split passes=N`).
     pub solver: SolverOptions,
+    /// M1 settings (`m1 ...`); `None`: no M1, and none of its work.
+    pub m1: Option<M1Options>,
 }
 
 /// One operation.
@@ -104,6 +107,13 @@ pub enum Op {
     Drag(Edit),
     /// Go back to the state before the last garment step.
     Undo,
+    /// Draw a style (cut) line on M1 with a plane.
+    Cut {
+        /// Its name.
+        name: String,
+        /// The plane.
+        plane: CutPlane,
+    },
 }
 
 /// A dimension change.
@@ -135,6 +145,7 @@ impl Op {
             Self::Set { .. } => "set",
             Self::Drag(_) => "drag",
             Self::Undo => "undo",
+            Self::Cut { .. } => "cut",
         }
     }
 }

@@ -1,5 +1,6 @@
 //! The mesh-layer collision every step that makes an M0 ends with (garment, set, drag),
-//! its figures, and its stages (which `undo` emits again for the state it restores).
+//! its figures, and its stages (which `undo` emits again for the state it restores); then
+//! M1, when the scene asks for it.
 
 use std::collections::BTreeMap;
 
@@ -11,6 +12,7 @@ use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, Stage
 use super::super::state::GarmentState;
 use crate::body::Body;
 use crate::collision::{self, AppliedRule, BodyIndex, Collision, GarmentMesh, VerifyReport};
+use crate::m1::M1Options;
 
 /// The figures of a collision.
 #[derive(Serialize)]
@@ -121,6 +123,7 @@ pub(super) fn collide_garment(
     index: &BodyIndex,
     state: &mut GarmentState,
     options: &RunOptions,
+    m1: Option<&M1Options>,
 ) {
     let Some(fw) = &state.framework else {
         return;
@@ -157,6 +160,10 @@ pub(super) fn collide_garment(
         verify,
         template: state.template.name(),
     });
+    state.m1 = None;
+    if let Some(m1_options) = m1 {
+        super::m1::build_m1(scope, index, state, options, m1_options);
+    }
 }
 
 /// Emits the state's collision (detection, then response), if it has one.
@@ -169,4 +176,5 @@ pub(super) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentS
             );
         }
     }
+    super::m1::emit_m1(scope, state);
 }

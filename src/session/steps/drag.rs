@@ -133,7 +133,14 @@ pub(super) fn run(
                     scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
                 }
             }
-            collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);
+            collide_garment(
+                scope,
+                &state.body,
+                probe.index(),
+                &mut next,
+                cx.options,
+                cx.session.scene.m1.as_ref(),
+            );
             emit_collision(scope, &next, probe.index());
             state.advance(next);
         }

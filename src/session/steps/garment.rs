@@ -78,8 +78,16 @@ pub(super) fn run(
             Stage::Constraints(ConstraintStage::Network(fw, net)),
         );
     }
+    next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
     if let Some(probe) = &state.probe {
-        collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);
+        collide_garment(
+            scope,
+            &state.body,
+            probe.index(),
+            &mut next,
+            cx.options,
+            cx.session.scene.m1.as_ref(),
+        );
         emit_collision(scope, &next, probe.index());
     }
     state.garment = Some(next);

@@ -5,8 +5,10 @@
 //! parser arm, and one line in [`run_step`].
 
 mod collide;
+mod cut;
 mod drag;
 mod garment;
+mod m1;
 mod mannequin;
 pub(super) mod scene;
 mod section;
@@ -45,5 +47,6 @@ pub(super) fn run_step(
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),
+        Op::Cut { name, plane } => cut::run(scope, state, name, *plane),
     }
 }

@@ -120,7 +120,14 @@ pub(super) fn run(
         }
     }
     if let Some(probe) = &state.probe {
-        collide_garment(scope, &state.body, probe.index(), &mut next, cx.options);
+        collide_garment(
+            scope,
+            &state.body,
+            probe.index(),
+            &mut next,
+            cx.options,
+            cx.session.scene.m1.as_ref(),
+        );
         emit_collision(scope, &next, probe.index());
     }
     state.advance(next);

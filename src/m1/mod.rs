@@ -1,0 +1,169 @@
+//! M1, the display mesh (\[collide\] section 3; DESIGN section 7): M0 with the patches that
+//! need it refined by interpolating sqrt(3) subdivision, collided with the body only where
+//! it differs from M0, and the style (cut) lines drawn on it, stored on M0.
+//!
+//! Data flow of one step (after M0's collision): [`select()`] (which patches, by which
+//! rule) -> [`build`] (one or two [`sqrt3_step`]s of the selected patches over the collided
+//! M0) -> [`collide_m1`] (only the vertices M0 does not have: detection, response, edge
+//! rounds that leave M0's vertices where they are; then the exact check over all of M1) ->
+//! [`cut::rebuild`] of the stored cut lines on the new M1.
+
+pub mod collide;
+pub mod cut;
+pub mod select;
+pub mod sqrt3;
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+pub use collide::{M1Collision, collide_m1};
+pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
+pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
+pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
+
+use crate::mesh::TriMesh;
+
+/// M1 settings (the session's `m1` scene statement).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct M1Options {
+    /// Which patches (default: the four rules with their default thresholds).
+    pub select: SelectOptions,
+    /// Refine every patch, not only the selected ones (for comparison; default off).
+    pub all_patches: bool,
+    /// sqrt(3) steps, 1 or 2 (default 1: three times the faces of a refined patch).
+    pub steps: usize,
+    /// Old vertices: kept (default) or smoothed.
+    pub smoothing: Smoothing,
+}
+
+impl Default for M1Options {
+    fn default() -> Self {
+        Self {
+            select: SelectOptions::default(),
+            all_patches: false,
+            steps: 1,
+            smoothing: Smoothing::None,
+        }
+    }
+}
+
+/// M1 before its collision.
+#[derive(Clone, Debug, PartialEq)]
+pub struct M1 {
+    /// The refined mesh: M0's vertices first (same indices), then the new ones.
+    pub mesh: TriMesh,
+    /// Patch of each face.
+    pub face_patch: Vec<u32>,
+    /// Which patches were refined, by which rules.
+    pub selection: Selection,
+    /// M0's vertex count: vertices from here on are new.
+    pub m0_vertices: usize,
+    /// Old vertices the smoothing moved (not where M0 has them).
+    pub smoothed: Vec<u32>,
+    /// The first step's result (the layer cut lines are stored through).
+    pub first: Step,
+    /// Vertex count after the first step (its vertices keep their indices in `mesh`).
+    pub first_vertices: usize,
+    /// An M0 vertex each M1 vertex descends from (itself for M0's; a corner of the face it
+    /// is the centroid of, recursively, for new ones): its partition and roles.
+    pub anchor: Vec<u32>,
+}
+
+impl M1 {
+    /// Vertices M0 does not have, or has elsewhere (new, and smoothed old): what M1's
+    /// collision tests.
+    pub fn differs_from_m0(&self) -> Vec<u32> {
+        let mut out: Vec<u32> = self.smoothed.clone();
+        out.extend(self.m0_vertices as u32..self.mesh.positions.len() as u32);
+        out
+    }
+
+    /// Undirected edges of M1, sorted.
+    pub fn edges(&self) -> Vec<[u32; 2]> {
+        undirected_edges(&self.mesh)
+    }
+}
+
+/// The undirected edges of a mesh, each once, sorted.
+pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
+    let mut edges: Vec<[u32; 2]> = mesh
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+}
+
+/// Builds M1 from the collided M0: `steps` sqrt(3) steps over the patches `selection`
+/// refines.
+pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M1Options) -> M1 {
+    let refine = selection.refined();
+    let first = sqrt3_step(m0, face_patch, &refine, options.smoothing);
+    let first_vertices = first.mesh.positions.len();
+    let mut smoothed = first.smoothed.clone();
+    let mut anchor: Vec<u32> = (0..m0.positions.len() as u32).collect();
+    let extend_anchor = |step: &Step, anchor: &mut Vec<u32>| {
+        for o in &step.origin[anchor.len()..] {
+            if let Origin::Centroid(corners) = o {
+                anchor.push(anchor[corners[0] as usize]);
+            }
+        }
+    };
+    extend_anchor(&first, &mut anchor);
+    let (mesh, patches) = if options.steps >= 2 {
+        let second = sqrt3_step(&first.mesh, &first.face_patch, &refine, options.smoothing);
+        extend_anchor(&second, &mut anchor);
+        smoothed.extend(
+            second
+                .smoothed
+                .iter()
+                .copied()
+                .filter(|&v| (v as usize) < m0.positions.len()),
+        );
+        (second.mesh, second.face_patch)
+    } else {
+        (first.mesh.clone(), first.face_patch.clone())
+    };
+    smoothed.sort_unstable();
+    smoothed.dedup();
+    M1 {
+        mesh,
+        face_patch: patches,
+        selection,
+        m0_vertices: m0.positions.len(),
+        smoothed,
+        first,
+        first_vertices,
+        anchor,
+    }
+}
+
+/// Patches of M0 by rule, for figures: the first rule of each refined patch.
+pub fn first_rules(selection: &Selection) -> BTreeMap<u32, Rule> {
+    selection
+        .rules
+        .iter()
+        .enumerate()
+        .filter_map(|(p, r)| r.first().map(|&rule| (p as u32, rule)))
+        .collect()
+}
+
+/// Largest distance from the points to the mesh's surface (brute force over its triangles;
+/// for benchmarks and tests of small meshes).
+pub fn max_deviation(points: &[DVec3], surface: &TriMesh) -> f64 {
+    crate::par::par_map(points.len(), |k| {
+        (0..surface.triangles.len())
+            .map(|t| {
+                crate::geom::closest::closest_on_triangle(points[k], surface.corners(t))
+                    .0
+                    .distance(points[k])
+            })
+            .fold(f64::INFINITY, f64::min)
+    })
+    .into_iter()
+    .fold(0.0, f64::max)
+}

@@ -1,0 +1,211 @@
+//! Which patches of M0 M1 refines (\[collide\] section 3.2, the four rules), each a
+//! documented threshold, and which rule selected which patch.
+//!
+//! 1. **stretch**: an edge of the patch is longer than [`SelectOptions::stretch`] times its
+//!    length in the garment as first built (the template's standard size on this body):
+//!    the garment has been stretched there and the mesh has thinned.
+//! 2. **angle**: two adjacent triangles of the patch have normals more than
+//!    [`SelectOptions::angle_deg`] apart: a fold or a sharp feature.
+//! 3. **edges**: the patch's longest edge is more than [`SelectOptions::long_edge`] times
+//!    its mean edge, or its shortest less than [`SelectOptions::short_edge`] times it: the
+//!    edge lengths are very uneven.
+//! 4. **body**: an edge of the patch is longer than [`SelectOptions::body_edge`] times the
+//!    mean edge of the body triangle nearest its middle: the garment is coarser than the
+//!    body beneath it, so its edges can cut through the body's bumps.
+
+use std::collections::BTreeMap;
+
+use glam::DVec3;
+
+use crate::body::index::BodyIndex;
+use crate::mesh::TriMesh;
+
+/// A selection rule.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Rule {
+    /// Stretched past a ratio of the standard size.
+    Stretch,
+    /// Normals of adjacent triangles too far apart.
+    Angle,
+    /// Uneven edge lengths.
+    Edges,
+    /// Edges long against the body's.
+    Body,
+}
+
+impl Rule {
+    /// Every rule, in the order they are tried.
+    pub const ALL: [Self; 4] = [Self::Stretch, Self::Angle, Self::Edges, Self::Body];
+
+    /// Name in sessions and metrics.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Stretch => "stretch",
+            Self::Angle => "angle",
+            Self::Edges => "edges",
+            Self::Body => "body",
+        }
+    }
+
+    /// From a session name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|r| r.name() == name)
+    }
+}
+
+/// Thresholds of the rules (dimensionless: ratios and an angle, the same on any body).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct SelectOptions {
+    /// The rules in use (default: all four).
+    pub rules: Vec<Rule>,
+    /// Rule 1: an edge longer than this times its standard length (default 1.2).
+    pub stretch: f64,
+    /// Rule 2: adjacent normals further apart than this, degrees (default 30).
+    pub angle_deg: f64,
+    /// Rule 3: longest edge over the patch's mean edge (default 2.0).
+    pub long_edge: f64,
+    /// Rule 3: shortest edge over the patch's mean edge (default 0.25).
+    pub short_edge: f64,
+    /// Rule 4: a garment edge over the mean edge of the body triangle beneath it (default
+    /// 2.0).
+    pub body_edge: f64,
+}
+
+impl Default for SelectOptions {
+    fn default() -> Self {
+        Self {
+            rules: Rule::ALL.to_vec(),
+            stretch: 1.2,
+            angle_deg: 30.0,
+            long_edge: 2.0,
+            short_edge: 0.25,
+            body_edge: 2.0,
+        }
+    }
+}
+
+/// The patches selected, each with the rules that selected it (in [`Rule::ALL`] order).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Selection {
+    /// Per patch: the rules that fired (empty: not refined).
+    pub rules: Vec<Vec<Rule>>,
+}
+
+impl Selection {
+    /// Whether each patch is refined.
+    pub fn refined(&self) -> Vec<bool> {
+        self.rules.iter().map(|r| !r.is_empty()).collect()
+    }
+
+    /// Refined patches.
+    pub fn count(&self) -> usize {
+        self.rules.iter().filter(|r| !r.is_empty()).count()
+    }
+
+    /// Patches each rule selected (a patch may count under several rules).
+    pub fn by_rule(&self) -> BTreeMap<&'static str, usize> {
+        Rule::ALL
+            .into_iter()
+            .map(|rule| (rule.name(), self.rules.iter().filter(|r| r.contains(&rule)).count()))
+            .filter(|(_, n)| *n > 0)
+            .collect()
+    }
+
+    /// Every patch, selected or not.
+    pub fn all(patches: usize) -> Self {
+        Self {
+            rules: vec![Rule::ALL.to_vec(); patches],
+        }
+    }
+}
+
+/// What the rules read: M0 (after collision), the patch of each face, its undirected
+/// edges, and M0 as first built (same topology) for the stretch rule.
+pub struct SelectInput<'a> {
+    /// M0 now.
+    pub mesh: &'a TriMesh,
+    /// Patch of each face.
+    pub face_patch: &'a [u32],
+    /// Number of patches.
+    pub patches: usize,
+    /// M0's vertex positions as first built (the standard size), if known.
+    pub standard: Option<&'a [DVec3]>,
+}
+
+/// Applies the rules.
+pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOptions) -> Selection {
+    let mesh = input.mesh;
+    let mut fired: Vec<Vec<Rule>> = vec![Vec::new(); input.patches];
+    let on = |r: Rule| options.rules.contains(&r);
+    // Each undirected edge once, with its patch (border edges count for both patches).
+    let mut edges: BTreeMap<[u32; 2], Vec<usize>> = BTreeMap::new();
+    for (f, t) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            edges.entry([a.min(b), a.max(b)]).or_default().push(f);
+        }
+    }
+    let length = |[a, b]: [u32; 2]| mesh.positions[a as usize].distance(mesh.positions[b as usize]);
+    let mut fire = |patch: u32, rule: Rule| {
+        let list = &mut fired[patch as usize];
+        if !list.contains(&rule) {
+            list.push(rule);
+        }
+    };
+    // Per patch: sum, count, min and max of its edge lengths.
+    let mut stats = vec![(0.0f64, 0usize, f64::INFINITY, 0.0f64); input.patches];
+    let cos_limit = options.angle_deg.to_radians().cos();
+    let normals: Vec<DVec3> = (0..mesh.triangles.len())
+        .map(|f| mesh.scaled_normal(f).normalize_or_zero())
+        .collect();
+    let reach = 0.2 * index.height;
+    for (&edge, faces) in &edges {
+        let len = length(edge);
+        let mut patches: Vec<u32> = faces.iter().map(|&f| input.face_patch[f]).collect();
+        patches.dedup();
+        for &p in &patches {
+            let s = &mut stats[p as usize];
+            *s = (s.0 + len, s.1 + 1, s.2.min(len), s.3.max(len));
+        }
+        if on(Rule::Stretch)
+            && let Some(standard) = input.standard
+        {
+            let was = standard[edge[0] as usize].distance(standard[edge[1] as usize]);
+            if len > options.stretch * was {
+                patches.iter().for_each(|&p| fire(p, Rule::Stretch));
+            }
+        }
+        if on(Rule::Angle)
+            && let [f, g] = faces[..]
+            && input.face_patch[f] == input.face_patch[g]
+            && normals[f].dot(normals[g]) < cos_limit
+        {
+            fire(input.face_patch[f], Rule::Angle);
+        }
+        if on(Rule::Body) {
+            let mid = mesh.positions[edge[0] as usize].lerp(mesh.positions[edge[1] as usize], 0.5);
+            if let Some(near) = index.nearest(mid, reach) {
+                let [a, b, c] = index.triangles[near.triangle as usize].map(|v| index.positions[v as usize]);
+                let body_edge = (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0;
+                if len > options.body_edge * body_edge {
+                    patches.iter().for_each(|&p| fire(p, Rule::Body));
+                }
+            }
+        }
+    }
+    if on(Rule::Edges) {
+        for (p, &(sum, count, least, most)) in stats.iter().enumerate() {
+            if count > 0 {
+                let mean = sum / count as f64;
+                if most > options.long_edge * mean || least < options.short_edge * mean {
+                    fire(p as u32, Rule::Edges);
+                }
+            }
+        }
+    }
+    for list in &mut fired {
+        list.sort_unstable();
+    }
+    Selection { rules: fired }
+}

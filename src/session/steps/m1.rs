@@ -1,0 +1,119 @@
+//! M1 at the end of every step that collides M0 (garment, set, drag; `undo` emits it again):
+//! the patches selected, the sqrt(3) refinement, M1's own collision, the cut lines rebuilt
+//! on it, and their figures. Runs only when the scene has an `m1` statement.
+
+use std::collections::BTreeMap;
+
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::runner::RunOptions;
+use super::super::stage::{M1Outcome, M1Stage, Stage};
+use super::super::state::GarmentState;
+use crate::collision::BodyIndex;
+use crate::m1::{self, M1Options, SelectInput, Selection, cut};
+
+/// The figures of M1.
+#[derive(Serialize)]
+struct M1Figures<'a> {
+    /// M1's vertices and faces.
+    m1_vertices: usize,
+    m1_faces: usize,
+    /// Refined patches: `total`, and per rule the patches it selected (a patch may be
+    /// selected by several).
+    m1_patches_refined: BTreeMap<&'static str, usize>,
+    /// Vertices M1's collision tested (those M0 does not have).
+    m1_new_vertices_tested: usize,
+    /// Of those, inside the body before M1's response.
+    m1_hits: usize,
+    /// M1's edges crossing the body before its response.
+    m1_crossing_edges_before: usize,
+    /// Crossing edges at the start of each of M1's edge rounds.
+    m1_crossing_edges_by_round: &'a [usize],
+    /// Moves M1's response made.
+    m1_responses: usize,
+    /// After M1's response, by the exact check over all of M1.
+    m1_penetrating_vertices: usize,
+    m1_crossing_edges: usize,
+    /// Cut lines rebuilt on M1.
+    m1_cut_lines: usize,
+}
+
+/// Builds and collides M1 over the state's collided M0, and rebuilds the cut lines on it.
+pub(super) fn build_m1(
+    scope: &mut StepScope<'_, '_, '_>,
+    index: &BodyIndex,
+    state: &mut GarmentState,
+    options: &RunOptions,
+    m1_options: &M1Options,
+) {
+    let (Some(fw), Some(outcome)) = (&state.framework, &state.collision) else {
+        return;
+    };
+    let m0 = &outcome.collision.mesh;
+    let face_patch = &outcome.garment.face_patch;
+    let patches = fw.m0.patch_names.len();
+    let selection = scope.timed("m1.select", || {
+        if m1_options.all_patches {
+            Selection::all(patches)
+        } else {
+            let input = SelectInput {
+                mesh: m0,
+                face_patch,
+                patches,
+                standard: state.standard.as_deref(),
+            };
+            m1::select(&input, index, &m1_options.select)
+        }
+    });
+    let built = scope.timed("m1.subdivide", || m1::build(m0, face_patch, selection, m1_options));
+    let collision = scope.timed("m1.collide", || {
+        m1::collide_m1(
+            index,
+            &built,
+            &outcome.collision.detection.partition,
+            &outcome.garment.ring_normal,
+            fw.ease(),
+            &options.collision,
+        )
+    });
+    let cuts = state
+        .cuts
+        .iter()
+        .map(|c| cut::rebuild(Some(&built), &m0.triangles, &collision.positions, c))
+        .collect();
+    let cuts_on_m0 = state
+        .cuts
+        .iter()
+        .map(|c| cut::rebuild(None, &m0.triangles, &m0.positions, c))
+        .collect();
+    let mut refined = built.selection.by_rule();
+    refined.insert("total", built.selection.count());
+    scope.record(&M1Figures {
+        m1_vertices: built.mesh.positions.len(),
+        m1_faces: built.mesh.triangles.len(),
+        m1_patches_refined: refined,
+        m1_new_vertices_tested: collision.tested,
+        m1_hits: collision.hits,
+        m1_crossing_edges_before: collision.crossing_before,
+        m1_crossing_edges_by_round: &collision.edge_rounds,
+        m1_responses: collision.responses.len(),
+        m1_penetrating_vertices: collision.quality.penetrating_vertices,
+        m1_crossing_edges: collision.quality.crossing_edges,
+        m1_cut_lines: state.cuts.len(),
+    });
+    state.m1 = Some(M1Outcome {
+        m1: built,
+        collision,
+        stored: state.cuts.clone(),
+        cuts,
+        cuts_on_m0,
+    });
+}
+
+/// Emits the state's M1, if it has one.
+pub(super) fn emit_m1(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState) {
+    if let (Some(outcome), Some(m0)) = (&state.m1, &state.collision) {
+        scope.emit("garment.m1", Stage::M1(M1Stage { outcome, m0 }));
+    }
+}

@@ -1,0 +1,159 @@
+//! Logging M1: the display mesh beside M0 (`garment/m1`, vertices coloured by the rule that
+//! selected their patch, grey where M0 is kept), its new vertices, its edges crossing the
+//! body before and after its own collision, the cut lines on M1 and their stored form on
+//! M0, and the M1 scalars.
+
+use glam::DVec3;
+use rerun::{Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
+
+use super::colors::m1_rule_color;
+use super::logger::{RerunLogger, f32s, to_sink};
+use crate::m1::{Rule, undirected_edges};
+use crate::session::{M1Stage, SinkError};
+
+/// Unrefined patches in M1.
+const KEPT: [u8; 3] = [185, 185, 190];
+
+impl RerunLogger {
+    pub(super) fn log_m1(&self, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let M1Stage { outcome, .. } = stage;
+        let m1 = &outcome.m1;
+        let c = &outcome.collision;
+        let positions = &c.positions;
+        let first: Vec<Option<Rule>> = m1.selection.rules.iter().map(|r| r.first().copied()).collect();
+        let mut colors = vec![KEPT; positions.len()];
+        for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
+            if let Some(rule) = first.get(p as usize).copied().flatten() {
+                for &v in t {
+                    colors[v as usize] = m1_rule_color(rule);
+                }
+            }
+        }
+        let mesh = crate::mesh::TriMesh {
+            positions: positions.clone(),
+            triangles: m1.mesh.triangles.clone(),
+        };
+        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
+        rec.log(
+            "garment/m1",
+            &Mesh3D::new(mesh.positions_f32())
+                .with_triangle_indices(mesh.triangles.iter().copied())
+                .with_vertex_normals(normals)
+                .with_vertex_colors(colors),
+        )
+        .map_err(to_sink)?;
+        let edges = undirected_edges(&mesh);
+        let strips = |list: &[[u32; 2]], at: &[DVec3]| -> Vec<Vec<[f32; 3]>> {
+            list.iter()
+                .map(|e| f32s(&[at[e[0] as usize], at[e[1] as usize]]))
+                .collect()
+        };
+        rec.log(
+            "garment/m1/edges",
+            &LineStrips3D::new(strips(&edges, positions))
+                .with_radii([0.0003])
+                .with_colors([[70, 70, 80]]),
+        )
+        .map_err(to_sink)?;
+        let new: Vec<DVec3> = positions[m1.m0_vertices..].to_vec();
+        rec.log(
+            "garment/m1/new_vertices",
+            &Points3D::new(f32s(&new))
+                .with_radii([0.0015])
+                .with_colors([[30, 30, 200]]),
+        )
+        .map_err(to_sink)?;
+        for (path, list, at) in [
+            (
+                "collision/m1/crossing_before",
+                &c.crossing_before_edges,
+                &m1.mesh.positions,
+            ),
+            (
+                "collision/m1/crossing_edges",
+                &c.quality.crossing.iter().map(|&e| edges[e as usize]).collect(),
+                positions,
+            ),
+        ] {
+            if list.is_empty() {
+                rec.log(path, &Clear::flat()).map_err(to_sink)?;
+            } else {
+                rec.log(
+                    path,
+                    &LineStrips3D::new(strips(list, at))
+                        .with_radii([0.002])
+                        .with_colors([[255, 0, 0]]),
+                )
+                .map_err(to_sink)?;
+            }
+        }
+        rec.log("garment/cut_lines", &Clear::recursive()).map_err(to_sink)?;
+        rec.log("garment/m0/cut_lines", &Clear::recursive()).map_err(to_sink)?;
+        for ((stored, on_m1), on_m0) in outcome.stored.iter().zip(&outcome.cuts).zip(&outcome.cuts_on_m0) {
+            for (path, pieces, color, radius) in [
+                (
+                    format!("garment/cut_lines/{}", stored.name),
+                    on_m1,
+                    [230, 20, 120],
+                    0.003,
+                ),
+                (
+                    format!("garment/m0/cut_lines/{}", stored.name),
+                    on_m0,
+                    [250, 200, 0],
+                    0.0015,
+                ),
+            ] {
+                let lines: Vec<Vec<[f32; 3]>> = pieces
+                    .iter()
+                    .map(|(points, closed)| {
+                        let mut line = f32s(points);
+                        if *closed && let Some(&first) = line.first() {
+                            line.push(first);
+                        }
+                        line
+                    })
+                    .collect();
+                rec.log(
+                    path.as_str(),
+                    &LineStrips3D::new(lines).with_radii([radius]).with_colors([color]),
+                )
+                .map_err(to_sink)?;
+            }
+        }
+        let q = &c.quality;
+        self.scalar("metrics/m1/faces", m1.mesh.triangles.len() as f64)?;
+        self.scalar("metrics/m1/patches_refined", m1.selection.count() as f64)?;
+        self.scalar("metrics/m1/crossing_edges_before", c.crossing_before as f64)?;
+        self.scalar("metrics/m1/crossing_edges", q.crossing_edges as f64)?;
+        self.scalar("metrics/m1/penetrating_vertices", q.penetrating_vertices as f64)?;
+        let by_rule: Vec<String> = m1
+            .selection
+            .by_rule()
+            .iter()
+            .map(|(rule, n)| format!("{rule} {n}"))
+            .collect();
+        self.text(
+            if q.crossing_edges + q.penetrating_vertices == 0 {
+                TextLogLevel::INFO
+            } else {
+                TextLogLevel::WARN
+            },
+            format!(
+                "M1: {} vertices, {} faces; {} of {} patches refined ({}); {} new vertices tested, {} inside; crossing edges {} before -> {} after; {} inside after; {} cut line(s)",
+                positions.len(),
+                m1.mesh.triangles.len(),
+                m1.selection.count(),
+                m1.selection.rules.len(),
+                if by_rule.is_empty() { "none".to_string() } else { by_rule.join(", ") },
+                c.tested,
+                c.hits,
+                c.crossing_before,
+                q.crossing_edges,
+                q.penetrating_vertices,
+                outcome.stored.len()
+            ),
+        )
+    }
+}
