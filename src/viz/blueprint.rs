@@ -2,8 +2,10 @@
 
 use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical};
 
-/// 3D view of everything spatial on the left, above a close view of the collision (hits,
-/// response arrows, what is left; it frames itself on them) and one of the constraint
+/// 3D view of everything spatial but M1 on the left (M0 with its cut lines' stored form),
+/// above a view of M1 on the body (patches coloured by the rule that refined them, its cut
+/// lines, its crossing edges before and after its collision), a close view of the collision
+/// (hits, response arrows, what is left; it frames itself on them) and one of the constraint
 /// network with the feature curves (solver iterations on the `iter` timeline); metrics and
 /// the per-stage log on the right; the time panel on the `stage` timeline.
 pub fn default_blueprint() -> Blueprint {
@@ -19,9 +21,21 @@ pub fn default_blueprint() -> Blueprint {
                         "+ /garment/**",
                         "+ /collision/**",
                         "+ /constraints/**",
+                        "- /garment/m1/**",
+                        "- /garment/cut_lines/**",
+                        "- /collision/m1/**",
                     ])
                     .into(),
                 Horizontal::new([
+                    Spatial3DView::new("M1")
+                        .with_origin("/")
+                        .with_contents([
+                            "+ /body/mesh",
+                            "+ /garment/m1/**",
+                            "+ /garment/cut_lines/**",
+                            "+ /collision/m1/**",
+                        ])
+                        .into(),
                     Spatial3DView::new("Collision")
                         .with_origin("/")
                         .with_contents(["+ /collision/**"])

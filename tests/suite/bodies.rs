@@ -3,7 +3,8 @@
 //! exact quality check, and the last step of each by the brute-force truth (winding number
 //! for every vertex, every edge against every body triangle); every responded vertex of
 //! that step meets its gap by the test's own distance; and no step's response stretches an
-//! edge past twice its length (lifting edges, not flinging their ends).
+//! edge past twice its length (lifting edges, not flinging their ends). The same for M1,
+//! the display mesh: clear after every step by the exact check, the last by brute force.
 
 use std::path::Path;
 
@@ -21,11 +22,17 @@ struct StepCollision {
     before: Vec<glam::DVec3>,
 }
 
-/// Each step's collision.
+/// Each step's collision, and each step's M1 (positions after its collision, edges).
 #[derive(Default)]
-struct Collisions(Vec<StepCollision>);
+struct Collisions(Vec<StepCollision>, Vec<(usize, drape::m1::M1Collision, Vec<[u32; 2]>)>);
 
 impl StageSink for Collisions {
+    fn m1(&mut self, info: &StageInfo, stage: drape::session::M1Stage<'_>) -> Result<(), SinkError> {
+        let o = stage.outcome;
+        self.1.push((info.step, o.collision.clone(), o.m1.edges()));
+        Ok(())
+    }
+
     fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         if stage.part == CollisionPart::Respond {
             let o = stage.outcome;
@@ -108,6 +115,24 @@ fn check(session: &str, body: &Path) {
     );
     let body_mesh: &TriMesh = &mesh.mesh;
     super::collision::assert_meets_the_ease(last, body_mesh);
+    // M1 (the demo's scene asks for it): clear after every step by the exact check, and
+    // after the last by brute force.
+    for (step, m1, _) in &sink.1 {
+        let q = &m1.quality;
+        assert_eq!(
+            (q.penetrating_vertices, q.crossing_edges),
+            (0, 0),
+            "{name}: step {step} leaves M1 inside or crossing"
+        );
+    }
+    if let Some((step, m1, edges)) = sink.1.last() {
+        let truth = ground_truth(&mesh.mesh, &m1.positions, edges);
+        assert_eq!(
+            (truth.inside_count(), truth.crossing_count()),
+            (0, 0),
+            "{name}: step {step}, M1 by brute force"
+        );
+    }
 }
 
 #[test]
@@ -115,6 +140,22 @@ fn the_demo_leaves_every_body_clear() {
     for body in super::common::shipped_bodies() {
         check("assets/sessions/demo.drape", &body);
     }
+}
+
+/// The demo has M1 and crosses flipped edges into the body before M1's collision on some
+/// step: the M1 checks above are not empty.
+#[test]
+fn the_demo_has_m1_edges_to_clear() {
+    let text = std::fs::read_to_string("assets/sessions/demo.drape").expect("demo");
+    let parsed = parse_session(&text, "demo", Path::new(".")).expect("parses");
+    let mut sink = Collisions::default();
+    let report = run_session(&parsed, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none());
+    assert!(!sink.1.is_empty(), "the demo logs no M1");
+    assert!(
+        sink.1.iter().any(|(_, m1, _)| m1.crossing_before > 0),
+        "no step's M1 crossed the body before its collision"
+    );
 }
 
 #[test]

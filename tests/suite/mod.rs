@@ -7,6 +7,7 @@ mod coons;
 mod ease;
 mod garment;
 mod landmarks;
+mod m1;
 mod mannequin;
 mod meshes;
 mod obj_errors;
