@@ -81,14 +81,14 @@ def same_pixels(a: Path, b: Path) -> bool:
 
 
 def shrink(png: Path) -> None:
-    """The 3D view alone, 70% size, 128 colours: a picture small enough to commit."""
+    """The 3D view alone, 70% size, 256 colours: a picture small enough to commit."""
     from PIL import Image
 
     im = Image.open(png).convert("RGB")
     w, h = im.size
     view = im.crop((0, 52, w, h - 200))  # the viewer's top bar and its collapsed time panel
     view = view.resize((int(view.width * 0.7), int(view.height * 0.7)), Image.LANCZOS)
-    view.quantize(colors=128).save(png, optimize=True)
+    view.quantize(colors=256, method=Image.Quantize.FASTOCTREE).save(png, optimize=True)
 
 
 def recording_id(rrd: str) -> str:
@@ -113,7 +113,7 @@ def main() -> int:
     ap.add_argument("--renderer", default="vulkan", help="vulkan (lavapipe works); gl fails on llvmpipe")
     ap.add_argument("--keep-log", action="store_true")
     ap.add_argument("--small", action="store_true",
-                    help="keep only the 3D view (drop the viewer's top bar and time panel), 70%% size, 128 colours")
+                    help="keep only the 3D view (drop the viewer's top bar and time panel), 70%% size, 256 colours")
     ap.add_argument("--eye", required=True)
     ap.add_argument("--target", required=True)
     ap.add_argument("--contents", nargs="*", default=["+ /body/mesh", "+ /garment/m0/**", "+ /collision/mesh/**", "+ /collision/guarantee"])

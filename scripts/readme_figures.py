@@ -4,6 +4,7 @@
     python3 scripts/readme_figures.py            # run the demo, rewrite the README sections
     python3 scripts/readme_figures.py --check    # exit 1 if the README is out of date
     python3 scripts/readme_figures.py --metrics M.json   # use an existing metrics file
+    python3 scripts/readme_figures.py --bench    # also the M1 benchmark table (times vary)
 
 Each generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
 in README.md; nothing else is touched. Standard library only.
@@ -19,7 +20,7 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SESSION = os.path.join(ROOT, "assets", "sessions", "demo.drape")
 README = os.path.join(ROOT, "README.md")
-SCENE = {"drape", "body", "units", "landmark", "solver"}
+SCENE = {"drape", "body", "units", "landmark", "solver", "m1"}
 
 
 def demo_metrics():
@@ -72,6 +73,39 @@ def collision_table(steps, texts):
     return "\n".join(rows)
 
 
+def m1_table(steps, texts):
+    rows = [
+        "| step | patches refined (by rule) | M1 faces (M0) | new vertices tested / inside "
+        "| M1 crossing edges before -> per round -> after | inside after | cut lines |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    known = {"patches": "?", "m0_faces": "?"}
+    for s in steps:
+        known.update({k: s[k] for k in known if k in s})
+        if "m1_faces" not in s:
+            continue
+        refined = dict(s["m1_patches_refined"])
+        total = refined.pop("total", 0)
+        rules = ", ".join(f"{k} {n}" for k, n in refined.items())
+        rounds = ", ".join(str(r) for r in s["m1_crossing_edges_by_round"])
+        rows.append(
+            f"| {s['step']} `{texts.get(s['step'], s['op'])}` | {total} of {known['patches']} ({rules}) "
+            f"| {s['m1_faces']} ({known['m0_faces']}) | {s['m1_new_vertices_tested']} / {s['m1_hits']} "
+            f"| {s['m1_crossing_edges_before']} -> {rounds} -> {s['m1_crossing_edges']} "
+            f"| {s['m1_penetrating_vertices']} | {s['m1_cut_lines']} |")
+    return "\n".join(rows)
+
+
+def m1_bench():
+    """`cargo bench --bench m1` on two bodies (times vary run to run: not checked)."""
+    out = []
+    for body in ["female-young-average", "female-old-heavy"]:
+        run = subprocess.run(["cargo", "bench", "--quiet", "--bench", "m1", "--", body],
+                             cwd=ROOT, check=True, capture_output=True, text=True)
+        out.append(run.stdout.strip())
+    return "\n\n".join(out)
+
+
 def busiest_step(steps):
     s = max((s for s in steps if "hits" in s), key=lambda s: s["hits"])
     parts = ", ".join(f"{k} {n}" for k, n in s["hits_by_partition"].items() if n)
@@ -111,6 +145,7 @@ def sections(steps):
     texts = step_texts()
     return {
         "demo-collision": collision_table(steps, texts),
+        "demo-m1": m1_table(steps, texts),
         "demo-busiest": busiest_step(steps),
         "landmarks": landmarks(steps),
         "bodies": bodies_tables(),
@@ -121,11 +156,17 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--check", action="store_true", help="exit 1 if the README is out of date")
     ap.add_argument("--metrics", help="a metrics file of the demo run with --verify (default: run it)")
+    ap.add_argument("--bench", action="store_true",
+                    help="also rewrite the M1 benchmark table (cargo bench --bench m1; its times vary, so "
+                         "--check leaves it out)")
     args = ap.parse_args()
     steps = json.load(open(args.metrics)) if args.metrics else demo_metrics()
     text = open(README).read()
     new = text
-    for name, body in sections(steps).items():
+    generated = sections(steps)
+    if args.bench:
+        generated["m1-bench"] = m1_bench()
+    for name, body in generated.items():
         pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
         if not pattern.search(new):
             sys.exit(f"README.md has no section figures:{name}")

@@ -10,8 +10,9 @@
 //!    its mean edge, or its shortest less than [`SelectOptions::short_edge`] times it: the
 //!    edge lengths are very uneven.
 //! 4. **body**: an edge of the patch is longer than [`SelectOptions::body_edge`] times the
-//!    mean edge of the body triangle nearest its middle: the garment is coarser than the
-//!    body beneath it, so its edges can cut through the body's bumps.
+//!    body's edge beneath it (the mean edge of the body triangle nearest each end, averaged
+//!    over the two ends): the garment is coarser than the body beneath it, so its edges can
+//!    cut through the body's bumps.
 
 use std::collections::BTreeMap;
 
@@ -159,7 +160,20 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
     let normals: Vec<DVec3> = (0..mesh.triangles.len())
         .map(|f| mesh.scaled_normal(f).normalize_or_zero())
         .collect();
+    // Rule 4 reads, per garment vertex, the mean edge of the body triangle nearest it (the
+    // body edge "beneath" a garment edge: the mean of its two ends'; 0 where no body is
+    // within reach).
     let reach = 0.2 * index.height;
+    let beneath: Vec<f64> = if on(Rule::Body) {
+        crate::par::par_map(mesh.positions.len(), |v| {
+            index.nearest(mesh.positions[v], reach).map_or(0.0, |near| {
+                let [a, b, c] = index.triangles[near.triangle as usize].map(|v| index.positions[v as usize]);
+                (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0
+            })
+        })
+    } else {
+        Vec::new()
+    };
     for (&edge, faces) in &edges {
         let len = length(edge);
         let mut patches: Vec<u32> = faces.iter().map(|&f| input.face_patch[f]).collect();
@@ -184,13 +198,9 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
             fire(input.face_patch[f], Rule::Angle);
         }
         if on(Rule::Body) {
-            let mid = mesh.positions[edge[0] as usize].lerp(mesh.positions[edge[1] as usize], 0.5);
-            if let Some(near) = index.nearest(mid, reach) {
-                let [a, b, c] = index.triangles[near.triangle as usize].map(|v| index.positions[v as usize]);
-                let body_edge = (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0;
-                if len > options.body_edge * body_edge {
-                    patches.iter().for_each(|&p| fire(p, Rule::Body));
-                }
+            let [ea, eb] = edge.map(|v| beneath[v as usize]);
+            if ea > 0.0 && eb > 0.0 && len > options.body_edge * 0.5 * (ea + eb) {
+                patches.iter().for_each(|&p| fire(p, Rule::Body));
             }
         }
     }

@@ -71,15 +71,11 @@ fn kobbelt_smoothing_on_an_octahedron_matches_the_hand_computed_positions() {
     // Valence 4 everywhere: alpha_4 = (4 - 2 cos(pi / 2)) / 9 = 4 / 9; the four neighbours
     // of (1, 0, 0) sum to zero, so it moves to (1 - 4/9) (1, 0, 0) = (5/9, 0, 0).
     assert!((kobbelt_alpha(4) - 4.0 / 9.0).abs() < 1e-15);
-    assert!((kobbelt_alpha(6) / 6.0 - 1.0 / 18.0).abs() < 1e-15, "beta = 1/18 at valence 6");
-    let positions = vec![
-        DVec3::X,
-        DVec3::NEG_X,
-        DVec3::Y,
-        DVec3::NEG_Y,
-        DVec3::Z,
-        DVec3::NEG_Z,
-    ];
+    assert!(
+        (kobbelt_alpha(6) / 6.0 - 1.0 / 18.0).abs() < 1e-15,
+        "beta = 1/18 at valence 6"
+    );
+    let positions = vec![DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
     let triangles = vec![
         [0, 2, 4],
         [2, 1, 4],
@@ -130,7 +126,11 @@ fn a_refined_patch_meets_its_unrefined_neighbour_without_t_junctions() {
     let one = sqrt3_step(&mesh, &patch, &[true, false], Smoothing::None);
     assert_eq!(one.mesh.triangles.len(), mesh.triangles.len() + 2 * left);
     let two = sqrt3_step(&one.mesh, &one.face_patch, &[true, false], Smoothing::None);
-    assert_eq!(two.mesh.triangles.len(), mesh.triangles.len() - left + 9 * left, "two steps: nine times");
+    assert_eq!(
+        two.mesh.triangles.len(),
+        mesh.triangles.len() - left + 9 * left,
+        "two steps: nine times"
+    );
     for m in [&one.mesh, &two.mesh] {
         // Every directed edge once; an edge with one face only lies on the grid's own
         // outline (the count of outline edges is what it was, and none lies inside).
@@ -139,13 +139,19 @@ fn a_refined_patch_meets_its_unrefined_neighbour_without_t_junctions() {
         for &[a, b] in d.keys().filter(|&&[a, b]| !d.contains_key(&[b, a])) {
             let (pa, pb) = (m.positions[a as usize], m.positions[b as usize]);
             let on_outline = |p: DVec3| p.x == 0.0 || p.y == 0.0 || p.x == 6.0 || p.y == 6.0;
-            assert!(on_outline(pa) && on_outline(pb), "open edge {pa} - {pb} inside the grid");
+            assert!(
+                on_outline(pa) && on_outline(pb),
+                "open edge {pa} - {pb} inside the grid"
+            );
         }
         assert_eq!(boundary_edges(m), 24, "the outline is not split (its edges never flip)");
         // The border between the patches keeps every one of its old edges.
         for y in 0..6u32 {
             let (a, b) = (y * 7 + 3, (y + 1) * 7 + 3);
-            assert!(d.contains_key(&[a, b]) || d.contains_key(&[b, a]), "border edge {a}-{b} kept");
+            assert!(
+                d.contains_key(&[a, b]) || d.contains_key(&[b, a]),
+                "border edge {a}-{b} kept"
+            );
         }
     }
 }
@@ -156,8 +162,11 @@ struct M1s(Vec<(usize, M1Outcome, Vec<[u32; 3]>)>);
 
 impl StageSink for M1s {
     fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
-        self.0
-            .push((info.step, stage.outcome.clone(), stage.m0.collision.mesh.triangles.clone()));
+        self.0.push((
+            info.step,
+            stage.outcome.clone(),
+            stage.m0.collision.mesh.triangles.clone(),
+        ));
         Ok(())
     }
 }
@@ -179,10 +188,8 @@ fn to_surface(mesh: &TriMesh, p: DVec3) -> f64 {
 
 #[test]
 fn a_cut_line_stored_on_m0_is_rebuilt_on_its_m1_and_follows_a_dimension_edit() {
-    let m1s = run(
-        "drape 1\nm1\ngarment jumpsuit fit=tight resolution=4\nset ease 0.004\n\
-         cut yoke at=0,1.0,0 normal=0,1,0.25\ncut side at=0.05,1.0,0 normal=1,0,0\nset waist_girth +0.06\n",
-    );
+    let m1s = run("drape 1\nm1\ngarment jumpsuit fit=tight resolution=4\nset ease 0.004\n\
+         cut yoke at=0,1.0,0 normal=0,1,0.25\ncut side at=0.05,1.0,0 normal=1,0,0\nset waist_girth +0.06\n");
     // The cut step: the drawn line (the plane's section of M1, computed here from M1's
     // first layer) against its stored form rebuilt on the same M1.
     let (_, at_cut, _) = m1s.0.iter().find(|(s, _, _)| *s == 4).expect("the second cut step");
