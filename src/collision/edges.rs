@@ -108,8 +108,8 @@ fn slide(index: &BodyIndex, p: DVec3, way: &Way, towards: DVec3, want: f64, ease
     dir * most
 }
 
-/// Edge rounds on `positions` (updated): returns the lifts made, as responses, and the
-/// number of crossing edges each round found.
+/// Edge rounds on `positions` (updated): returns the lifts made, as responses, the number
+/// of crossing edges each round found, and the edges the first round found (their ends).
 pub fn respond_edges(
     index: &BodyIndex,
     positions: &mut [DVec3],
@@ -118,9 +118,10 @@ pub fn respond_edges(
     roles: &VertexRoles<'_>,
     ease: f64,
     options: &ResponseOptions,
-) -> (Vec<Response>, Vec<usize>) {
+) -> (Vec<Response>, Vec<usize>, Vec<[u32; 2]>) {
     let reach = 0.2 * index.height;
     let mut all = Vec::new();
+    let mut first = Vec::new();
     let mut found = Vec::new();
     // Edges to check: all at first, then those with an end moved in the round before (the
     // others kept their ends, and none of them crossed).
@@ -142,6 +143,9 @@ pub fn respond_edges(
         .flatten()
         .collect();
         found.push(crossings.len());
+        if round == 1 {
+            first = crossings.iter().map(|(c, _)| c.ends).collect();
+        }
         if crossings.is_empty() {
             break;
         }
@@ -248,5 +252,5 @@ pub fn respond_edges(
             break;
         }
     }
-    (all, found)
+    (all, found, first)
 }

@@ -183,6 +183,9 @@ pub struct Collision {
     /// Edges crossing the body at the start of each edge round (the first: after the
     /// vertex response).
     pub edge_rounds: Vec<usize>,
+    /// The edges (their ends) crossing the body after the vertex response, before the edge
+    /// rounds lifted them.
+    pub crossing_before_rounds: Vec<[u32; 2]>,
     /// The mesh after response.
     pub mesh: TriMesh,
     /// Quality after response.
@@ -222,7 +225,7 @@ pub fn collide(
             &options.response,
         )
     });
-    let (edge_responses, edge_rounds) = timed(&mut timings.respond_edges, || {
+    let (edge_responses, edge_rounds, first_round) = timed(&mut timings.respond_edges, || {
         respond_edges(
             index,
             &mut positions,
@@ -242,6 +245,7 @@ pub fn collide(
         ease,
         responses,
         edge_rounds,
+        crossing_before_rounds: first_round,
         mesh: TriMesh {
             positions,
             triangles: garment.mesh.triangles.clone(),

@@ -91,7 +91,7 @@ pub fn collide_m1(
     let crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     let ease = response_ease(index, garment_ease, &options.response);
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
-    let (edge_responses, edge_rounds) = respond_edges(
+    let (edge_responses, edge_rounds, _) = respond_edges(
         index,
         &mut moved,
         &edges,

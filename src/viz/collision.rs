@@ -1,6 +1,7 @@
 //! Logging the mesh-layer collision: hits per partition (points coloured by partition,
-//! with their depth as a line to the skin), response arrows coloured by rule, M0 after
-//! response, what is left inside or crossing, and the collision scalars.
+//! with their depth as a line to the skin), response arrows coloured by rule, the edges the
+//! edge rounds lifted (orange, where they crossed), M0 after response, what is left inside
+//! or crossing, and the collision scalars.
 
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 
@@ -107,6 +108,29 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         self.m0(&c.mesh, &g.face_patch, &g.edges)?;
+        // The edges that crossed after the vertex response, where they stood then (M0 as
+        // built with the penetrating vertices moved): what the edge rounds lifted.
+        if c.crossing_before_rounds.is_empty() {
+            rec.log("collision/mesh/crossing_before_rounds", &Clear::flat())
+                .map_err(to_sink)?;
+        } else {
+            let mut then = g.mesh.positions.clone();
+            for r in c.responses.iter().filter(|r| r.edge_round == 0) {
+                then[r.vertex as usize] = r.to;
+            }
+            let lines: Vec<Vec<[f32; 3]>> = c
+                .crossing_before_rounds
+                .iter()
+                .map(|&[a, b]| f32s(&[then[a as usize], then[b as usize]]))
+                .collect();
+            rec.log(
+                "collision/mesh/crossing_before_rounds",
+                &LineStrips3D::new(lines)
+                    .with_radii([0.0012])
+                    .with_colors([[255, 90, 0]]),
+            )
+            .map_err(to_sink)?;
+        }
         let q = &c.quality;
         if q.inside.is_empty() {
             rec.log("collision/mesh/remaining", &Clear::flat()).map_err(to_sink)?;
