@@ -241,3 +241,25 @@ fn a_cut_line_stored_on_m0_is_rebuilt_on_its_m1_and_follows_a_dimension_edit() {
         .fold(0.0, f64::max);
     assert!(moved > 1e-3, "the yoke line did not follow the edit ({moved} m)");
 }
+
+/// Without `m1` in the scene, no M1 stage is emitted and no M1 figure or timing is recorded.
+#[test]
+fn a_scene_without_m1_does_none_of_its_work() {
+    let text = "drape 1\ngarment jumpsuit fit=tight resolution=3\nset ease 0.004\n";
+    let session = parse_session(text, "plain.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = M1s::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none());
+    assert!(sink.0.is_empty(), "an M1 stage was emitted");
+    for step in &report.steps {
+        let names: Vec<&String> = step.figures.keys().chain(step.timings_ms.keys()).collect();
+        assert!(
+            names.iter().all(|k| !k.starts_with("m1")),
+            "step {}: {names:?}",
+            step.step
+        );
+    }
+    // With it, the same session has M1 at both collision steps.
+    let with = run(&format!("drape 1\nm1\n{}", &text["drape 1\n".len()..]));
+    assert_eq!(with.0.iter().map(|(s, _, _)| *s).collect::<Vec<_>>(), vec![1, 2]);
+}
