@@ -76,7 +76,7 @@ def collision_table(steps, texts):
 def m1_table(steps, texts):
     rows = [
         "| step | patches refined (by rule) | M1 faces (M0) | new vertices tested / inside "
-        "| M1 crossing edges before -> per round -> after | inside after | cut lines |",
+        "| M1 crossing edges before -> per round -> after | inside / crossing after (brute force) | cut lines |",
         "|---|---|---|---|---|---|---|",
     ]
     known = {"patches": "?", "m0_faces": "?"}
@@ -92,7 +92,9 @@ def m1_table(steps, texts):
             f"| {s['step']} `{texts.get(s['step'], s['op'])}` | {total} of {known['patches']} ({rules}) "
             f"| {s['m1_faces']} ({known['m0_faces']}) | {s['m1_new_vertices_tested']} / {s['m1_hits']} "
             f"| {s['m1_crossing_edges_before']} -> {rounds} -> {s['m1_crossing_edges']} "
-            f"| {s['m1_penetrating_vertices']} | {s['m1_cut_lines']} |")
+            f"| {s['m1_penetrating_vertices']} / {s['m1_crossing_edges']} "
+            f"({s.get('m1_verify', {}).get('inside', '?')} / {s.get('m1_verify', {}).get('crossing', '?')}) "
+            f"| {s['m1_cut_lines']} |")
     return "\n".join(rows)
 
 

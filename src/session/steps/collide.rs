@@ -162,7 +162,7 @@ pub(super) fn collide_garment(
     });
     state.m1 = None;
     if let Some(m1_options) = m1 {
-        super::m1::build_m1(scope, index, state, options, m1_options);
+        super::m1::build_m1(scope, body, index, state, options, m1_options);
     }
 }
 

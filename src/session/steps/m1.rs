@@ -10,6 +10,7 @@ use super::super::emit::StepScope;
 use super::super::runner::RunOptions;
 use super::super::stage::{M1Outcome, M1Stage, Stage};
 use super::super::state::GarmentState;
+use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::m1::{self, M1Options, SelectInput, Selection, cut};
 
@@ -37,11 +38,23 @@ struct M1Figures<'a> {
     m1_crossing_edges: usize,
     /// Cut lines rebuilt on M1.
     m1_cut_lines: usize,
+    /// With `--verify`: M1 after its collision by brute force (winding number for every
+    /// vertex, every edge against every body triangle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    m1_verify: Option<M1Verify>,
+}
+
+/// M1 by brute force.
+#[derive(Serialize)]
+struct M1Verify {
+    inside: usize,
+    crossing: usize,
 }
 
 /// Builds and collides M1 over the state's collided M0, and rebuilds the cut lines on it.
 pub(super) fn build_m1(
     scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
     index: &BodyIndex,
     state: &mut GarmentState,
     options: &RunOptions,
@@ -87,6 +100,15 @@ pub(super) fn build_m1(
         .iter()
         .map(|c| cut::rebuild(None, &m0.triangles, &m0.positions, c))
         .collect();
+    let verify = options.verify.then(|| {
+        scope.timed("m1.verify", || {
+            let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, &built.edges());
+            M1Verify {
+                inside: truth.inside_count(),
+                crossing: truth.crossing_count(),
+            }
+        })
+    });
     let mut refined = built.selection.by_rule();
     refined.insert("total", built.selection.count());
     scope.record(&M1Figures {
@@ -101,6 +123,7 @@ pub(super) fn build_m1(
         m1_penetrating_vertices: collision.quality.penetrating_vertices,
         m1_crossing_edges: collision.quality.crossing_edges,
         m1_cut_lines: state.cuts.len(),
+        m1_verify: verify,
     });
     state.m1 = Some(M1Outcome {
         m1: built,
