@@ -14,7 +14,7 @@ use std::path::Path;
 use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
 use drape::collision::{BodyIndex, CollisionOptions, DetectState, GarmentMesh, collide, quality};
 use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
-use drape::m1::{self, M1Options, SelectInput, Selection, Smoothing};
+use drape::m1::{self, M0Collided, M1Options, SelectInput, Selection, Smoothing};
 use drape::mesh::TriMesh;
 use glam::DVec3;
 
@@ -102,6 +102,8 @@ fn table(path: &Path) {
         let (g, m0, partition) = garment(&body, &probe, 6, m0_rounds);
         let m0_edges = edges(&m0);
         let q = quality(index, &m0.positions, &m0.positions, &m0_edges, &[]);
+        let m0_inside = q.inside.clone();
+        let m0_crossing: Vec<[u32; 2]> = q.crossing.iter().map(|&e| m0_edges[e as usize]).collect();
         let (max, p95, mean) = deviation(&m0, &reference);
         println!(
             "| {m0_name} | none | 0.0 | {} | {} | {:.2} / {:.2} / {:.2} |",
@@ -137,14 +139,13 @@ fn table(path: &Path) {
                     m1::select(&input, index, &options.select)
                 };
                 let built = m1::build(&m0, &g.face_patch, selection, &options);
-                let c = m1::collide_m1(
-                    index,
-                    &built,
-                    &partition,
-                    &g.ring_normal,
-                    0.004,
-                    &CollisionOptions::default(),
-                );
+                let collided = M0Collided {
+                    inside: &m0_inside,
+                    crossing: &m0_crossing,
+                    partition: &partition,
+                    ring_normal: &g.ring_normal,
+                };
+                let c = m1::collide_m1(index, &built, &collided, 0.004, &CollisionOptions::default());
                 (built, c)
             };
             let (built, c) = run();

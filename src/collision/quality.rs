@@ -45,17 +45,46 @@ pub fn quality(
     edges: &[[u32; 2]],
     responses: &[Response],
 ) -> Quality {
+    let all: Vec<u32> = (0..positions.len() as u32).collect();
+    quality_where(index, before, positions, &all, edges, responses)
+}
+
+/// [`quality`] over the vertices `vertices` and the edges `edges` only (the others are known:
+/// M1's vertices and edges that are M0's, measured by M0's check). `inside` lists vertex
+/// indices, `crossing` indices into `edges`; moves and stretches are over `vertices` and
+/// `edges`.
+pub fn quality_where(
+    index: &BodyIndex,
+    before: &[DVec3],
+    positions: &[DVec3],
+    vertices: &[u32],
+    edges: &[[u32; 2]],
+    responses: &[Response],
+) -> Quality {
     let reach = 0.2 * index.height;
     let surface = 1e-12 * index.height;
     let mut q = Quality::default();
     let mut depth_sum = 0.0;
-    // Distance to the body of every vertex (`reach` where nothing is nearer).
-    let signed = par_map(positions.len(), |v| {
-        index
-            .nearest(positions[v], reach)
-            .map_or(reach, |n| n.signed(positions[v]))
+    // Distance to the body (`reach` where nothing is nearer) of the vertices measured and
+    // the ends of the edges.
+    let mut needed = vec![false; positions.len()];
+    for &v in vertices.iter().chain(edges.iter().flatten()) {
+        needed[v as usize] = true;
+    }
+    let list: Vec<u32> = (0..positions.len() as u32).filter(|&v| needed[v as usize]).collect();
+    let found = par_map(list.len(), |k| {
+        let p = positions[list[k] as usize];
+        index.nearest(p, reach).map_or(reach, |n| n.signed(p))
     });
-    for (v, &s) in signed.iter().enumerate() {
+    let mut signed = vec![reach; positions.len()];
+    for (&v, s) in list.iter().zip(found) {
+        signed[v as usize] = s;
+    }
+    let mut measured: Vec<u32> = vertices.to_vec();
+    measured.sort_unstable();
+    measured.dedup();
+    for &v in &measured {
+        let (v, s) = (v as usize, signed[v as usize]);
         if s < -surface {
             q.penetrating_vertices += 1;
             q.max_depth_m = q.max_depth_m.max(-s);
@@ -79,10 +108,9 @@ pub fn quality(
             q.crossing.push(e as u32);
         }
     }
-    q.max_move_m = before
+    q.max_move_m = measured
         .iter()
-        .zip(positions)
-        .map(|(a, b)| a.distance(*b))
+        .map(|&v| before[v as usize].distance(positions[v as usize]))
         .fold(0.0, f64::max);
     q.max_stretch = edges
         .iter()

@@ -3,13 +3,16 @@
 //! exactly against the whole body, those inside are pushed out by their partition's rule
 //! (the partition of the M0 vertex they descend from), and the edge rounds lift M1's
 //! crossing edges by moving only those vertices: M0's vertices stay where M0's collision
-//! put them, so M1 and M0 agree on them. Then the exact quality check runs over all of M1.
+//! put them, so M1 and M0 agree on them. The exact check then measures what differs from M0
+//! (the vertices tested, the edges with an end among them); M1's vertices and edges that are
+//! M0's, where M0 has them, take M0's own exact check: together, all of M1.
 
 use glam::DVec3;
 
 use super::M1;
+use crate::collision::quality::quality_where;
 use crate::collision::{
-    BodyIndex, CollisionOptions, Hit, Quality, Response, VertexRoles, quality, respond, respond_edges, response_ease,
+    BodyIndex, CollisionOptions, Hit, Quality, Response, VertexRoles, respond, respond_edges, response_ease,
 };
 use crate::par::par_map;
 
@@ -30,21 +33,37 @@ pub struct M1Collision {
     pub edge_rounds: Vec<usize>,
     /// M1's positions after the response.
     pub positions: Vec<DVec3>,
-    /// The exact check over all of M1 after the response.
+    /// The exact check after the response, over all of M1 (`inside` and `crossing` are
+    /// left empty: see `crossing_after_edges`).
     pub quality: Quality,
+    /// The edges crossing the body after the response.
+    pub crossing_after_edges: Vec<[u32; 2]>,
+}
+
+/// What M0's collision left: its vertices inside the body and its edges crossing it (both
+/// from its exact check), and per vertex its partition and ring role.
+#[derive(Clone, Copy, Debug)]
+pub struct M0Collided<'a> {
+    /// Vertices inside after M0's response.
+    pub inside: &'a [u32],
+    /// Edges (their ends) crossing after M0's response.
+    pub crossing: &'a [[u32; 2]],
+    /// Partition of each vertex (from M0's detection).
+    pub partition: &'a [usize],
+    /// Ring plane normal of each vertex on a garment ring.
+    pub ring_normal: &'a [Option<DVec3>],
 }
 
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
-/// have move. `partition` is M0's vertex partition (from its detection), `ring_normal`
-/// M0's ring roles; `garment_ease` the garment's ease.
+/// have move. `garment_ease` is the garment's ease.
 pub fn collide_m1(
     index: &BodyIndex,
     m1: &M1,
-    partition: &[usize],
-    ring_normal: &[Option<DVec3>],
+    m0: &M0Collided<'_>,
     garment_ease: f64,
     options: &CollisionOptions,
 ) -> M1Collision {
+    let (partition, ring_normal) = (m0.partition, m0.ring_normal);
     let reach = 0.2 * index.height;
     let positions = &m1.mesh.positions;
     let tested = m1.differs_from_m0();
@@ -86,9 +105,19 @@ pub fn collide_m1(
         ring_normal: &rings,
         pinned: &pinned,
     };
-    let edges = m1.edges();
-    let before = quality(index, positions, positions, &edges, &[]);
-    let crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
+    // M1's edges with an end that differs from M0 are measured; the others are M0's edges
+    // where M0 has them (both ends pinned), crossing exactly when M0's check said so.
+    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = m1
+        .edges()
+        .into_iter()
+        .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
+    let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
+        m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+    let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
+    let kept_inside = m0.inside.iter().filter(|&&v| pinned[v as usize]).count();
+    let before = quality_where(index, positions, positions, &tested, &edges, &[]);
+    let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
+    crossing_before_edges.extend(&kept_crossing);
     let ease = response_ease(index, garment_ease, &options.response);
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
     let (edge_responses, edge_rounds, _) = respond_edges(
@@ -101,7 +130,13 @@ pub fn collide_m1(
         &options.response,
     );
     responses.extend(edge_responses);
-    let quality = quality(index, positions, &moved, &edges, &responses);
+    let mut quality = quality_where(index, positions, &moved, &tested, &edges, &responses);
+    let mut crossing_after_edges: Vec<[u32; 2]> = quality.crossing.iter().map(|&e| edges[e as usize]).collect();
+    crossing_after_edges.extend(&kept_crossing);
+    quality.penetrating_vertices += kept_inside;
+    quality.crossing_edges = crossing_after_edges.len();
+    quality.inside.clear();
+    quality.crossing.clear();
     M1Collision {
         tested: tested.len(),
         hits: hits.len(),
@@ -111,5 +146,6 @@ pub fn collide_m1(
         edge_rounds,
         positions: moved,
         quality,
+        crossing_after_edges,
     }
 }

@@ -17,7 +17,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-pub use collide::{M1Collision, collide_m1};
+pub use collide::{M0Collided, M1Collision, collide_m1};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};

@@ -12,7 +12,7 @@ use super::super::stage::{M1Outcome, M1Stage, Stage};
 use super::super::state::GarmentState;
 use crate::body::Body;
 use crate::collision::BodyIndex;
-use crate::m1::{self, M1Options, SelectInput, Selection, cut};
+use crate::m1::{self, M0Collided, M1Options, SelectInput, Selection, cut};
 
 /// The figures of M1.
 #[derive(Serialize)]
@@ -80,15 +80,21 @@ pub(super) fn build_m1(
         }
     });
     let built = scope.timed("m1.subdivide", || m1::build(m0, face_patch, selection, m1_options));
+    let m0_crossing: Vec<[u32; 2]> = outcome
+        .collision
+        .quality
+        .crossing
+        .iter()
+        .map(|&e| outcome.garment.edges[e as usize])
+        .collect();
+    let collided = M0Collided {
+        inside: &outcome.collision.quality.inside,
+        crossing: &m0_crossing,
+        partition: &outcome.collision.detection.partition,
+        ring_normal: &outcome.garment.ring_normal,
+    };
     let collision = scope.timed("m1.collide", || {
-        m1::collide_m1(
-            index,
-            &built,
-            &outcome.collision.detection.partition,
-            &outcome.garment.ring_normal,
-            fw.ease(),
-            &options.collision,
-        )
+        m1::collide_m1(index, &built, &collided, fw.ease(), &options.collision)
     });
     let cuts = state
         .cuts
