@@ -72,24 +72,6 @@ pub fn collide_m1(
         .iter()
         .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
         .collect();
-    let hits: Vec<Hit> = par_map(tested.len(), |k| {
-        let v = tested[k];
-        let p = positions[v as usize];
-        let near = index.nearest(p, reach)?;
-        let signed = near.signed(p);
-        (signed < 0.0).then(|| Hit {
-            vertex: v,
-            partition: m1_partition[v as usize],
-            method: crate::body::DetectionMethod::PointFace,
-            depth: -signed,
-            foot: near.foot,
-            normal: near.normal,
-            triangle: Some(near.triangle),
-        })
-    })
-    .into_iter()
-    .flatten()
-    .collect();
     let normals = m1.mesh.vertex_normals();
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();
@@ -118,6 +100,24 @@ pub fn collide_m1(
     let before = quality_where(index, positions, positions, &tested, &edges, &[]);
     let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     crossing_before_edges.extend(&kept_crossing);
+    // The vertices the check found inside are the hits.
+    let hits: Vec<Hit> = par_map(before.inside.len(), |k| {
+        let v = before.inside[k];
+        let p = positions[v as usize];
+        let near = index.nearest(p, reach)?;
+        Some(Hit {
+            vertex: v,
+            partition: m1_partition[v as usize],
+            method: crate::body::DetectionMethod::PointFace,
+            depth: (-near.signed(p)).max(0.0),
+            foot: near.foot,
+            normal: near.normal,
+            triangle: Some(near.triangle),
+        })
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     let ease = response_ease(index, garment_ease, &options.response);
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
     let (edge_responses, edge_rounds, _) = respond_edges(
@@ -130,8 +130,25 @@ pub fn collide_m1(
         &options.response,
     );
     responses.extend(edge_responses);
-    let mut quality = quality_where(index, positions, &moved, &tested, &edges, &responses);
-    let mut crossing_after_edges: Vec<[u32; 2]> = quality.crossing.iter().map(|&e| edges[e as usize]).collect();
+    // After the response only what moved (and what was inside) is measured again, with the
+    // edges at those vertices; the others stand as the check before found them.
+    let mut again = vec![false; positions.len()];
+    for &v in responses.iter().map(|r| &r.vertex).chain(&before.inside) {
+        again[v as usize] = true;
+    }
+    let remeasured: Vec<u32> = (0..positions.len() as u32).filter(|&v| again[v as usize]).collect();
+    let (touching, untouched): (Vec<usize>, Vec<usize>) =
+        (0..edges.len()).partition(|&e| edges[e].iter().any(|&v| again[v as usize]));
+    let touching_edges: Vec<[u32; 2]> = touching.iter().map(|&e| edges[e]).collect();
+    let mut quality = quality_where(index, positions, &moved, &remeasured, &touching_edges, &responses);
+    let was_crossing: std::collections::BTreeSet<u32> = before.crossing.iter().copied().collect();
+    let mut crossing_after_edges: Vec<[u32; 2]> = untouched
+        .iter()
+        .filter(|&&e| was_crossing.contains(&(e as u32)))
+        .map(|&e| edges[e])
+        .collect();
+    crossing_after_edges.extend(quality.crossing.iter().map(|&e| touching_edges[e as usize]));
+    crossing_after_edges.sort_unstable();
     crossing_after_edges.extend(&kept_crossing);
     quality.penetrating_vertices += kept_inside;
     quality.crossing_edges = crossing_after_edges.len();
