@@ -111,6 +111,14 @@ pub enum GarmentStage<'a> {
         /// Why, naming the limit.
         message: &'a str,
     },
+    /// A cut line that cannot be drawn (its plane misses the garment): refused, the garment
+    /// is as before the step.
+    CutRefused {
+        /// The cut line's name.
+        name: &'a str,
+        /// Why.
+        message: &'a str,
+    },
     /// `undo`: the garment is back to this state (with its constraint network, once one was
     /// built).
     Undone {

@@ -159,6 +159,9 @@ impl StageSink for RerunLogger {
                 TextLogLevel::WARN,
                 format!("set {name} {value} refused: {message}; the garment is as before"),
             ),
+            GarmentStage::CutRefused { message, .. } => {
+                self.text(TextLogLevel::WARN, format!("{message}; the garment is as before"))
+            }
             GarmentStage::Undone { framework, net } => self.log_undone(framework, net),
         }
     }

@@ -263,3 +263,38 @@ fn a_scene_without_m1_does_none_of_its_work() {
     let with = run(&format!("drape 1\nm1\n{}", &text["drape 1\n".len()..]));
     assert_eq!(with.0.iter().map(|(s, _, _)| *s).collect::<Vec<_>>(), vec![1, 2]);
 }
+
+/// A cut whose plane misses the garment is refused with its message; the session goes on,
+/// and an `undo` of it changes nothing.
+#[test]
+fn a_cut_that_misses_the_garment_is_refused_and_the_session_goes_on() {
+    let text = "drape 1\nm1\ngarment jumpsuit resolution=3\ncut high at=0,5,0 normal=0,1,0\n\
+                cut waist at=0,1.0,0 normal=0,1,0\nundo\nundo\n";
+    let session = parse_session(text, "cut.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = M1s::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let refused: Vec<&String> = report
+        .shortfalls
+        .iter()
+        .filter_map(|(step, s)| match s {
+            drape::session::Shortfall::Refused(m) if *step == 2 => Some(m),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        refused,
+        vec!["cut 'high': the plane through (0.0000, 5.0000, 0.0000) m misses the garment: edit refused"]
+    );
+    // Step 3 drew the waist line; the first undo takes it back, the second the refused cut.
+    let cut_lines = |step: usize| {
+        sink.0
+            .iter()
+            .filter(|(s, _, _)| *s == step)
+            .map(|(_, o, _)| o.stored.len())
+            .last()
+    };
+    assert_eq!(cut_lines(3), Some(1));
+    assert_eq!(cut_lines(4), Some(0));
+    assert_eq!(cut_lines(5), Some(0));
+}

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::super::emit::{Shortfall, StepScope};
 use super::super::error::StepError;
-use super::super::stage::{M1Stage, Stage};
+use super::super::stage::{GarmentStage, M1Stage, Stage};
 use super::super::state::SessionState;
 use crate::m1::{CutPlane, cut};
 
@@ -53,6 +53,13 @@ pub(super) fn run(
             plane.point.x, plane.point.y, plane.point.z
         );
         scope.record(&Refusal { refused: &message });
+        scope.emit(
+            "garment.refused",
+            Stage::Garment(GarmentStage::CutRefused {
+                name,
+                message: &message,
+            }),
+        );
         scope.shortfalls.push(Shortfall::Refused(message));
         return Ok(());
     }
