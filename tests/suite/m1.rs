@@ -290,9 +290,9 @@ fn a_cut_that_misses_the_garment_is_refused_and_the_session_goes_on() {
     let cut_lines = |step: usize| {
         sink.0
             .iter()
-            .filter(|(s, _, _)| *s == step)
+            .rev()
+            .find(|(s, _, _)| *s == step)
             .map(|(_, o, _)| o.stored.len())
-            .last()
     };
     assert_eq!(cut_lines(3), Some(1));
     assert_eq!(cut_lines(4), Some(0));
