@@ -49,16 +49,31 @@ impl LogOptions {
 
 /// Logs every stage to a recording.
 pub struct RerunLogger {
-    pub(super) rec: RecordingStream,
+    pub(super) rec: OrderedRecording,
     pub(super) options: LogOptions,
     iter: i64,
 }
 
-pub(super) fn to_sink(e: rerun::RecordingStreamError) -> SinkError {
-    SinkError::Backend {
-        what: "rerun",
-        source: Box::new(e),
+impl From<rerun::RecordingStreamError> for SinkError {
+    fn from(e: rerun::RecordingStreamError) -> Self {
+        Self::Backend {
+            what: "rerun",
+            source: Box::new(e),
+        }
     }
+}
+
+impl From<rerun::sink::SinkFlushError> for SinkError {
+    fn from(e: rerun::sink::SinkFlushError) -> Self {
+        Self::Backend {
+            what: "rerun flush",
+            source: Box::new(e),
+        }
+    }
+}
+
+pub(super) fn to_sink(e: impl Into<SinkError>) -> SinkError {
+    e.into()
 }
 
 pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
@@ -73,9 +88,50 @@ pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
     v
 }
 
+/// A recording stream that makes every log call its own chunk, written in call order.
+///
+/// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
+/// a hash map: two runs of the same session would write the same chunks in different
+/// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
+/// leaves one entity per flush, so the file's chunks follow the calls.
+pub struct OrderedRecording(RecordingStream);
+
+impl OrderedRecording {
+    /// Logs `data` at `path` on the current timelines, as its own chunk.
+    pub fn log<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        data: &AS,
+    ) -> Result<(), SinkError> {
+        self.0.log(path, data)?;
+        self.0.flush_async()?;
+        Ok(())
+    }
+
+    /// Logs static `data` at `path`, as its own chunk.
+    pub fn log_static<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        data: &AS,
+    ) -> Result<(), SinkError> {
+        self.0.log_static(path, data)?;
+        self.0.flush_async()?;
+        Ok(())
+    }
+}
+
+impl std::ops::Deref for OrderedRecording {
+    type Target = RecordingStream;
+
+    fn deref(&self) -> &RecordingStream {
+        &self.0
+    }
+}
+
 impl RerunLogger {
     /// Logs into `rec`; sends the static scene settings (y up, series styles) first.
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
+        let rec = OrderedRecording(rec);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
         // The mannequin figures are one value per run: markers, polar warm and chord cool.
@@ -101,7 +157,7 @@ impl RerunLogger {
     }
 
     /// The recording.
-    pub fn recording(&self) -> &RecordingStream {
+    pub fn recording(&self) -> &OrderedRecording {
         &self.rec
     }
 
@@ -127,7 +183,7 @@ impl StageSink for RerunLogger {
         self.rec.set_time_sequence("step", info.step as i64);
         self.rec.set_time_sequence("stage", info.stage as i64);
         stage.dispatch(info, self)?;
-        // One chunk boundary per stage (the batcher never flushes on its own, see viz::target).
+        // Every log call is already its own chunk (OrderedRecording); this sends what is left.
         self.rec.flush_async().map_err(|e| SinkError::Backend {
             what: "rerun flush",
             source: Box::new(e),

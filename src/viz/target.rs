@@ -17,14 +17,16 @@ pub enum RecordingTarget {
     Serve(u16),
 }
 
-/// Batching without clock- or size-driven flushes: the logger flushes at the end of
-/// every stage, so chunk boundaries follow the stages and two runs write the same chunks.
+/// Batching without clock- or size-driven flushes: the logger flushes after every log call
+/// (see [`super::logger::OrderedRecording`]), so two runs write the same chunks in the same
+/// order.
 fn batcher() -> rerun::log::ChunkBatcherConfig {
     rerun::log::ChunkBatcherConfig::NEVER
 }
 
 /// Opens a recording with the default blueprint, no wall-clock `log_time`, a recording id
-/// derived from `name` and stage-aligned chunks, so the same session logs the same data.
+/// derived from `name` and chunks that follow the log calls, so the same session logs the
+/// same data.
 pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamResult<RecordingStream> {
     let builder = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))

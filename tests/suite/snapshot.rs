@@ -256,3 +256,56 @@ fn the_demo_logs_what_the_snapshot_shows() {
 fn the_demo_logs_the_same_data_twice() {
     assert_eq!(demo_summary(), demo_summary());
 }
+
+/// The demo's recording as decoded chunks, in the order they were written.
+fn demo_chunks() -> Vec<Chunk> {
+    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
+    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
+    {
+        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
+        let report = run_session(&session, &RunOptions::default(), &mut [&mut logger]);
+        assert!(report.error.is_none(), "{:?}", report.error);
+    }
+    storage
+        .take()
+        .into_iter()
+        .filter_map(|msg| match msg {
+            LogMsg::ArrowMsg(store, arrow) if store.kind() == rerun::StoreKind::Recording => {
+                Some(Chunk::from_arrow_msg(&arrow).expect("chunk decodes"))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// Two runs write the same chunks in the same order (what plain `rerun rrd compare`
+/// checks): chunk by chunk, the same entity, timelines, components and values (Rerun's own
+/// `Chunk::ensure_similar`, which ignores only chunk and row ids). With the `rerun` command
+/// installed, the two files of two runs of the binary also pass `rerun rrd compare`.
+#[test]
+fn two_runs_write_the_same_chunks_in_the_same_order() {
+    let (a, b) = (demo_chunks(), demo_chunks());
+    assert_eq!(a.len(), b.len(), "chunk counts");
+    for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+        if let Err(e) = Chunk::ensure_similar(x, y) {
+            panic!("chunk {k} ({} vs {}): {e:#}", x.entity_path(), y.entity_path());
+        }
+    }
+    let cli = std::process::Command::new("rerun").arg("--version").output();
+    if cli.is_ok_and(|o| o.status.success()) {
+        let dir = std::env::temp_dir().join(format!("drape-compare-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let files: Vec<std::path::PathBuf> = (0..2).map(|i| dir.join(format!("run{i}.rrd"))).collect();
+        for f in &files {
+            let (code, stderr) = super::session_errors::drape(&["run", "--save", f.to_str().unwrap()]);
+            assert_eq!(code, 0, "{stderr}");
+        }
+        let out = std::process::Command::new("rerun")
+            .args(["rrd", "compare"])
+            .args(&files)
+            .output()
+            .expect("rerun runs");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        std::fs::remove_dir_all(&dir).ok();
+    }
+}
