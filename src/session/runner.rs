@@ -9,7 +9,7 @@ use super::emit::{Emitter, Shortfall};
 use super::error::{RunError, StepError};
 use super::format::Session;
 use super::metrics::StepMetrics;
-use super::stage::StageSink;
+use super::stage::{Stage, StageSink, StepEnd};
 use super::state::SessionState;
 use super::steps::{StepContext, run_step, scene};
 use crate::body::{LandmarkOptions, PartitionOptions};
@@ -31,6 +31,10 @@ pub struct RunOptions {
     /// The largest body file read, bytes (`--max-input-mb`; default
     /// [`crate::input::DEFAULT_MAX_INPUT_BYTES`]; 0 means the default).
     pub max_input_bytes: u64,
+    /// Set (by a signal handler) to end the run after the current step: the steps after it
+    /// do not run, an `interrupted` stage says where it stopped, and the report has
+    /// [`RunReport::interrupted`].
+    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 /// What a run produced.
@@ -42,6 +46,8 @@ pub struct RunReport {
     pub error: Option<RunError>,
     /// Promises steps could not keep, by step index (the run went on).
     pub shortfalls: Vec<(usize, Shortfall)>,
+    /// The run was stopped by [`RunOptions::stop`] after this step (its last finished one).
+    pub interrupted: Option<usize>,
 }
 
 /// Runs a session: the scene (step 0), then each step. Stops at the first failure, which
@@ -65,6 +71,16 @@ pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dy
     };
     let cx = StepContext { session, options };
     for (i, step) in session.steps.iter().enumerate() {
+        if options
+            .stop
+            .as_ref()
+            .is_some_and(|s| s.load(std::sync::atomic::Ordering::SeqCst))
+        {
+            out.step(i, "interrupt")
+                .emit("interrupted", Stage::Step(StepEnd::Interrupted { after: i }));
+            report.interrupted = Some(i);
+            return report;
+        }
         let mut scope = out.step(i + 1, step.op.keyword());
         match run_step(&mut scope, &mut state, &cx, &step.op) {
             Ok(()) => {

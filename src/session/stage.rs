@@ -308,6 +308,11 @@ pub enum StepEnd<'a> {
     Done(&'a StepMetrics),
     /// The step failed; everything before it stands.
     Failed(&'a RunError),
+    /// The run was stopped (a signal) after step `after`; the steps after it did not run.
+    Interrupted {
+        /// The last step that finished.
+        after: usize,
+    },
 }
 
 /// Why a sink could not take a stage. These are failures of drape's own output (a file that

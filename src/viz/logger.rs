@@ -254,6 +254,10 @@ impl StageSink for RerunLogger {
                 )
             }
             StepEnd::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
+            StepEnd::Interrupted { after } => self.text(
+                TextLogLevel::WARN,
+                format!("interrupted by a signal after step {after}: the steps after it did not run"),
+            ),
         }
     }
 }

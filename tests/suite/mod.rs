@@ -6,6 +6,7 @@ mod convexify;
 mod coons;
 mod ease;
 mod garment;
+mod interrupt;
 mod landmarks;
 mod m1;
 mod mannequin;

@@ -8,7 +8,9 @@ use clap::{Args, Parser, Subcommand};
 pub(crate) const EXIT_CODES: &str = "Exit codes: 0 success; 1 a step failed at run time (the recording keeps \
 every stage before it, plus the error), or with --strict a step left the garment in the body or an edit \
 was refused; 2 bad input (a malformed session, flag or body file, or a session that `check` rejects); \
-3 an internal or I/O failure (a file that cannot be written, a viewer that cannot be reached).";
+3 an internal or I/O failure (a file that cannot be written, a viewer that cannot be reached); \
+130 stopped by Ctrl-C or SIGTERM after the current step (the recording, metrics and exports hold every \
+finished step; a second signal stops at once).";
 
 /// Garment edit sessions against a body, every stage logged to Rerun.
 ///

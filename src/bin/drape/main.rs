@@ -4,6 +4,7 @@
 mod args;
 mod failure;
 mod files;
+mod interrupt;
 mod mannequin;
 mod network;
 mod progress;

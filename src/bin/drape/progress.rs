@@ -34,6 +34,9 @@ impl StageSink for Progress {
                 );
             }
             StepEnd::Failed(e) => eprintln!("  step {} {} FAILED: {}", info.step, info.op, e.message()),
+            StepEnd::Interrupted { after } => {
+                eprintln!("  interrupted by a signal after step {after}: the steps after it did not run");
+            }
         }
         Ok(())
     }

@@ -54,6 +54,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         body_override: args.body.clone(),
         verify: args.verify,
         max_input_bytes: crate::max_input_bytes(),
+        stop: Some(crate::interrupt::stop_flag()),
         ..RunOptions::default()
     };
     if args.brute_force {
@@ -114,6 +115,10 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             final_path.display(),
             final_path.display()
         );
+    }
+    if let Some(after) = report.interrupted {
+        eprintln!("interrupted after step {after}: the recording holds every step before the signal");
+        return Ok(ExitCode::from(crate::interrupt::EXIT_INTERRUPTED));
     }
     for (step, shortfall) in &report.shortfalls {
         match shortfall {
