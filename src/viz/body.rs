@@ -42,7 +42,11 @@ impl RerunLogger {
             TextLogLevel::INFO,
             format!(
                 "body {}: {} vertices, {} triangles ({} polygons triangulated), height {:.3} m; {}",
-                body.name,
+                // The file's name, not its path: a recording must not depend on where the
+                // session was run from (replays compare recordings).
+                std::path::Path::new(&body.name)
+                    .file_name()
+                    .map_or_else(|| body.name.clone(), |n| n.to_string_lossy().into_owned()),
                 mesh.positions.len(),
                 mesh.triangles.len(),
                 body.polygons_triangulated,

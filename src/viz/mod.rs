@@ -24,10 +24,12 @@ mod garment;
 pub mod logger;
 mod m1;
 mod mannequin;
+pub mod replay;
 pub mod target;
 
 pub use blueprint::default_blueprint;
 pub use logger::{LogOptions, RerunLogger};
+pub use rerun::RecordingStream;
 pub use target::{RecordingTarget, open_recording};
 
 /// The Rerun application id of every drape recording.

@@ -13,6 +13,7 @@ mod mannequin;
 mod meshes;
 mod obj_errors;
 mod refusals;
+mod replay;
 mod resample;
 mod sections;
 mod session_errors;

@@ -47,9 +47,27 @@ pub(crate) enum Command {
         /// The session file; without it, the built-in demo.
         session: Option<PathBuf>,
     },
+    /// Run a recorded session (DIR/session.drape) again and compare the new logged data with
+    /// the stored recording (DIR/recording.rrd), value by value, or with the digest in
+    /// DIR/manifest.json; exit 1 with the first difference (step, stage, entity, component,
+    /// row, index).
+    #[command(after_help = EXIT_CODES)]
+    Replay(ReplayArgs),
     /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
     /// and print each method's deviation from the true surface per region.
     Mannequin(MannequinArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct ReplayArgs {
+    /// The recording's folder (recordings/NAME).
+    pub(crate) dir: PathBuf,
+    /// Floats equal when they differ by at most this much [default: exact].
+    #[arg(long, default_value_t = 0.0)]
+    pub(crate) tolerance: f64,
+    /// Record the session into the folder (recording.rrd and manifest.json) instead.
+    #[arg(long)]
+    pub(crate) write: bool,
 }
 
 #[derive(Args, Debug, Default)]

@@ -8,6 +8,7 @@ mod interrupt;
 mod mannequin;
 mod network;
 mod progress;
+mod replay;
 mod run;
 
 use std::path::Path;
@@ -32,6 +33,7 @@ fn main() -> ExitCode {
         Some(Command::Check { session }) => check(&session),
         Some(Command::Constraints { session }) => network::constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin::mannequin(&args),
+        Some(Command::Replay(args)) => replay::replay(&args),
     };
     match result {
         Ok(code) => code,
