@@ -1,13 +1,21 @@
 //! The default layout sent with every recording: the 3D scene, metrics plots and the log.
 
-use rerun::blueprint::{Blueprint, Horizontal, Spatial3DView, TextLogView, TimePanel, TimeSeriesView, Vertical};
+use rerun::blueprint::components::PanelState;
+use rerun::blueprint::{
+    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial3DView, Tabs, TextLogView, TimePanel, TimeSeriesView,
+    Vertical,
+};
+
+use super::logger::METRIC_UNITS;
 
 /// 3D view of everything spatial but M1 on the left (M0 with its cut lines' stored form),
 /// above a view of M1 on the body (patches coloured by the rule that refined them, its cut
 /// lines, its crossing edges before and after its collision), a close view of the collision
 /// (hits, response arrows, what is left; it frames itself on them) and one of the constraint
-/// network with the feature curves (solver iterations on the `iter` timeline); metrics and
-/// the per-stage log on the right; the time panel on the `stage` timeline.
+/// network with the feature curves (solver iterations on the `iter` timeline); on the right
+/// the metrics, one tab per unit (counts, metres, millimetres, ratios, milliseconds), and the
+/// per-stage log; the time panel on the `stage` timeline; the blueprint and selection panels
+/// collapsed.
 pub fn default_blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
@@ -54,7 +62,12 @@ pub fn default_blueprint() -> Blueprint {
             .with_row_shares([3.0, 2.0])
             .into(),
             Vertical::new([
-                TimeSeriesView::new("Metrics").with_origin("/metrics").into(),
+                Tabs::new(METRIC_UNITS.iter().map(|(unit, title)| {
+                    TimeSeriesView::new(*title)
+                        .with_origin(format!("/metrics/{unit}"))
+                        .into()
+                }))
+                .into(),
                 TextLogView::new("Log").with_origin("/log").into(),
             ])
             .with_row_shares([1.0, 1.0])
@@ -62,5 +75,11 @@ pub fn default_blueprint() -> Blueprint {
         ])
         .with_column_shares([3.0, 1.0]),
     )
-    .with_time_panel(TimePanel::new().with_timeline("stage"))
+    .with_time_panel(
+        TimePanel::new()
+            .with_timeline("stage")
+            .with_state(PanelState::Collapsed),
+    )
+    .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
+    .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
 }

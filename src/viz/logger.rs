@@ -13,7 +13,7 @@ use crate::session::{
 #[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct LogOptions {
-    /// Also log compute timings as `metrics/timings/*` scalars. They are wall-clock, so two
+    /// Also log compute timings as `metrics/ms/timings/*` scalars. They are wall-clock, so two
     /// runs then differ; off by default so that a session's recording is reproducible.
     /// Default value: false.
     pub timings: bool,
@@ -88,6 +88,37 @@ pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
     v
 }
 
+/// The units the metrics are plotted by: the folder under `metrics/` each figure goes to.
+pub const METRIC_UNITS: [(&str, &str); 5] = [
+    ("count", "Counts"),
+    ("m", "Lengths (m)"),
+    ("mm", "Mannequin (mm)"),
+    ("ratio", "Ratios"),
+    ("ms", "Time (ms)"),
+];
+
+/// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
+/// `metrics/mm/...` for names ending in `_mm`, `metrics/m/...` for lengths and residuals
+/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/count/...`
+/// otherwise.
+pub fn metric_path(path: &str) -> String {
+    let Some(rest) = path.strip_prefix("metrics/") else {
+        return path.to_string();
+    };
+    let unit = if rest.starts_with("timings/") {
+        "ms"
+    } else if rest.ends_with("_mm") {
+        "mm"
+    } else if rest.ends_with("_m") || rest.contains("_m/") || rest.contains("residual") {
+        "m"
+    } else if rest.contains("stretch") {
+        "ratio"
+    } else {
+        "count"
+    };
+    format!("metrics/{unit}/{rest}")
+}
+
 /// A recording stream that makes every log call its own chunk, written in call order.
 ///
 /// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
@@ -144,7 +175,7 @@ impl RerunLogger {
             ] {
                 let name = format!("{} {method} {stat} (mm)", region.name());
                 rec.log_static(
-                    format!("metrics/mannequin/{}/{method}_{stat}_mm", region.name()),
+                    metric_path(&format!("metrics/mannequin/{}/{method}_{stat}_mm", region.name())),
                     &SeriesPoints::new()
                         .with_names([name])
                         .with_colors([color])
@@ -173,8 +204,12 @@ impl RerunLogger {
             .map_err(to_sink)
     }
 
+    /// Logs a figure under `metrics/<unit>/...` (see [`metric_path`]), so that each plot
+    /// of the default layout holds one unit.
     pub(super) fn scalar(&self, path: &str, value: f64) -> Result<(), SinkError> {
-        self.rec.log(path, &Scalars::single(value)).map_err(to_sink)
+        self.rec
+            .log(metric_path(path), &Scalars::single(value))
+            .map_err(to_sink)
     }
 }
 

@@ -12,7 +12,7 @@
 //! `collision/response/<rule>` (arrows), `collision/mesh/remaining`,
 //! `collision/mesh/crossing_edges`, `constraints/network/{links,curves}` (green met, red
 //! violated), `constraints/solve/{curve,control,node_hits}` (per solver iteration),
-//! `constraints/drag/{path,points}`, `metrics/...` (scalars), `log` (text per stage).
+//! `constraints/drag/{path,points}`, `metrics/<unit>/...` (scalars, one folder per unit), `log` (text per stage).
 //! Timelines: `step`, `stage`, and `iter` (solver iterations over the session).
 
 pub mod blueprint;
