@@ -1,0 +1,128 @@
+//! The M1 statements: `m1` (scene) and `cut` (a step).
+
+use super::super::args::{Args, integer_in, number, vector};
+use super::super::lexer::{Line, Token};
+use super::super::suggest::did_you_mean;
+use super::super::syntax::{Op, ParseError};
+use super::Parser;
+use crate::m1::{CutPlane, M1Options, Rule, Smoothing};
+
+impl Parser<'_> {
+    /// `m1 [steps=1|2] [patches=selected|all] [rules=stretch,angle,edges,body]
+    /// [smooth=none|kobbelt] [stretch=R] [angle=DEG] [long=K1] [short=K2] [body=K]`.
+    pub(super) fn m1(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if let Some((_, first)) = self.m1 {
+            return Err(line.error(head.column, format!("m1 is already set on line {first}")));
+        }
+        let keys = [
+            "steps", "patches", "rules", "smooth", "stretch", "angle", "long", "short", "body",
+        ];
+        let a = Args::parse(line, rest, &keys, "m1")?;
+        let mut o = M1Options::default();
+        if let Some(t) = a.get("steps") {
+            o.steps = integer_in(line, t, "steps", 1..=2)?;
+        }
+        if let Some(t) = a.get("patches") {
+            o.all_patches = match t.text {
+                "selected" => false,
+                "all" => true,
+                other => {
+                    return Err(line.error(t.column, format!("unknown patches '{other}': expected selected or all")));
+                }
+            };
+        }
+        if let Some(t) = a.get("rules") {
+            let mut rules = Vec::new();
+            let mut column = t.column;
+            for name in t.text.split(',') {
+                let rule = Rule::from_name(name).ok_or_else(|| {
+                    line.error(
+                        column,
+                        format!(
+                            "unknown rule '{name}'{}: expected some of stretch, angle, edges, body",
+                            did_you_mean(name, Rule::ALL.map(Rule::name))
+                        ),
+                    )
+                })?;
+                if !rules.contains(&rule) {
+                    rules.push(rule);
+                }
+                column += name.len() + 1;
+            }
+            o.select.rules = rules;
+        }
+        if let Some(t) = a.get("smooth") {
+            o.smoothing = Smoothing::from_name(t.text).ok_or_else(|| {
+                line.error(
+                    t.column,
+                    format!("unknown smooth '{}': expected none or kobbelt", t.text),
+                )
+            })?;
+        }
+        let positive = |key: &str, least: f64, most: f64| -> Result<Option<f64>, ParseError> {
+            let Some(t) = a.get(key) else { return Ok(None) };
+            let v = number(line, t, key)?;
+            if !(least..=most).contains(&v) {
+                return Err(line.error(t.column, format!("{key} must be from {least} to {most}, found {v}")));
+            }
+            Ok(Some(v))
+        };
+        if let Some(v) = positive("stretch", 1.0, 100.0)? {
+            o.select.stretch = v;
+        }
+        if let Some(v) = positive("angle", 0.0, 180.0)? {
+            o.select.angle_deg = v;
+        }
+        if let Some(v) = positive("long", 1.0, 100.0)? {
+            o.select.long_edge = v;
+        }
+        if let Some(v) = positive("short", 0.0, 1.0)? {
+            o.select.short_edge = v;
+        }
+        if let Some(v) = positive("body", 0.0, 1000.0)? {
+            o.select.body_edge = v;
+        }
+        self.m1 = Some((o, line.number));
+        Ok(())
+    }
+
+    /// `cut NAME at=x,y,z normal=nx,ny,nz`: a style line, the section of M1 by the plane
+    /// through `at` with that normal.
+    pub(super) fn cut(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        if self.garment.is_none() {
+            return Err(line.error(head.column, "'cut' needs a garment: put a 'garment' step before it"));
+        }
+        if self.m1.is_none() {
+            return Err(line.error(
+                head.column,
+                "'cut' draws on M1: put an 'm1' statement in the scene (before the first step)",
+            ));
+        }
+        let Some((which, args)) = rest.split_first() else {
+            return Err(line.error(line.end_column, "expected a name for the cut line after 'cut'"));
+        };
+        if which.text.contains('=') || which.text.is_empty() {
+            return Err(line.error(
+                which.column,
+                format!("expected a name for the cut line, found '{}'", which.text),
+            ));
+        }
+        let a = Args::parse(line, args, &["at", "normal"], "cut")?;
+        let at = a
+            .get("at")
+            .ok_or_else(|| line.error(line.end_column, "expected at=x,y,z (a point of the cut's plane)"))?;
+        let normal = a
+            .get("normal")
+            .ok_or_else(|| line.error(line.end_column, "expected normal=nx,ny,nz (the cut plane's normal)"))?;
+        let point = vector(line, at, "at")?;
+        let n = vector(line, normal, "normal")?;
+        if n.length() == 0.0 {
+            return Err(line.error(normal.column, "the cut plane's normal must not be zero"));
+        }
+        self.undoable += 1;
+        Ok(Op::Cut {
+            name: which.text.to_string(),
+            plane: CutPlane { point, normal: n },
+        })
+    }
+}
