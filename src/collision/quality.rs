@@ -34,6 +34,10 @@ pub struct Quality {
     /// The crossing edges (indices into the edge list).
     #[serde(skip)]
     pub crossing: Vec<u32>,
+    /// Each vertex's signed distance to the body, m (negative inside; infinite where not
+    /// measured): the garment's clearance, for fit maps.
+    #[serde(skip)]
+    pub clearance: Vec<f64>,
 }
 
 /// Measures `positions` (with `edges`) against the body; `responses` give the ease error and
@@ -80,6 +84,9 @@ pub fn quality_where(
     for (&v, s) in list.iter().zip(found) {
         signed[v as usize] = s;
     }
+    q.clearance = (0..positions.len())
+        .map(|v| if needed[v] { signed[v] } else { f64::INFINITY })
+        .collect();
     let mut measured: Vec<u32> = vertices.to_vec();
     measured.sort_unstable();
     measured.dedup();

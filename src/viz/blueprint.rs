@@ -2,8 +2,8 @@
 
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
-    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial3DView, Tabs, TextLogView, TimePanel, TimeSeriesView,
-    Vertical,
+    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial3DView, Tabs, TextDocumentView, TextLogView,
+    TimePanel, TimeSeriesView, Vertical,
 };
 
 use super::logger::METRIC_UNITS;
@@ -29,21 +29,29 @@ pub fn default_blueprint() -> Blueprint {
                         "+ /garment/**",
                         "+ /collision/**",
                         "+ /constraints/**",
+                        "- /garment/clearance",
                         "- /garment/m1/**",
                         "- /garment/cut_lines/**",
                         "- /collision/m1/**",
                     ])
                     .into(),
                 Horizontal::new([
-                    Spatial3DView::new("M1")
-                        .with_origin("/")
-                        .with_contents([
-                            "+ /body/mesh",
-                            "+ /garment/m1/**",
-                            "+ /garment/cut_lines/**",
-                            "+ /collision/m1/**",
-                        ])
-                        .into(),
+                    Tabs::new([
+                        Spatial3DView::new("M1")
+                            .with_origin("/")
+                            .with_contents([
+                                "+ /body/mesh",
+                                "+ /garment/m1/**",
+                                "+ /garment/cut_lines/**",
+                                "+ /collision/m1/**",
+                            ])
+                            .into(),
+                        Spatial3DView::new("Clearance")
+                            .with_origin("/")
+                            .with_contents(["+ /garment/clearance"])
+                            .into(),
+                    ])
+                    .into(),
                     Spatial3DView::new("Collision")
                         .with_origin("/")
                         .with_contents(["+ /collision/**"])
@@ -68,7 +76,13 @@ pub fn default_blueprint() -> Blueprint {
                         .into()
                 }))
                 .into(),
-                TextLogView::new("Log").with_origin("/log").into(),
+                Tabs::new([
+                    TextLogView::new("Log").with_origin("/log").into(),
+                    TextDocumentView::new("Clearance scale")
+                        .with_origin("/legend/clearance")
+                        .into(),
+                ])
+                .into(),
             ])
             .with_row_shares([1.0, 1.0])
             .into(),

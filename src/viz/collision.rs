@@ -3,14 +3,46 @@
 //! edge rounds lifted (orange, where they crossed), M0 after response, what is left inside
 //! or crossing, and the collision scalars.
 
-use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
+use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextDocument, TextLogLevel};
 
-use super::colors::{partition_color, rule_color};
+use super::colors::{CLEARANCE_BANDS, clearance_color, partition_color, rule_color};
 use super::logger::{RerunLogger, f32s, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
 impl RerunLogger {
+    /// The fit map: M0 after the response, each vertex coloured by its clearance (its
+    /// distance to the body, in the bands of [`CLEARANCE_BANDS`]), and the scale as a text
+    /// document beside it.
+    fn clearance_map(&self, mesh: &crate::mesh::TriMesh, clearance: &[f64]) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let colors: Vec<[u8; 3]> = clearance.iter().map(|&d| clearance_color(d)).collect();
+        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
+        rec.log(
+            "garment/clearance",
+            &Mesh3D::new(mesh.positions_f32())
+                .with_triangle_indices(mesh.triangles.iter().copied())
+                .with_vertex_normals(normals)
+                .with_vertex_colors(colors),
+        )
+        .map_err(to_sink)?;
+        let mut counts = [0usize; CLEARANCE_BANDS.len()];
+        for &d in clearance {
+            let mm = d * 1e3;
+            if let Some(k) = CLEARANCE_BANDS.iter().position(|(upper, _, _)| mm < *upper) {
+                counts[k] += 1;
+            }
+        }
+        let mut text = String::from(
+            "## Clearance (fit map)\n\nEach M0 vertex after the response, by its distance to the body.\n\n| colour | band | vertices |\n|---|---|---:|\n",
+        );
+        for ((_, [r, g, b], label), n) in CLEARANCE_BANDS.iter().zip(counts) {
+            text.push_str(&format!("| rgb({r}, {g}, {b}) | {label} | {n} |\n"));
+        }
+        rec.log("legend/clearance", &TextDocument::from_markdown(text))
+            .map_err(to_sink)
+    }
+
     pub(super) fn log_collision(&self, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         let CollisionStage { outcome, index, part } = stage;
         match part {
@@ -108,6 +140,7 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         self.m0(&c.mesh, &g.face_patch, &g.edges)?;
+        self.clearance_map(&c.mesh, &c.quality.clearance)?;
         // The edges that crossed after the vertex response, where they stood then (M0 as
         // built with the penetrating vertices moved): what the edge rounds lifted.
         if c.crossing_before_rounds.is_empty() {

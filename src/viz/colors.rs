@@ -61,3 +61,24 @@ pub fn m1_rule_color(rule: crate::m1::Rule) -> [u8; 3] {
         crate::m1::Rule::Body => [60, 180, 120],
     }
 }
+
+/// The clearance bands of the fit map: upper bound (mm; the last is unbounded), colour and
+/// label. Below 0 the garment is inside the body.
+pub const CLEARANCE_BANDS: [(f64, [u8; 3], &str); 7] = [
+    (0.0, [200, 0, 150], "inside the body"),
+    (2.0, [225, 35, 35], "0-2 mm: on the skin"),
+    (5.0, [245, 140, 30], "2-5 mm: tight"),
+    (10.0, [235, 215, 50], "5-10 mm: close"),
+    (20.0, [70, 185, 80], "10-20 mm: fitted"),
+    (40.0, [50, 175, 210], "20-40 mm: loose"),
+    (f64::INFINITY, [60, 90, 210], "over 40 mm: free"),
+];
+
+/// The fit-map colour of a clearance `d` (m).
+pub fn clearance_color(d: f64) -> [u8; 3] {
+    let mm = d * 1e3;
+    CLEARANCE_BANDS
+        .iter()
+        .find(|(upper, _, _)| mm < *upper)
+        .map_or(CLEARANCE_BANDS[6].1, |b| b.1)
+}
