@@ -108,6 +108,23 @@ def m1_bench():
     return "\n\n".join(out)
 
 
+def logging_budget():
+    """The demo at each log detail: compute and logging time summed over its steps, and the
+    recording's size (times vary run to run: written with --bench only)."""
+    rows = ["| `--log-detail` | compute ms | logging ms | logging / compute | recording MB |",
+            "|---|---:|---:|---:|---:|"]
+    with tempfile.TemporaryDirectory() as tmp:
+        for detail in ["all", "final", "metrics"]:
+            rrd, metrics = os.path.join(tmp, f"{detail}.rrd"), os.path.join(tmp, f"{detail}.json")
+            subprocess.run(["cargo", "run", "--release", "--quiet", "--", "run", "--log-detail", detail,
+                            "--metrics", metrics, "--save", rrd], cwd=ROOT, check=True, stderr=subprocess.DEVNULL)
+            steps = json.load(open(metrics))
+            compute = sum(v for st in steps for k, v in st["timings_ms"].items() if not k.startswith("log."))
+            log = sum(v for st in steps for k, v in st["timings_ms"].items() if k.startswith("log."))
+            rows.append(f"| {detail} | {compute:.0f} | {log:.0f} | {log / compute:.2f} | {os.path.getsize(rrd) / 1e6:.1f} |")
+    return "\n".join(rows)
+
+
 def busiest_step(steps):
     s = max((s for s in steps if "hits" in s), key=lambda s: s["hits"])
     parts = ", ".join(f"{k} {n}" for k, n in s["hits_by_partition"].items() if n)
@@ -168,6 +185,7 @@ def main():
     generated = sections(steps)
     if args.bench:
         generated["m1-bench"] = m1_bench()
+        generated["logging"] = logging_budget()
     for name, body in generated.items():
         pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
         if not pattern.search(new):

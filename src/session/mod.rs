@@ -20,7 +20,7 @@ mod steps;
 
 pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, StepError};
-pub use format::{Change, Op, ParseError, Scene, Session, Step, Units, parse_session};
+pub use format::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
 pub use runner::{RunOptions, RunReport, run_session};
 pub use stage::{

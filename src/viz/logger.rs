@@ -5,8 +5,8 @@ use rerun::{RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, ViewC
 
 use crate::mannequin::{MannequinResult, Region};
 use crate::session::{
-    BodyStage, CollisionStage, ConstraintStage, GarmentStage, M1Stage, SectionCut, SinkError, Stage, StageInfo,
-    StageSink, StepEnd,
+    BodyStage, CollisionStage, ConstraintStage, GarmentStage, LogDetail, M1Stage, SectionCut, SinkError, Stage,
+    StageInfo, StageSink, StepEnd,
 };
 
 /// What the logger logs.
@@ -20,6 +20,9 @@ pub struct LogOptions {
     /// Where the mannequin surfaces stand, beside the body (x offset of the polar one; the
     /// chord one is 0.6 m further), clear of the partition legend. Default value: 1.6.
     pub mannequin_offset_x: f64,
+    /// What is logged: every stage, the final meshes, or the metrics and the log only.
+    /// Default value: all.
+    pub detail: LogDetail,
 }
 
 impl Default for LogOptions {
@@ -27,6 +30,7 @@ impl Default for LogOptions {
         Self {
             timings: false,
             mannequin_offset_x: 1.6,
+            detail: LogDetail::All,
         }
     }
 }
@@ -36,6 +40,13 @@ impl LogOptions {
     #[must_use]
     pub fn with_timings(mut self, timings: bool) -> Self {
         self.timings = timings;
+        self
+    }
+
+    /// Sets [`Self::detail`].
+    #[must_use]
+    pub fn with_detail(mut self, detail: LogDetail) -> Self {
+        self.detail = detail;
         self
     }
 
@@ -88,6 +99,19 @@ pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
     v
 }
 
+/// Whether a stage is logged at [`LogDetail::Final`]: the body's mesh, M0 as built and
+/// after its collision, M1 with its cut lines, refusals, and the ends of steps.
+fn is_final(stage: &Stage<'_>) -> bool {
+    match stage {
+        Stage::Body(b) => matches!(b, BodyStage::Mesh(_)),
+        Stage::Garment(g) => !matches!(g, GarmentStage::Part(_, part) if *part != crate::session::GarmentPart::Mesh),
+        Stage::Collision(c) => c.part == crate::session::CollisionPart::Respond,
+        Stage::Constraints(c) => matches!(c, ConstraintStage::Refused { .. }),
+        Stage::M1(_) | Stage::Step(_) => true,
+        _ => false,
+    }
+}
+
 /// The units the metrics are plotted by: the folder under `metrics/` each figure goes to.
 pub const METRIC_UNITS: [(&str, &str); 5] = [
     ("count", "Counts"),
@@ -125,7 +149,7 @@ pub fn metric_path(path: &str) -> String {
 /// a hash map: two runs of the same session would write the same chunks in different
 /// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
 /// leaves one entity per flush, so the file's chunks follow the calls.
-pub struct OrderedRecording(RecordingStream);
+pub struct OrderedRecording(RecordingStream, bool);
 
 impl OrderedRecording {
     /// Logs `data` at `path` on the current timelines, as its own chunk.
@@ -134,6 +158,12 @@ impl OrderedRecording {
         path: impl Into<rerun::EntityPath>,
         data: &AS,
     ) -> Result<(), SinkError> {
+        let path = path.into();
+        // With metrics only (the flag), anything but the metrics, the log and the legends
+        // is left out.
+        if self.1 && !["metrics", "log", "legend"].contains(&path.iter().next().map_or("", |p| p.unescaped_str())) {
+            return Ok(());
+        }
         self.0.log(path, data)?;
         self.0.flush_async()?;
         Ok(())
@@ -162,7 +192,7 @@ impl std::ops::Deref for OrderedRecording {
 impl RerunLogger {
     /// Logs into `rec`; sends the static scene settings (y up, series styles) first.
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
-        let rec = OrderedRecording(rec);
+        let rec = OrderedRecording(rec, options.detail == LogDetail::Metrics);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
         // The mannequin figures are one value per run: markers, polar warm and chord cool.
@@ -217,7 +247,9 @@ impl StageSink for RerunLogger {
     fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
         self.rec.set_time_sequence("step", info.step as i64);
         self.rec.set_time_sequence("stage", info.stage as i64);
-        stage.dispatch(info, self)?;
+        if self.options.detail != LogDetail::Final || is_final(&stage) {
+            stage.dispatch(info, self)?;
+        }
         // Every log call is already its own chunk (OrderedRecording); this sends what is left.
         self.rec.flush_async().map_err(|e| SinkError::Backend {
             what: "rerun flush",

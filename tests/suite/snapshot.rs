@@ -309,3 +309,63 @@ fn two_runs_write_the_same_chunks_in_the_same_order() {
         std::fs::remove_dir_all(&dir).ok();
     }
 }
+
+/// The summary of the demo logged at `detail`.
+fn demo_at(detail: drape::session::LogDetail) -> String {
+    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
+    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
+    {
+        let mut logger = RerunLogger::new(rec, LogOptions::default().with_detail(detail)).unwrap();
+        let report = run_session(&session, &RunOptions::default(), &mut [&mut logger]);
+        assert!(report.error.is_none(), "{:?}", report.error);
+    }
+    summarize(storage.take())
+}
+
+/// `log detail=metrics` keeps only the metrics, the log and the legends; `final` keeps the
+/// final meshes (the body, M0 after its collision, M1, the fit map) and drops the
+/// framework's intermediate stages; both keep every metric of the full recording.
+#[test]
+fn lighter_log_details_keep_the_metrics_and_drop_the_rest() {
+    use drape::session::LogDetail;
+    let entities = |summary: &str| -> Vec<String> {
+        summary
+            .lines()
+            .filter(|l| l.starts_with('/'))
+            .map(str::to_string)
+            .collect()
+    };
+    let all = entities(&demo_summary());
+    let metrics = entities(&demo_at(LogDetail::Metrics));
+    let last = entities(&demo_at(LogDetail::Final));
+    for e in &metrics {
+        assert!(
+            e == "/" || e.starts_with("/metrics") || e.starts_with("/log") || e.starts_with("/legend"),
+            "{e} at detail metrics"
+        );
+    }
+    for e in [
+        "/body/mesh",
+        "/garment/m0",
+        "/garment/m1",
+        "/garment/clearance",
+        "/garment/cut_lines/yoke",
+    ] {
+        assert!(last.iter().any(|x| x == e), "{e} missing at detail final");
+    }
+    for e in [
+        "/garment/curves/rings/waist",
+        "/garment/control_points",
+        "/body/landmarks",
+        "/collision/mesh/hits/E",
+    ] {
+        assert!(!last.iter().any(|x| x.starts_with(e)), "{e} at detail final");
+        assert!(
+            all.iter().any(|x| x.starts_with(e)),
+            "{e} not in the full recording either"
+        );
+    }
+    let metric_entities =
+        |v: &[String]| -> Vec<String> { v.iter().filter(|e| e.starts_with("/metrics")).cloned().collect() };
+    assert_eq!(metric_entities(&metrics), metric_entities(&all));
+}

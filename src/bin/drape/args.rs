@@ -98,6 +98,10 @@ pub(crate) struct RunArgs {
     /// Also log compute timings to the recording (makes recordings differ run to run).
     #[arg(long)]
     pub(crate) log_timings: bool,
+    /// What the recording gets: every stage (all), the final meshes of each step (final), or
+    /// the metrics and the log (metrics) [default: the session's `log detail=`, else all].
+    #[arg(long, value_name = "DETAIL", value_parser = ["all", "final", "metrics"])]
+    pub(crate) log_detail: Option<String>,
     /// Check every collision against the brute-force ground truth (every garment vertex
     /// and edge against every body triangle; a few seconds per step). The figures go to
     /// the log, the metrics and the progress lines.

@@ -8,7 +8,7 @@ use std::process::ExitCode;
 use anyhow::Context as _;
 use drape::session::export::ObjExporter;
 use drape::session::metrics::metrics_json;
-use drape::session::{FailureKind, RunOptions, Shortfall, StageSink, run_session};
+use drape::session::{FailureKind, LogDetail, RunOptions, Shortfall, StageSink, run_session};
 use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
 
 use crate::args::RunArgs;
@@ -47,7 +47,17 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.port);
     }
     eprintln!("running {} ({} step(s))", session.name, session.steps.len());
-    let mut logger = RerunLogger::new(rec, LogOptions::default().with_timings(args.log_timings)).internal()?;
+    let detail = args
+        .log_detail
+        .as_deref()
+        .and_then(LogDetail::from_name)
+        .or(session.scene.log)
+        .unwrap_or_default();
+    let mut logger = RerunLogger::new(
+        rec,
+        LogOptions::default().with_timings(args.log_timings).with_detail(detail),
+    )
+    .internal()?;
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
     let mut progress = Progress;
     let mut options = RunOptions {

@@ -36,4 +36,4 @@ mod suggest;
 pub mod syntax;
 
 pub use parser::parse_session;
-pub use syntax::{Change, Op, ParseError, Scene, Session, Step, Units};
+pub use syntax::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units};

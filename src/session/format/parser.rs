@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::args::{Args, integer_in, number, one_argument, vector};
 use super::lexer::{Line, Token, tokenize};
 use super::suggest::did_you_mean;
-use super::syntax::{Change, Op, ParseError, Scene, Session, Step, Units};
+use super::syntax::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Chains, Edit, SolverOptions, Target};
 use crate::garment::{Fit, TemplateKind};
@@ -16,7 +16,7 @@ use crate::mannequin::MannequinOptions;
 
 mod m1;
 
-const SCENE_KEYWORDS: [&str; 6] = ["drape", "body", "units", "landmark", "solver", "m1"];
+const SCENE_KEYWORDS: [&str; 7] = ["drape", "body", "units", "landmark", "solver", "m1", "log"];
 const STEP_KEYWORDS: [&str; 7] = ["mannequin", "section", "garment", "set", "drag", "undo", "cut"];
 
 /// Parses and validates a session. `name` is used in messages; `base_dir` resolves
@@ -34,6 +34,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         landmark_lines: Vec::new(),
         solver: None,
         m1: None,
+        log: None,
         steps: Vec::new(),
         garment: None,
         undoable: 0,
@@ -59,6 +60,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
             landmarks: p.landmarks,
             solver: p.solver.map_or_else(SolverOptions::default, |s| s.0),
             m1: p.m1.map(|m| m.0),
+            log: p.log.map(|l| l.0),
         },
         steps: p.steps,
     })
@@ -74,6 +76,7 @@ struct Parser<'p> {
     landmark_lines: Vec<(LandmarkKind, usize)>,
     solver: Option<(SolverOptions, usize)>,
     m1: Option<(M1Options, usize)>,
+    log: Option<(LogDetail, usize)>,
     steps: Vec<Step>,
     /// The template of the last `garment` step.
     garment: Option<TemplateKind>,
@@ -105,6 +108,7 @@ impl Parser<'_> {
             "landmark" => return self.landmark(line, rest),
             "solver" => return self.solver(line, head, rest),
             "m1" => return self.m1(line, head, rest),
+            "log" => return self.log(line, head, rest),
             "cut" => self.cut(line, head, rest)?,
             "drag" => self.drag(line, head, rest)?,
             "undo" => self.undo(line, head, rest)?,
@@ -223,6 +227,25 @@ impl Parser<'_> {
         };
         self.landmarks.push((kind, correction));
         self.landmark_lines.push((kind, line.number));
+        Ok(())
+    }
+
+    /// `log detail=all|final|metrics`.
+    fn log(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<(), ParseError> {
+        if let Some((_, first)) = self.log {
+            return Err(line.error(head.column, format!("log is already set on line {first}")));
+        }
+        let a = Args::parse(line, rest, &["detail"], "log")?;
+        let t = a
+            .get("detail")
+            .ok_or_else(|| line.error(line.end_column, "expected detail=all|final|metrics after 'log'"))?;
+        let detail = LogDetail::from_name(t.text).ok_or_else(|| {
+            line.error(
+                t.column,
+                format!("unknown detail '{}': expected all, final or metrics", t.text),
+            )
+        })?;
+        self.log = Some((detail, line.number));
         Ok(())
     }
 

@@ -73,6 +73,40 @@ pub struct Scene {
     pub solver: SolverOptions,
     /// M1 settings (`m1 ...`); `None`: no M1, and none of its work.
     pub m1: Option<M1Options>,
+    /// What the recording gets (`log detail=all|final|metrics`); `None`: the command
+    /// line's choice (all by default).
+    pub log: Option<LogDetail>,
+}
+
+/// How much of a run goes into its recording.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LogDetail {
+    /// Every stage (the default).
+    #[default]
+    All,
+    /// The body's mesh and, per step, the final meshes (M0 after its collision, M1, the cut
+    /// lines, the fit map), the metrics and the log.
+    Final,
+    /// The metrics and the log only.
+    Metrics,
+}
+
+impl LogDetail {
+    /// Name in sessions and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::All => "all",
+            Self::Final => "final",
+            Self::Metrics => "metrics",
+        }
+    }
+
+    /// From its name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::All, Self::Final, Self::Metrics]
+            .into_iter()
+            .find(|d| d.name() == name)
+    }
 }
 
 /// One operation.
