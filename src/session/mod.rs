@@ -22,7 +22,7 @@ pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, StepError};
 pub use format::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
-pub use runner::{RunOptions, RunReport, run_session};
+pub use runner::{LiveSession, RunOptions, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
     M1Stage, RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
