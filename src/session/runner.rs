@@ -65,7 +65,11 @@ pub struct LiveSession<'k, 's> {
 impl<'k, 's> LiveSession<'k, 's> {
     /// Runs the scene of `session` (its steps are ignored); on failure, the report with
     /// the error.
-    pub fn start(session: &Session, options: RunOptions, sinks: &'k mut [&'s mut dyn StageSink]) -> Result<Self, RunReport> {
+    pub fn start(
+        session: &Session,
+        options: RunOptions,
+        sinks: &'k mut [&'s mut dyn StageSink],
+    ) -> Result<Self, Box<RunReport>> {
         let mut out = Emitter::new(sinks);
         let mut report = RunReport::default();
         let mut scope = out.step(0, "scene");
@@ -86,7 +90,7 @@ impl<'k, 's> LiveSession<'k, 's> {
                 let (metrics, error) = scope.fail(&session.name, session.scene.body_line, e);
                 report.steps.push(metrics);
                 report.error = Some(error);
-                Err(report)
+                Err(Box::new(report))
             }
         }
     }
@@ -98,7 +102,7 @@ impl<'k, 's> LiveSession<'k, 's> {
 
     /// Runs one more step. On success it joins the session; on failure its `failed` stage
     /// is emitted, its metrics kept, and the error returned (the garment is as before).
-    pub fn step(&mut self, step: &Step) -> Result<(), RunError> {
+    pub fn step(&mut self, step: &Step) -> Result<(), Box<RunError>> {
         let n = self.session.steps.len() + 1;
         let cx = StepContext {
             session: &self.session,
@@ -116,7 +120,7 @@ impl<'k, 's> LiveSession<'k, 's> {
             Err(e) => {
                 let (metrics, error) = scope.fail(&self.session.name, step.line, e);
                 self.report.steps.push(metrics);
-                Err(error)
+                Err(Box::new(error))
             }
         }
     }
@@ -159,14 +163,14 @@ impl<'k, 's> LiveSession<'k, 's> {
 pub fn run_session(session: &Session, options: &RunOptions, sinks: &mut [&mut dyn StageSink]) -> RunReport {
     let mut live = match LiveSession::start(session, options.clone(), sinks) {
         Ok(live) => live,
-        Err(report) => return report,
+        Err(report) => return *report,
     };
     for step in &session.steps {
         if live.stopped() {
             return live.report;
         }
         if let Err(error) = live.step(step) {
-            live.report.error = Some(error);
+            live.report.error = Some(*error);
             return live.report;
         }
     }

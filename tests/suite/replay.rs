@@ -147,3 +147,50 @@ fn drape_replay_passes_on_its_own_recording_and_fails_on_another_digest() {
     assert!(out.contains("the manifest says 0123456789abcdef"), "{out}");
     std::fs::remove_dir_all(dir.parent().unwrap()).ok();
 }
+
+/// `drape edit` fed through a pipe: malformed lines are reported and change nothing, `save`
+/// writes the steps that ran, and the saved session, run again, logs the same data as the
+/// live run (the recording's own name aside).
+#[test]
+fn a_piped_edit_session_saved_and_replayed_logs_what_the_live_run_logged() {
+    use std::io::Write as _;
+    let dir = std::env::temp_dir().join(format!("drape-edit-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let live = dir.join("live.rrd");
+    let saved = dir.join("saved");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(["edit", "--save", live.to_str().unwrap()])
+        .stdin(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("drape edit starts");
+    let input = format!(
+        "garment jumpsuit fit=tight resolution=3\nset ease 0.008\nfrobnicate y=1\ndrag waist.frnt by=0,0,0.01\n\
+         undo\nundo\ndrag waist.front by=0,0,-0.01\nsave {}\nquit\n",
+        saved.display()
+    );
+    child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+    let out = child.wait_with_output().expect("drape edit ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("unknown statement 'frobnicate'"), "{stderr}");
+    assert!(stderr.contains("did you mean 'waist.front'"), "{stderr}");
+    // The second undo has nothing left to take back: refused by the parser, nothing ran.
+    assert!(stderr.contains("nothing to undo"), "{stderr}");
+    let text = std::fs::read_to_string(saved.join("session.drape")).unwrap();
+    assert_eq!(
+        text,
+        "drape 1\ngarment jumpsuit fit=tight resolution=3\nset ease 0.008\nundo\ndrag waist.front by=0,0,-0.01\n"
+    );
+    let data = |path: &Path| -> Vec<FlatChunk> {
+        drape::viz::replay::read_rrd(path)
+            .expect("reads")
+            .into_iter()
+            .filter(|c| !c.entity.starts_with("/__"))
+            .collect()
+    };
+    let (a, b) = (data(&live), data(&saved.join("recording.rrd")));
+    assert!(a.len() > 100);
+    assert_eq!(first_difference(&a, &b, 0.0), None);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -47,6 +47,10 @@ pub(crate) enum Command {
         /// The session file; without it, the built-in demo.
         session: Option<PathBuf>,
     },
+    /// Edit interactively: type steps (or pipe them) one per line, each applied and logged
+    /// at once; `help`, `show`, `save NAME`, `quit`.
+    #[command(after_help = EXIT_CODES)]
+    Edit(EditArgs),
     /// Run a recorded session (DIR/session.drape) again and compare the new logged data with
     /// the stored recording (DIR/recording.rrd), value by value, or with the digest in
     /// DIR/manifest.json; exit 1 with the first difference (step, stage, entity, component,
@@ -56,6 +60,32 @@ pub(crate) enum Command {
     /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
     /// and print each method's deviation from the true surface per region.
     Mannequin(MannequinArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct EditArgs {
+    /// A session to start from (its scene and steps); without it, the built-in body.
+    pub(crate) session: Option<PathBuf>,
+    /// Write the live recording here.
+    #[arg(long, value_name = "PATH", default_value = "recordings/edit.rrd", conflicts_with_all = ["connect", "serve"])]
+    pub(crate) save: PathBuf,
+    /// A viewer instead of the file.
+    #[command(flatten)]
+    pub(crate) viewer: ViewerArgs,
+}
+
+/// Where a live recording goes instead of a file.
+#[derive(Args, Debug, Default)]
+pub(crate) struct ViewerArgs {
+    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy.
+    #[arg(long, value_name = "URL", conflicts_with = "serve")]
+    pub(crate) connect: Option<String>,
+    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C.
+    #[arg(long)]
+    pub(crate) serve: bool,
+    /// Port for --serve.
+    #[arg(long, default_value_t = 9876, requires = "serve")]
+    pub(crate) port: u16,
 }
 
 #[derive(Args, Debug)]
@@ -80,15 +110,9 @@ pub(crate) struct RunArgs {
     /// Write the recording here [default: recordings/<session name>.rrd].
     #[arg(long, value_name = "PATH", conflicts_with_all = ["connect", "serve"])]
     pub(crate) save: Option<PathBuf>,
-    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy.
-    #[arg(long, value_name = "URL", conflicts_with = "serve")]
-    pub(crate) connect: Option<String>,
-    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C.
-    #[arg(long)]
-    pub(crate) serve: bool,
-    /// Port for --serve.
-    #[arg(long, default_value_t = 9876, requires = "serve")]
-    pub(crate) port: u16,
+    /// A viewer instead of the file.
+    #[command(flatten)]
+    pub(crate) viewer: ViewerArgs,
     /// Write per-step metrics (timings, counts, figures) as a JSON array.
     #[arg(long, value_name = "PATH")]
     pub(crate) metrics: Option<PathBuf>,

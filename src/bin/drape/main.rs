@@ -2,6 +2,7 @@
 //! the mannequin refinements.
 
 mod args;
+mod edit;
 mod failure;
 mod files;
 mod interrupt;
@@ -34,6 +35,7 @@ fn main() -> ExitCode {
         Some(Command::Constraints { session }) => network::constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin::mannequin(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
+        Some(Command::Edit(args)) => edit::edit(&args),
     };
     match result {
         Ok(code) => code,

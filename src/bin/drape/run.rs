@@ -31,10 +31,10 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         .save
         .clone()
         .unwrap_or_else(|| PathBuf::from("recordings").join(format!("{stem}.rrd")));
-    let target = if let Some(url) = &args.connect {
+    let target = if let Some(url) = &args.viewer.connect {
         RecordingTarget::Connect(url.clone())
-    } else if args.serve {
-        RecordingTarget::Serve(args.port)
+    } else if args.viewer.serve {
+        RecordingTarget::Serve(args.viewer.port)
     } else {
         create_parent(&final_path).internal()?;
         RecordingTarget::File(partial_path(&final_path))
@@ -42,9 +42,9 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     let rec = open_recording(&target, &stem)
         .context("cannot open the recording")
         .internal()?;
-    if args.serve {
-        println!("serving on port {}; open it from any machine with:", args.port);
-        println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.port);
+    if args.viewer.serve {
+        println!("serving on port {}; open it from any machine with:", args.viewer.port);
+        println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.viewer.port);
     }
     eprintln!("running {} ({} step(s))", session.name, session.steps.len());
     let detail = args
@@ -94,7 +94,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             args.export.as_deref().unwrap_or(Path::new(".")).display()
         );
     }
-    if args.serve {
+    if args.viewer.serve {
         logger.recording().flush_blocking().ok();
         println!("all data sent; still serving for late viewers. Press Ctrl-C to stop.");
         std::io::stdout().flush().ok();
@@ -102,7 +102,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             std::thread::sleep(std::time::Duration::from_secs(3600));
         }
     }
-    if let Some(url) = &args.connect {
+    if let Some(url) = &args.viewer.connect {
         // Without a listener the SDK would drop the data with only a log line: say so.
         if let Err(e) = logger
             .recording()
