@@ -96,8 +96,16 @@ pub(crate) struct ReplayArgs {
     #[arg(long, default_value_t = 0.0)]
     pub(crate) tolerance: f64,
     /// Record the session into the folder (recording.rrd and manifest.json) instead.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "serve")]
     pub(crate) write: bool,
+    /// Serve the recorded session to viewers (now or later) until Ctrl-C, instead of
+    /// comparing: the session is run again into a gRPC server (the same data, which a
+    /// plain replay proves).
+    #[arg(long)]
+    pub(crate) serve: bool,
+    /// Port for --serve.
+    #[arg(long, default_value_t = 9876, requires = "serve")]
+    pub(crate) port: u16,
 }
 
 #[derive(Args, Debug, Default)]

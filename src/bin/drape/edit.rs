@@ -143,6 +143,8 @@ fn save(to: &str, text: &str) -> anyhow::Result<PathBuf> {
         dir: dir.clone(),
         tolerance: 0.0,
         write: true,
+        serve: false,
+        port: 9876,
     };
     crate::replay::replay(&args).map_err(|f| f.error)?;
     Ok(dir)

@@ -55,6 +55,9 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<ExitCode> {
     if args.write {
         return write(dir);
     }
+    if args.serve {
+        return serve(dir, args.port);
+    }
     let live = run_in_memory(dir)?;
     let name = name_of(dir);
     if rrd.exists() {
@@ -102,6 +105,26 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<ExitCode> {
             dir.display()
         );
         Ok(ExitCode::from(1))
+    }
+}
+
+/// Serves the folder's session to viewers until Ctrl-C.
+fn serve(dir: &Path, port: u16) -> Result<ExitCode> {
+    let session = load_session(Some(&dir.join("session.drape")))?;
+    let rec = open_recording(&RecordingTarget::Serve(port), &name_of(dir))
+        .context("cannot start the server")
+        .internal()?;
+    run_into(&session, rec.clone())?;
+    rec.flush_blocking().ok();
+    println!(
+        "serving {} on port {port}; open it from any machine with:",
+        dir.display()
+    );
+    println!("  rerun rerun+http://{}:{port}/proxy", crate::files::host_name());
+    println!("Press Ctrl-C to stop.");
+    std::io::Write::flush(&mut std::io::stdout()).ok();
+    loop {
+        std::thread::sleep(std::time::Duration::from_secs(3600));
     }
 }
 
