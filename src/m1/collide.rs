@@ -91,7 +91,8 @@ pub fn collide_m1(
     // where M0 has them (both ends pinned), crossing exactly when M0's check said so.
     let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = m1
         .edges()
-        .into_iter()
+        .iter()
+        .copied()
         .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
     let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
         m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();

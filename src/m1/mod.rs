@@ -66,6 +66,8 @@ pub struct M1 {
     pub first: Step,
     /// Vertex count after the first step (its vertices keep their indices in `mesh`).
     pub first_vertices: usize,
+    /// Undirected edges, each once, sorted.
+    pub edges: Vec<[u32; 2]>,
     /// An M0 vertex each M1 vertex descends from (itself for M0's; a corner of the face it
     /// is the centroid of, recursively, for new ones): its partition and roles.
     pub anchor: Vec<u32>,
@@ -81,8 +83,8 @@ impl M1 {
     }
 
     /// Undirected edges of M1, sorted.
-    pub fn edges(&self) -> Vec<[u32; 2]> {
-        undirected_edges(&self.mesh)
+    pub fn edges(&self) -> &[[u32; 2]] {
+        &self.edges
     }
 }
 
@@ -131,6 +133,7 @@ pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M
     smoothed.sort_unstable();
     smoothed.dedup();
     M1 {
+        edges: undirected_edges(&mesh),
         mesh,
         face_patch: patches,
         selection,

@@ -3,10 +3,10 @@
 //! edge rounds lifted (orange, where they crossed), M0 after response, what is left inside
 //! or crossing, and the collision scalars.
 
-use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextDocument, TextLogLevel};
+use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel};
 
-use super::colors::{CLEARANCE_BANDS, clearance_color, partition_color, rule_color};
-use super::logger::{RerunLogger, f32s, to_sink};
+use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
+use super::logger::{RerunLogger, colored_mesh, f32s, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
@@ -16,22 +16,13 @@ impl RerunLogger {
     /// document beside it.
     fn clearance_map(&self, mesh: &crate::mesh::TriMesh, clearance: &[f64]) -> Result<(), SinkError> {
         let rec = self.recording();
-        let colors: Vec<[u8; 3]> = clearance.iter().map(|&d| clearance_color(d)).collect();
-        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
-        rec.log(
-            "garment/clearance",
-            &Mesh3D::new(mesh.positions_f32())
-                .with_triangle_indices(mesh.triangles.iter().copied())
-                .with_vertex_normals(normals)
-                .with_vertex_colors(colors),
-        )
-        .map_err(to_sink)?;
+        let bands: Vec<usize> = clearance.iter().map(|&d| clearance_band(d)).collect();
+        let colors = bands.iter().map(|&k| CLEARANCE_BANDS[k].1).collect();
+        rec.log("garment/clearance", &colored_mesh(mesh, colors))
+            .map_err(to_sink)?;
         let mut counts = [0usize; CLEARANCE_BANDS.len()];
-        for &d in clearance {
-            let mm = d * 1e3;
-            if let Some(k) = CLEARANCE_BANDS.iter().position(|(upper, _, _)| mm < *upper) {
-                counts[k] += 1;
-            }
+        for k in bands {
+            counts[k] += 1;
         }
         let mut text = String::from(
             "## Clearance (fit map)\n\nEach M0 vertex after the response, by its distance to the body.\n\n| colour | band | vertices |\n|---|---|---:|\n",

@@ -74,11 +74,11 @@ pub const CLEARANCE_BANDS: [(f64, [u8; 3], &str); 7] = [
     (f64::INFINITY, [60, 90, 210], "over 40 mm: free"),
 ];
 
-/// The fit-map colour of a clearance `d` (m).
-pub fn clearance_color(d: f64) -> [u8; 3] {
+/// The fit-map band (index into [`CLEARANCE_BANDS`]) of a clearance `d` (m).
+pub fn clearance_band(d: f64) -> usize {
     let mm = d * 1e3;
     CLEARANCE_BANDS
         .iter()
-        .find(|(upper, _, _)| mm < *upper)
-        .map_or(CLEARANCE_BANDS[6].1, |b| b.1)
+        .position(|(upper, _, _)| mm < *upper)
+        .unwrap_or(CLEARANCE_BANDS.len() - 1)
 }

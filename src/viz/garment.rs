@@ -4,7 +4,7 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
-use super::logger::{RerunLogger, closed, f32s, to_sink};
+use super::logger::{RerunLogger, closed, colored_mesh, f32s, to_sink};
 use crate::garment::{Framework, GarmentRing, RingStages};
 use crate::mesh::TriMesh;
 use crate::session::{GarmentPart, RingStep, SinkError};
@@ -291,15 +291,7 @@ impl RerunLogger {
                 }
             }
         }
-        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
-        rec.log(
-            "garment/m0",
-            &Mesh3D::new(mesh.positions_f32())
-                .with_triangle_indices(mesh.triangles.iter().copied())
-                .with_vertex_normals(normals)
-                .with_vertex_colors(colors),
-        )
-        .map_err(to_sink)?;
+        rec.log("garment/m0", &colored_mesh(mesh, colors)).map_err(to_sink)?;
         let lines: Vec<Vec<[f32; 3]>> = edges
             .iter()
             .map(|e| f32s(&[mesh.positions[e[0] as usize], mesh.positions[e[1] as usize]]))

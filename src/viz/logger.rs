@@ -87,6 +87,15 @@ pub(super) fn to_sink(e: impl Into<SinkError>) -> SinkError {
     e.into()
 }
 
+/// A mesh with smooth vertex normals and one colour per vertex.
+pub(super) fn colored_mesh(mesh: &crate::mesh::TriMesh, colors: Vec<[u8; 3]>) -> rerun::Mesh3D {
+    let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
+    rerun::Mesh3D::new(mesh.positions_f32())
+        .with_triangle_indices(mesh.triangles.iter().copied())
+        .with_vertex_normals(normals)
+        .with_vertex_colors(colors)
+}
+
 pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
     points.iter().map(|p| p.as_vec3().to_array()).collect()
 }

@@ -4,11 +4,11 @@
 //! M0, and the M1 scalars.
 
 use glam::DVec3;
-use rerun::{Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
+use rerun::{Clear, LineStrips3D, Points3D, TextLogLevel};
 
 use super::colors::m1_rule_color;
-use super::logger::{RerunLogger, f32s, to_sink};
-use crate::m1::{Rule, undirected_edges};
+use super::logger::{RerunLogger, colored_mesh, f32s, to_sink};
+use crate::m1::Rule;
 use crate::session::{M1Stage, SinkError};
 
 /// Unrefined patches in M1.
@@ -34,16 +34,8 @@ impl RerunLogger {
             positions: positions.clone(),
             triangles: m1.mesh.triangles.clone(),
         };
-        let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
-        rec.log(
-            "garment/m1",
-            &Mesh3D::new(mesh.positions_f32())
-                .with_triangle_indices(mesh.triangles.iter().copied())
-                .with_vertex_normals(normals)
-                .with_vertex_colors(colors),
-        )
-        .map_err(to_sink)?;
-        let edges = undirected_edges(&mesh);
+        rec.log("garment/m1", &colored_mesh(&mesh, colors)).map_err(to_sink)?;
+        let edges = m1.edges();
         let strips = |list: &[[u32; 2]], at: &[DVec3]| -> Vec<Vec<[f32; 3]>> {
             list.iter()
                 .map(|e| f32s(&[at[e[0] as usize], at[e[1] as usize]]))
@@ -51,7 +43,7 @@ impl RerunLogger {
         };
         rec.log(
             "garment/m1/edges",
-            &LineStrips3D::new(strips(&edges, positions))
+            &LineStrips3D::new(strips(edges, positions))
                 .with_radii([0.0003])
                 .with_colors([[70, 70, 80]]),
         )

@@ -29,7 +29,7 @@ struct Collisions(Vec<StepCollision>, Vec<(usize, drape::m1::M1Collision, Vec<[u
 impl StageSink for Collisions {
     fn m1(&mut self, info: &StageInfo, stage: drape::session::M1Stage<'_>) -> Result<(), SinkError> {
         let o = stage.outcome;
-        self.1.push((info.step, o.collision.clone(), o.m1.edges()));
+        self.1.push((info.step, o.collision.clone(), o.m1.edges().to_vec()));
         Ok(())
     }
 

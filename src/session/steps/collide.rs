@@ -10,6 +10,7 @@ use super::super::emit::{Shortfall, StepScope};
 use super::super::runner::RunOptions;
 use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, Stage};
 use super::super::state::GarmentState;
+use super::StepContext;
 use crate::body::Body;
 use crate::collision::{self, AppliedRule, BodyIndex, Collision, GarmentMesh, VerifyReport};
 use crate::m1::M1Options;
@@ -116,8 +117,22 @@ impl<'a> CollisionFigures<'a> {
     }
 }
 
+/// Collides the new garment state's M0 with the body (then builds M1, when the scene asks
+/// for it), records the figures and emits the stages: what every step that makes an M0
+/// ends with.
+pub(super) fn collide_and_emit(
+    scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
+    index: &BodyIndex,
+    state: &mut GarmentState,
+    cx: &StepContext<'_>,
+) {
+    collide_garment(scope, body, index, state, cx.options, cx.session.scene.m1.as_ref());
+    emit_collision(scope, state, index);
+}
+
 /// Collides the state's M0 with the body, recording the figures in the step's metrics.
-pub(super) fn collide_garment(
+fn collide_garment(
     scope: &mut StepScope<'_, '_, '_>,
     body: &Body,
     index: &BodyIndex,

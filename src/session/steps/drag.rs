@@ -10,7 +10,7 @@ use super::super::error::{DragRefusal, StepError};
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
-use super::collide::{collide_garment, emit_collision};
+use super::collide::collide_and_emit;
 use crate::constraint::{self, ConstraintNet, Edit, Solution, SolverOptions};
 use crate::garment::assemble::assemble;
 use crate::garment::{BodyProbe, Framework};
@@ -133,15 +133,7 @@ pub(super) fn run(
                     scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
                 }
             }
-            collide_garment(
-                scope,
-                &state.body,
-                probe.index(),
-                &mut next,
-                cx.options,
-                cx.session.scene.m1.as_ref(),
-            );
-            emit_collision(scope, &next, probe.index());
+            collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
             state.advance(next);
         }
         Err(refusal) => {

@@ -9,7 +9,7 @@ use super::super::error::StepError;
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
-use super::collide::{collide_garment, emit_collision};
+use super::collide::collide_and_emit;
 use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::constraint::{ConstraintNet, NetworkOptions};
@@ -80,15 +80,7 @@ pub(super) fn run(
     }
     next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
     if let Some(probe) = &state.probe {
-        collide_garment(
-            scope,
-            &state.body,
-            probe.index(),
-            &mut next,
-            cx.options,
-            cx.session.scene.m1.as_ref(),
-        );
-        emit_collision(scope, &next, probe.index());
+        collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
     }
     state.garment = Some(next);
     Ok(())

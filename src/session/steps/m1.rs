@@ -108,7 +108,7 @@ pub(super) fn build_m1(
         .collect();
     let verify = options.verify.then(|| {
         scope.timed("m1.verify", || {
-            let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, &built.edges());
+            let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, built.edges());
             M1Verify {
                 inside: truth.inside_count(),
                 crossing: truth.crossing_count(),

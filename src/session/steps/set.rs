@@ -10,7 +10,7 @@ use super::super::format::Change;
 use super::super::stage::{GarmentPart, GarmentStage, Stage};
 use super::super::state::SessionState;
 use super::StepContext;
-use super::collide::{collide_garment, emit_collision};
+use super::collide::collide_and_emit;
 use super::drag::replay_edits;
 use super::garment::solve_garment;
 use crate::garment::FrameworkError;
@@ -120,15 +120,7 @@ pub(super) fn run(
         }
     }
     if let Some(probe) = &state.probe {
-        collide_garment(
-            scope,
-            &state.body,
-            probe.index(),
-            &mut next,
-            cx.options,
-            cx.session.scene.m1.as_ref(),
-        );
-        emit_collision(scope, &next, probe.index());
+        collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
     }
     state.advance(next);
     Ok(())
