@@ -38,13 +38,6 @@ pub struct Shell {
     pub crossing: usize,
 }
 
-impl Shell {
-    /// Number of buried triangles.
-    pub fn buried_count(&self) -> usize {
-        self.buried.iter().filter(|b| **b).count()
-    }
-}
-
 /// Finds the buried triangles of `mesh` (closed, outward-oriented; `neighbours[t][k]` the
 /// triangle across edge `k`, [`NO_NEIGHBOUR`] at a border). `cast(origin, dir, t_min,
 /// t_max)` is the first triangle the ray meets with `t` in `(t_min, t_max]` and

@@ -13,10 +13,6 @@ pub mod cut;
 pub mod select;
 pub mod sqrt3;
 
-use std::collections::BTreeMap;
-
-use glam::DVec3;
-
 pub use collide::{M0Collided, M1Collision, collide_m1};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
@@ -143,30 +139,4 @@ pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M
         first_vertices,
         anchor,
     }
-}
-
-/// Patches of M0 by rule, for figures: the first rule of each refined patch.
-pub fn first_rules(selection: &Selection) -> BTreeMap<u32, Rule> {
-    selection
-        .rules
-        .iter()
-        .enumerate()
-        .filter_map(|(p, r)| r.first().map(|&rule| (p as u32, rule)))
-        .collect()
-}
-
-/// Largest distance from the points to the mesh's surface (brute force over its triangles;
-/// for benchmarks and tests of small meshes).
-pub fn max_deviation(points: &[DVec3], surface: &TriMesh) -> f64 {
-    crate::par::par_map(points.len(), |k| {
-        (0..surface.triangles.len())
-            .map(|t| {
-                crate::geom::closest::closest_on_triangle(points[k], surface.corners(t))
-                    .0
-                    .distance(points[k])
-            })
-            .fold(f64::INFINITY, f64::min)
-    })
-    .into_iter()
-    .fold(0.0, f64::max)
 }
