@@ -2,7 +2,8 @@
 //!
 //! `cargo bench --bench m1` prints, for the demo's tight jumpsuit (ease 4 mm, resolution 6) on each shipped body, one row per variant: M0 alone (with drape's edge
 //! rounds, and with the vertex response only, the paper's M0), and M1 over selected or all
-//! patches, one or two sqrt(3) steps, over the vertex-only M0 (the paper's flow: M1 fixes
+//! patches, one or two sqrt(3) steps, smoothed or not, and the body-edge and angle rules'
+//! thresholds either side of their defaults, over the vertex-only M0 (the paper's flow: M1 fixes
 //! what M0's vertices leave) and over drape's M0. Columns: M1's compute time (median of
 //! repeated runs: selection, subdivision, collision), faces, edges crossing the body after
 //! (exact), and the deviation from a reference fine surface: the same garment at resolution
@@ -14,7 +15,7 @@ use std::path::Path;
 use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
 use drape::collision::{BodyIndex, CollisionOptions, DetectState, GarmentMesh, collide, quality};
 use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
-use drape::m1::{self, M0Collided, M1Options, SelectInput, Selection, Smoothing};
+use drape::m1::{self, M0Collided, M1Options, SelectInput, SelectOptions, Selection, Smoothing};
 use drape::mesh::TriMesh;
 use glam::DVec3;
 
@@ -114,18 +115,31 @@ fn table(path: &Path) {
             mean * 1e3
         );
         let patches = g.patch_curves.len();
-        for (all, steps, smoothing) in [
-            (false, 1, Smoothing::None),
-            (false, 2, Smoothing::None),
-            (true, 1, Smoothing::None),
-            (true, 2, Smoothing::None),
-            (false, 1, Smoothing::Kobbelt),
-            (false, 2, Smoothing::Kobbelt),
+        // (all patches, steps, smoothing, rule thresholds: body edge ratio, angle in degrees)
+        let (k, a) = (SelectOptions::default().body_edge, SelectOptions::default().angle_deg);
+        for (all, steps, smoothing, body_edge, angle) in [
+            (false, 1, Smoothing::None, k, a),
+            (false, 2, Smoothing::None, k, a),
+            (true, 1, Smoothing::None, k, a),
+            (true, 2, Smoothing::None, k, a),
+            (false, 1, Smoothing::Kobbelt, k, a),
+            (false, 2, Smoothing::Kobbelt, k, a),
+            (false, 1, Smoothing::None, 1.5, a),
+            (false, 1, Smoothing::None, 3.0, a),
+            (false, 1, Smoothing::None, k, 15.0),
+            (false, 1, Smoothing::None, k, 45.0),
         ] {
             let mut options = M1Options::default();
             options.all_patches = all;
             options.steps = steps;
             options.smoothing = smoothing;
+            options.select.body_edge = body_edge;
+            options.select.angle_deg = angle;
+            let thresholds = if (body_edge, angle) == (k, a) {
+                String::new()
+            } else {
+                format!(", body {body_edge}, angle {angle}")
+            };
             let run = || {
                 let selection = if all {
                     Selection::all(patches)
@@ -158,7 +172,7 @@ fn table(path: &Path) {
             };
             let (max, p95, mean) = deviation(&out, &reference);
             println!(
-                "| {m0_name} | {} patches ({}), {steps} step{}{} | {ms:.1} | {} | {} -> {} | {:.2} / {:.2} / {:.2} |",
+                "| {m0_name} | {} patches ({}), {steps} step{}{}{thresholds} | {ms:.1} | {} | {} -> {} | {:.2} / {:.2} / {:.2} |",
                 if all { "all" } else { "selected" },
                 built.selection.count(),
                 if steps == 2 { "s" } else { "" },
