@@ -1,6 +1,8 @@
-//! Where a recording goes: a file, a remote viewer, a gRPC server viewers join, or memory.
+//! Where a recording goes: a file, a remote viewer, a gRPC server viewers join (with the
+//! web viewer served beside it if asked), or memory.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
 
 use rerun::{RecordingStream, RecordingStreamBuilder, RecordingStreamResult};
 
@@ -28,18 +30,114 @@ fn batcher() -> rerun::log::ChunkBatcherConfig {
 /// derived from `name` and chunks that follow the log calls, so the same session logs the
 /// same data.
 pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamResult<RecordingStream> {
+    open_recording_kept(target, name, None).map(|(rec, _)| rec)
+}
+
+/// [`open_recording`], with a copy of everything logged also written to the file `keep` when
+/// the target is a viewer or a server: if the viewer goes away mid-session, the session goes
+/// on and the file holds every step. The file is closed by [`KeptFile::close`], which does
+/// not wait for the viewer (a file target ignores `keep` and returns no [`KeptFile`]).
+pub fn open_recording_kept(
+    target: &RecordingTarget,
+    name: &str,
+    keep: Option<&Path>,
+) -> RecordingStreamResult<(RecordingStream, Option<KeptFile>)> {
     let builder = RecordingStreamBuilder::new(APP_ID)
         .recording_id(format!("drape-{name}"))
         .recording_name(name)
         .batcher_config(batcher())
         .with_blueprint(default_blueprint());
-    let rec = match target {
-        RecordingTarget::File(path) => builder.save(path)?,
-        RecordingTarget::Connect(url) => builder.connect_grpc_opts(url.as_str())?,
-        RecordingTarget::Serve(port) => builder.serve_grpc_opts("0.0.0.0", *port, rerun::ServerOptions::default())?,
+    let kept = match (target, keep) {
+        (RecordingTarget::File(_), _) | (_, None) => None,
+        (_, Some(file)) => Some(KeptFile::new(rerun::sink::FileSink::new(file)?)),
+    };
+    let rec = match (target, &kept) {
+        (RecordingTarget::File(path), _) => builder.save(path)?,
+        (RecordingTarget::Connect(url), None) => builder.connect_grpc_opts(url.as_str())?,
+        (RecordingTarget::Connect(url), Some(file)) => {
+            let rerun::external::re_uri::RedapUri::Proxy(uri) = url.parse()? else {
+                return Err(rerun::RecordingStreamError::NotAProxyEndpoint);
+            };
+            let sinks: Vec<Box<dyn rerun::sink::LogSink>> =
+                vec![Box::new(file.clone()), Box::new(rerun::sink::GrpcSink::new(uri))];
+            builder.set_sinks(sinks)?
+        }
+        (RecordingTarget::Serve(port), None) => {
+            builder.serve_grpc_opts("0.0.0.0", *port, rerun::ServerOptions::default())?
+        }
+        (RecordingTarget::Serve(port), Some(file)) => {
+            let server = rerun::grpc_server::GrpcServerSink::new("0.0.0.0", *port, rerun::ServerOptions::default())
+                .map_err(|e| rerun::RecordingStreamError::WebSink(e.into()))?;
+            let sinks: Vec<Box<dyn rerun::sink::LogSink>> = vec![Box::new(file.clone()), Box::new(server)];
+            builder.set_sinks(sinks)?
+        }
     };
     rec.set_log_time_enabled(false);
-    Ok(rec)
+    Ok((rec, kept))
+}
+
+/// The file copy of a recording that goes to a viewer or a server: a sink beside the
+/// viewer's, closed on its own so that a viewer that went away (whose sink would wait for it
+/// for good when dropped) cannot keep the file from being finished.
+#[derive(Clone, Default)]
+pub struct KeptFile(Arc<Mutex<Option<rerun::sink::FileSink>>>);
+
+/// How closing a [`KeptFile`] went for the viewer (the file is closed either way).
+#[derive(Debug)]
+pub enum ViewerFlush {
+    /// The viewer or server got everything.
+    Delivered,
+    /// The viewer went away or failed; the file has everything.
+    Failed(rerun::sink::SinkFlushError),
+    /// The viewer did not take the data in time: the file may lack the last of it.
+    TimedOut,
+}
+
+impl KeptFile {
+    fn new(file: rerun::sink::FileSink) -> Self {
+        Self(Arc::new(Mutex::new(Some(file))))
+    }
+
+    /// Flushes the stream (every message logged so far reaches this sink, in order, before
+    /// the flush completes or fails at the viewer's sink), then writes the file's end and
+    /// closes it. What is logged afterwards goes to the viewer only.
+    pub fn close(&self, rec: &RecordingStream, timeout: std::time::Duration) -> ViewerFlush {
+        let outcome = match rec.flush_with_timeout(timeout) {
+            Ok(()) => ViewerFlush::Delivered,
+            Err(rerun::sink::SinkFlushError::Timeout) => ViewerFlush::TimedOut,
+            Err(e) => ViewerFlush::Failed(e),
+        };
+        let file = self.0.lock().ok().and_then(|mut slot| slot.take());
+        if let Some(file) = file {
+            rerun::sink::LogSink::flush_blocking(&file, timeout).ok();
+            drop(file); // writes the footer
+        }
+        outcome
+    }
+}
+
+impl rerun::sink::LogSink for KeptFile {
+    fn send(&self, msg: rerun::log::LogMsg) {
+        if let Ok(slot) = self.0.lock()
+            && let Some(file) = slot.as_ref()
+        {
+            file.send(msg);
+        }
+    }
+
+    fn flush_blocking(&self, timeout: std::time::Duration) -> Result<(), rerun::sink::SinkFlushError> {
+        match self.0.lock() {
+            Ok(slot) => match slot.as_ref() {
+                Some(file) => rerun::sink::LogSink::flush_blocking(file, timeout),
+                None => Ok(()),
+            },
+            Err(_) => Err(rerun::sink::SinkFlushError::failed("file sink poisoned")),
+        }
+    }
+
+    fn defers_finalization_to_shutdown(&self) -> bool {
+        true
+    }
 }
 
 /// An in-memory recording for tests, set up like [`open_recording`].
@@ -52,3 +150,24 @@ pub fn memory_recording(name: &str) -> RecordingStreamResult<(RecordingStream, r
     rec.set_log_time_enabled(false);
     Ok((rec, storage))
 }
+
+/// Serves Rerun's web viewer (shipped inside the binary) over HTTP on `web_port`, set to
+/// load the gRPC server on `grpc_port` of the same host: a browser is all a remote person
+/// needs. Returns the server (it stops when dropped) and the URL to open.
+pub fn serve_web_viewer(
+    grpc_port: u16,
+    web_port: u16,
+    host: &str,
+) -> Result<(re_web_viewer_server::WebViewerServer, String), WebViewerError> {
+    let server = rerun::serve_web_viewer(rerun::web_viewer::WebViewerConfig {
+        bind_ip: "0.0.0.0".to_owned(),
+        web_port: re_web_viewer_server::WebViewerServerPort(web_port),
+        open_browser: false,
+        ..Default::default()
+    })?;
+    let url = format!("http://{host}:{web_port}/?url=rerun%2Bhttp://{host}:{grpc_port}/proxy");
+    Ok((server, url))
+}
+
+/// The web viewer could not be served (the port is taken, most often).
+pub type WebViewerError = re_web_viewer_server::WebViewerServerError;

@@ -13,6 +13,7 @@ mod mannequin;
 mod meshes;
 mod obj_errors;
 mod refusals;
+mod remote;
 mod replay;
 mod resample;
 mod sections;

@@ -66,26 +66,36 @@ pub(crate) enum Command {
 pub(crate) struct EditArgs {
     /// A session to start from (its scene and steps); without it, the built-in body.
     pub(crate) session: Option<PathBuf>,
-    /// Write the live recording here.
-    #[arg(long, value_name = "PATH", default_value = "recordings/edit.rrd", conflicts_with_all = ["connect", "serve"])]
+    /// Write the live recording here (also with a viewer or a server: it keeps everything
+    /// if the viewer goes away).
+    #[arg(long, value_name = "PATH", default_value = "recordings/edit.rrd")]
     pub(crate) save: PathBuf,
     /// A viewer instead of the file.
     #[command(flatten)]
     pub(crate) viewer: ViewerArgs,
 }
 
-/// Where a live recording goes instead of a file.
+/// Where a live recording goes besides its file.
 #[derive(Args, Debug, Default)]
 pub(crate) struct ViewerArgs {
-    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy.
-    #[arg(long, value_name = "URL", conflicts_with = "serve")]
+    /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy (the file is written
+    /// too, and keeps everything if the viewer goes away).
+    #[arg(long, value_name = "URL", conflicts_with_all = ["serve", "serve_web"])]
     pub(crate) connect: Option<String>,
-    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C.
+    /// Serve the recording over gRPC for viewers to join (now or later) until Ctrl-C; the
+    /// file is closed when serving stops.
     #[arg(long)]
     pub(crate) serve: bool,
-    /// Port for --serve.
-    #[arg(long, default_value_t = 9876, requires = "serve")]
+    /// As --serve, and serve Rerun's web viewer over HTTP too: a browser is all a remote
+    /// person needs (open the printed URL).
+    #[arg(long, conflicts_with = "serve")]
+    pub(crate) serve_web: bool,
+    /// gRPC port for --serve and --serve-web.
+    #[arg(long, default_value_t = 9876)]
     pub(crate) port: u16,
+    /// HTTP port of the web viewer for --serve-web.
+    #[arg(long, default_value_t = 9090, requires = "serve_web")]
+    pub(crate) web_port: u16,
 }
 
 #[derive(Args, Debug)]
@@ -103,9 +113,15 @@ pub(crate) struct ReplayArgs {
     /// plain replay proves).
     #[arg(long)]
     pub(crate) serve: bool,
-    /// Port for --serve.
-    #[arg(long, default_value_t = 9876, requires = "serve")]
+    /// As --serve, and serve Rerun's web viewer over HTTP too (open the printed URL).
+    #[arg(long, conflicts_with_all = ["serve", "write"])]
+    pub(crate) serve_web: bool,
+    /// gRPC port for --serve and --serve-web.
+    #[arg(long, default_value_t = 9876)]
     pub(crate) port: u16,
+    /// HTTP port of the web viewer for --serve-web.
+    #[arg(long, default_value_t = 9090, requires = "serve_web")]
+    pub(crate) web_port: u16,
 }
 
 #[derive(Args, Debug, Default)]
@@ -115,8 +131,9 @@ pub(crate) struct RunArgs {
     /// Use this body OBJ (metres, y up, facing +z) instead of the session's.
     #[arg(long, value_name = "OBJ")]
     pub(crate) body: Option<PathBuf>,
-    /// Write the recording here [default: recordings/<session name>.rrd].
-    #[arg(long, value_name = "PATH", conflicts_with_all = ["connect", "serve"])]
+    /// Write the recording here [default: recordings/<session name>.rrd] (also with a viewer
+    /// or a server: it keeps everything if the viewer goes away).
+    #[arg(long, value_name = "PATH")]
     pub(crate) save: Option<PathBuf>,
     /// A viewer instead of the file.
     #[command(flatten)]

@@ -5,17 +5,18 @@
 //! `show`, `save NAME` (writes `recordings/NAME/` with the session file, its recording and
 //! manifest; a NAME with a `/` is a folder path), `quit`. `undo` is a step like any other.
 
-use std::io::{BufRead, Write as _};
+use std::io::BufRead as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use anyhow::Context as _;
 use drape::session::{LiveSession, RunOptions, StageSink, parse_session};
-use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+use drape::viz::{LogOptions, RerunLogger};
 
 use crate::args::EditArgs;
 use crate::failure::{Classify, Result};
-use crate::files::{partial_path, write_atomic};
+use crate::files::write_atomic;
+use crate::live::open_live;
 use crate::progress::Progress;
 
 const HELP: &str = "Type a step in the session syntax, e.g.\n  garment jumpsuit fit=tight resolution=6\n  set waist_girth +0.02\n  drag waist.front by=0,0,-0.01\n  undo\nCommands: help, show (the session so far), save NAME (recordings/NAME/: session, \
@@ -36,15 +37,8 @@ pub(crate) fn edit(args: &EditArgs) -> Result<ExitCode> {
     }
     let name = "edit";
     let session = parse_session(&text, name, &base).bad_input()?;
-    let target = match (&args.viewer.connect, args.viewer.serve) {
-        (Some(url), _) => RecordingTarget::Connect(url.clone()),
-        (None, true) => RecordingTarget::Serve(args.viewer.port),
-        (None, false) => RecordingTarget::File(partial_path(&args.save)),
-    };
-    let rec = open_recording(&target, name)
-        .context("cannot open the recording")
-        .internal()?;
-    let mut logger = RerunLogger::new(rec, LogOptions::default()).internal()?;
+    let live_rec = open_live(&args.viewer, Some(&args.save), name)?;
+    let mut logger = RerunLogger::new(live_rec.rec.clone(), LogOptions::default()).internal()?;
     let mut progress = Progress;
     let mut sinks: Vec<&mut dyn StageSink> = vec![&mut progress, &mut logger];
     let options = RunOptions {
@@ -72,14 +66,8 @@ pub(crate) fn edit(args: &EditArgs) -> Result<ExitCode> {
             Err(e) => eprintln!("error: {e}"),
         }
     }
-    let stdin = std::io::stdin();
-    let prompt = || {
-        eprint!("drape> ");
-        std::io::stderr().flush().ok();
-    };
-    prompt();
-    for line in stdin.lock().lines() {
-        let line = line.context("cannot read the input").internal()?;
+    let mut input = LineSource::new();
+    while let Some(line) = input.next_line().internal()? {
         let typed = line.trim();
         match typed.split_whitespace().next() {
             None => {}
@@ -110,17 +98,21 @@ pub(crate) fn edit(args: &EditArgs) -> Result<ExitCode> {
                 }
             }
         }
-        prompt();
     }
     eprintln!();
+    input.save_history();
     let report = live.finish();
     drop(sinks);
     drop(logger);
-    if let RecordingTarget::File(partial) = &target {
-        std::fs::rename(partial, &args.save)
-            .with_context(|| format!("cannot rename {}", partial.display()))
-            .internal()?;
-        eprintln!("recording: {}", args.save.display());
+    // A server keeps serving late viewers until Ctrl-C (the handler is installed only now,
+    // so that Ctrl-C while typing still ends the program at once).
+    let stop = if args.viewer.serve || args.viewer.serve_web {
+        crate::interrupt::stop_flag()
+    } else {
+        std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true))
+    };
+    if let Some(path) = live_rec.finish(&stop)? {
+        eprintln!("recording: {}", path.display());
     }
     Ok(if report.error.is_some() {
         ExitCode::from(1)
@@ -144,8 +136,62 @@ fn save(to: &str, text: &str) -> anyhow::Result<PathBuf> {
         tolerance: 0.0,
         write: true,
         serve: false,
+        serve_web: false,
         port: 9876,
+        web_port: 9090,
     };
     crate::replay::replay(&args).map_err(|f| f.error)?;
     Ok(dir)
+}
+
+/// Where typed lines come from: a terminal, with line editing and a history kept across
+/// sessions (`~/.drape_history`), or a pipe, read plainly.
+enum LineSource {
+    Terminal(Box<rustyline::DefaultEditor>),
+    Pipe(std::io::Lines<std::io::StdinLock<'static>>),
+}
+
+/// The history file of `drape edit` at a terminal.
+fn history_path() -> Option<PathBuf> {
+    std::env::var_os("HOME").map(|h| Path::new(&h).join(".drape_history"))
+}
+
+impl LineSource {
+    fn new() -> Self {
+        use std::io::IsTerminal as _;
+        if std::io::stdin().is_terminal()
+            && let Ok(mut editor) = rustyline::DefaultEditor::new()
+        {
+            if let Some(path) = history_path() {
+                editor.load_history(&path).ok(); // none yet is fine
+            }
+            return Self::Terminal(Box::new(editor));
+        }
+        Self::Pipe(std::io::stdin().lock().lines())
+    }
+
+    /// The next line, or `None` at the end of the input (Ctrl-D, or Ctrl-C at the prompt).
+    fn next_line(&mut self) -> anyhow::Result<Option<String>> {
+        match self {
+            Self::Terminal(editor) => match editor.readline("drape> ") {
+                Ok(line) => {
+                    if !line.trim().is_empty() {
+                        editor.add_history_entry(line.as_str()).ok();
+                    }
+                    Ok(Some(line))
+                }
+                Err(rustyline::error::ReadlineError::Eof | rustyline::error::ReadlineError::Interrupted) => Ok(None),
+                Err(e) => Err(anyhow::anyhow!(e).context("cannot read the terminal")),
+            },
+            Self::Pipe(lines) => lines.next().transpose().context("cannot read the input"),
+        }
+    }
+
+    fn save_history(&mut self) {
+        if let (Self::Terminal(editor), Some(path)) = (self, history_path())
+            && let Err(e) = editor.save_history(&path)
+        {
+            eprintln!("note: history not saved to {}: {e}", path.display());
+        }
+    }
 }

@@ -6,6 +6,7 @@ mod edit;
 mod failure;
 mod files;
 mod interrupt;
+mod live;
 mod mannequin;
 mod network;
 mod progress;

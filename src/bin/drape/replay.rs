@@ -55,8 +55,8 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<ExitCode> {
     if args.write {
         return write(dir);
     }
-    if args.serve {
-        return serve(dir, args.port);
+    if args.serve || args.serve_web {
+        return serve(dir, args);
     }
     let live = run_in_memory(dir)?;
     let name = name_of(dir);
@@ -108,24 +108,22 @@ pub(crate) fn replay(args: &ReplayArgs) -> Result<ExitCode> {
     }
 }
 
-/// Serves the folder's session to viewers until Ctrl-C.
-fn serve(dir: &Path, port: u16) -> Result<ExitCode> {
+/// Serves the folder's session to viewers (and the web viewer with `--serve-web`) until
+/// Ctrl-C.
+fn serve(dir: &Path, args: &ReplayArgs) -> Result<ExitCode> {
     let session = load_session(Some(&dir.join("session.drape")))?;
-    let rec = open_recording(&RecordingTarget::Serve(port), &name_of(dir))
-        .context("cannot start the server")
-        .internal()?;
-    run_into(&session, rec.clone())?;
-    rec.flush_blocking().ok();
-    println!(
-        "serving {} on port {port}; open it from any machine with:",
-        dir.display()
-    );
-    println!("  rerun rerun+http://{}:{port}/proxy", crate::files::host_name());
-    println!("Press Ctrl-C to stop.");
-    std::io::Write::flush(&mut std::io::stdout()).ok();
-    loop {
-        std::thread::sleep(std::time::Duration::from_secs(3600));
-    }
+    let viewer = crate::args::ViewerArgs {
+        serve: args.serve,
+        serve_web: args.serve_web,
+        port: args.port,
+        web_port: args.web_port,
+        connect: None,
+    };
+    let stop = crate::interrupt::stop_flag();
+    let live = crate::live::open_live(&viewer, None, &name_of(dir))?;
+    run_into(&session, live.rec.clone())?;
+    live.finish(&stop)?;
+    Ok(ExitCode::SUCCESS)
 }
 
 /// Records the session into the folder: `recording.rrd` and `manifest.json`.

@@ -1,19 +1,18 @@
 //! `drape run`: a session (the demo by default) run into its sinks: the recording (a file,
 //! a viewer, or a server viewers join), the progress lines, the metrics and the export.
 
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::Context as _;
 use drape::session::export::ObjExporter;
 use drape::session::metrics::metrics_json;
 use drape::session::{FailureKind, LogDetail, RunOptions, Shortfall, StageSink, run_session};
-use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+use drape::viz::{LogOptions, RerunLogger};
 
 use crate::args::RunArgs;
 use crate::failure::{Classify, Result};
-use crate::files::{create_parent, host_name, partial_path, session_stem, write_atomic};
+use crate::files::{session_stem, write_atomic};
+use crate::live::open_live;
 use crate::load_session;
 use crate::progress::Progress;
 
@@ -25,27 +24,15 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         return Err(anyhow::anyhow!("--body {}: no such file", body.display())).bad_input();
     }
     let stem = session_stem(&session);
-    // A file recording is written beside its final name and renamed at the end, so a run
-    // that dies midway never leaves a broken file where a good one was.
+    // The recording is written beside its final name and renamed at the end, so a run that
+    // dies midway never leaves a broken file where a good one was; with a viewer or a
+    // server the file is written too and keeps everything if the viewer goes away.
     let final_path = args
         .save
         .clone()
         .unwrap_or_else(|| PathBuf::from("recordings").join(format!("{stem}.rrd")));
-    let target = if let Some(url) = &args.viewer.connect {
-        RecordingTarget::Connect(url.clone())
-    } else if args.viewer.serve {
-        RecordingTarget::Serve(args.viewer.port)
-    } else {
-        create_parent(&final_path).internal()?;
-        RecordingTarget::File(partial_path(&final_path))
-    };
-    let rec = open_recording(&target, &stem)
-        .context("cannot open the recording")
-        .internal()?;
-    if args.viewer.serve {
-        println!("serving on port {}; open it from any machine with:", args.viewer.port);
-        println!("  rerun rerun+http://{}:{}/proxy", host_name(), args.viewer.port);
-    }
+    let stop = crate::interrupt::stop_flag();
+    let live = open_live(&args.viewer, Some(&final_path), &stem)?;
     eprintln!("running {} ({} step(s))", session.name, session.steps.len());
     let detail = args
         .log_detail
@@ -54,7 +41,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         .or(session.scene.log)
         .unwrap_or_default();
     let mut logger = RerunLogger::new(
-        rec,
+        live.rec.clone(),
         LogOptions::default().with_timings(args.log_timings).with_detail(detail),
     )
     .internal()?;
@@ -64,7 +51,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         body_override: args.body.clone(),
         verify: args.verify,
         max_input_bytes: crate::max_input_bytes(),
-        stop: Some(crate::interrupt::stop_flag()),
+        stop: Some(stop.clone()),
         ..RunOptions::default()
     };
     if args.brute_force {
@@ -94,37 +81,9 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             args.export.as_deref().unwrap_or(Path::new(".")).display()
         );
     }
-    if args.viewer.serve {
-        logger.recording().flush_blocking().ok();
-        println!("all data sent; still serving for late viewers. Press Ctrl-C to stop.");
-        std::io::stdout().flush().ok();
-        loop {
-            std::thread::sleep(std::time::Duration::from_secs(3600));
-        }
-    }
-    if let Some(url) = &args.viewer.connect {
-        // Without a listener the SDK would drop the data with only a log line: say so.
-        if let Err(e) = logger
-            .recording()
-            .flush_with_timeout(std::time::Duration::from_secs(10))
-        {
-            eprintln!("error: the recording could not be delivered to {url}: {e}");
-            // Dropping a gRPC stream that never connected waits on its sender thread for
-            // good; metrics and exports are written already, so leave without it.
-            std::process::exit(i32::from(FailureKind::Internal.exit_code()));
-        }
-        eprintln!("recording sent to {url}");
-    }
-    drop(logger); // closes the file sink (writes its footer)
-    if let RecordingTarget::File(partial) = &target {
-        std::fs::rename(partial, &final_path)
-            .with_context(|| format!("cannot rename {} to {}", partial.display(), final_path.display()))
-            .internal()?;
-        eprintln!(
-            "recording: {} (view: rerun {})",
-            final_path.display(),
-            final_path.display()
-        );
+    drop(logger);
+    if let Some(path) = live.finish(&stop)? {
+        eprintln!("recording: {} (view: rerun {})", path.display(), path.display());
     }
     if let Some(after) = report.interrupted {
         eprintln!("interrupted after step {after}: the recording holds every step before the signal");

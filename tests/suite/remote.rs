@@ -1,0 +1,184 @@
+//! Remote viewing: Rerun's web viewer served by `--serve-web` shows the scene in headless
+//! Chromium, and a viewer that goes away mid-session leaves the session working and the
+//! file whole.
+
+use std::io::{BufRead as _, BufReader, Write as _};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+
+use drape::viz::replay::{FlatChunk, first_difference, read_rrd};
+
+/// A TCP port nobody listens on now (the OS picks it).
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .and_then(|l| l.local_addr())
+        .map(|a| a.port())
+        .expect("a free port")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("drape-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Starts `drape ARGS` and waits until it says it is serving late viewers; returns the
+/// child and what it printed.
+fn serving(args: &[&str]) -> (Child, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("drape starts");
+    let stdout = child.stdout.take().expect("stdout");
+    let mut printed = String::new();
+    for line in BufReader::new(stdout).lines() {
+        let line = line.expect("utf-8");
+        printed.push_str(&line);
+        printed.push('\n');
+        if line.contains("still serving") {
+            return (child, printed);
+        }
+    }
+    panic!("drape never said it was serving: {printed}");
+}
+
+fn interrupt(child: &mut Child) -> Option<i32> {
+    Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill runs");
+    child.wait().expect("drape ends").code()
+}
+
+/// The Python with Playwright that `scripts/setup-browser` prepares.
+fn browser_python() -> PathBuf {
+    std::env::var_os("DRAPE_TOOLS_PYTHON").map_or_else(
+        || {
+            Path::new(&std::env::var_os("HOME").unwrap_or_default())
+                .join(".cache/drape-tools/venv/bin/python")
+        },
+        PathBuf::from,
+    )
+}
+
+/// The web viewer drape serves, opened in Debian's Chromium (headless, software WebGL),
+/// shows the demo's scene: the 3D views hold the strongly coloured garment and body that an
+/// empty viewer does not (`scripts/web_check.py`; its docstring gives the measure). Then
+/// Ctrl-C stops the server and the file holds the same data as a plain run.
+#[test]
+fn the_web_viewer_served_by_drape_shows_the_scene_in_headless_chromium() {
+    let python = browser_python();
+    assert!(
+        python.exists() && Path::new("/usr/bin/chromium").exists(),
+        "the browser test needs Chromium and Playwright: run scripts/setup-browser (the README's \
+         test command does), or set DRAPE_TOOLS_PYTHON to a Python with playwright"
+    );
+    let dir = scratch("web");
+    let (grpc, web) = (free_port(), free_port());
+    let served = dir.join("served.rrd");
+    let (mut child, printed) = serving(&[
+        "run",
+        "--serve-web",
+        "--port",
+        &grpc.to_string(),
+        "--web-port",
+        &web.to_string(),
+        "--save",
+        served.to_str().unwrap(),
+    ]);
+    assert!(printed.contains(&format!(":{web}/?url=rerun%2Bhttp://")), "{printed}");
+    let url = format!("http://localhost:{web}/?url=rerun%2Bhttp://localhost:{grpc}/proxy");
+    let shot = dir.join("web.png");
+    let check = Command::new(&python)
+        .arg(concat!(env!("CARGO_MANIFEST_DIR"), "/scripts/web_check.py"))
+        .args([url.as_str(), shot.to_str().unwrap()])
+        .output()
+        .expect("the browser check runs");
+    let report = String::from_utf8_lossy(&check.stdout);
+    let code = interrupt(&mut child);
+    assert!(
+        check.status.success(),
+        "the browser never showed the scene (screenshot {}): {report}{}",
+        shot.display(),
+        String::from_utf8_lossy(&check.stderr)
+    );
+    assert_eq!(code, Some(0));
+    let plain = dir.join("plain.rrd");
+    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(["run", "--save", plain.to_str().unwrap()])
+        .output()
+        .expect("drape runs");
+    assert!(out.status.success());
+    assert_eq!(first_difference(&data(&plain), &data(&served), 0.0), None);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+fn data(path: &Path) -> Vec<FlatChunk> {
+    read_rrd(path)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+        .into_iter()
+        .filter(|c| !c.entity.starts_with("/__"))
+        .collect()
+}
+
+/// `drape edit --connect` to a viewer (here a drape server, which takes writes like any
+/// Rerun proxy) that is killed after the first steps: the remaining lines still run, and the
+/// file holds exactly what the same lines log with no viewer at all.
+#[test]
+fn a_viewer_that_goes_away_mid_edit_loses_nothing_from_the_file() {
+    let dir = scratch("viewer-gone");
+    let port = free_port();
+    let empty = dir.join("empty.drape");
+    std::fs::write(&empty, "drape 1\n").unwrap();
+    let (mut viewer, _) = serving(&[
+        "run",
+        empty.to_str().unwrap(),
+        "--serve",
+        "--port",
+        &port.to_string(),
+        "--save",
+        dir.join("viewer.rrd").to_str().unwrap(),
+    ]);
+    let first = "garment jumpsuit fit=tight resolution=3\nset ease 0.008\n";
+    let rest = "drag waist.front by=0,0,-0.01\nundo\nset waist_girth +0.02\nquit\n";
+    let live = dir.join("live.rrd");
+    let url = format!("rerun+http://127.0.0.1:{port}/proxy");
+    let mut edit = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(["edit", "--connect", &url, "--save", live.to_str().unwrap()])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("drape edit starts");
+    let mut stdin = edit.stdin.take().expect("stdin");
+    stdin.write_all(first.as_bytes()).unwrap();
+    stdin.flush().unwrap();
+    std::thread::sleep(std::time::Duration::from_secs(2));
+    viewer.kill().expect("the viewer goes away");
+    viewer.wait().ok();
+    stdin.write_all(rest.as_bytes()).unwrap();
+    drop(stdin);
+    let out = edit.wait_with_output().expect("drape edit ends");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("step 5 set"), "the last line ran: {stderr}");
+
+    let alone = dir.join("alone.rrd");
+    let mut edit = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .args(["edit", "--save", alone.to_str().unwrap()])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("drape edit starts");
+    edit.stdin
+        .take()
+        .expect("stdin")
+        .write_all(format!("{first}{rest}").as_bytes())
+        .unwrap();
+    assert!(edit.wait().expect("drape edit ends").success());
+    let (a, b) = (data(&alone), data(&live));
+    assert!(a.len() > 100, "{} chunks", a.len());
+    assert_eq!(first_difference(&a, &b, 0.0), None);
+    std::fs::remove_dir_all(&dir).ok();
+}
