@@ -117,6 +117,8 @@ def main() -> int:
     ap.add_argument("--eye", required=True)
     ap.add_argument("--target", required=True)
     ap.add_argument("--contents", nargs="*", default=["+ /body/mesh", "+ /garment/m0/**", "+ /collision/mesh/**", "+ /collision/guarantee"])
+    ap.add_argument("--text", nargs="*", default=[],
+                    help="text documents to show beside the 3D view (entity paths, e.g. /legend/partitions)")
     a = ap.parse_args()
 
     from rerun.experimental import ViewerClient
@@ -159,9 +161,13 @@ def main() -> int:
         time.sleep(3.0)
         eye = [float(x) for x in a.eye.split(",")]
         tgt = [float(x) for x in a.target.split(",")]
+        view = rrb.Spatial3DView(name="close", origin="/", contents=a.contents,
+                                 eye_controls=rrb.EyeControls3D(position=eye, look_target=tgt, eye_up=[0.0, 1.0, 0.0]))
+        if a.text:
+            docs = [rrb.TextDocumentView(name=t.rsplit("/", 1)[-1], origin=t) for t in a.text]
+            view = rrb.Horizontal(view, rrb.Vertical(*docs), column_shares=[3, 2])
         bp = rrb.Blueprint(
-            rrb.Spatial3DView(name="close", origin="/", contents=a.contents,
-                              eye_controls=rrb.EyeControls3D(position=eye, look_target=tgt, eye_up=[0.0, 1.0, 0.0])),
+            view,
             rrb.TimePanel(timeline="stage", play_state="following"),
             collapse_panels=True,
         )

@@ -9,8 +9,10 @@ web viewer served by drape; it loads the data from drape's gRPC server. Every fe
 1280x800 screenshot is taken; the check passes when the 3D views hold the garment and the
 body: strongly coloured pixels (saturation >= 0.45, value >= 0.35: the garment's patch
 colours, the partition tints), where the viewer's own chrome and background are grey or
-pastel. It prints one JSON line with the fractions found and exits 0 when found, 1 if the
-picture never came (the last screenshot is saved either way).
+pastel. Once found, it waits (at most a minute) for two equal screenshots in a row, so the
+picture saved shows the end of the session. It prints one JSON line with the fractions
+found and exits 0 when found, 1 if the picture never came (the last screenshot is saved
+either way).
 """
 from __future__ import annotations
 
@@ -75,11 +77,18 @@ def main() -> int:
             img = Image.open(args.out)
             fractions = {name: round(coloured_fraction(img, box), 4) for name, box in REGIONS.items()}
             if all(f >= MIN_FRACTION for f in fractions.values()):
-                # One more frame after the first good one, so the picture saved is settled.
-                time.sleep(3)
-                page.screenshot(path=args.out)
                 shown = True
                 break
+        # The viewer follows the stream as it arrives: wait (at most a minute) until two
+        # screenshots in a row agree, so the picture saved shows the whole session.
+        previous = None
+        settle_until = time.monotonic() + 60
+        while shown and time.monotonic() < settle_until:
+            current = page.screenshot(path=args.out)
+            if current == previous:
+                break
+            previous = current
+            time.sleep(3)
         browser.close()
     print(json.dumps({"shown": shown, "seconds": round(time.monotonic() - start, 1), "coloured": fractions}))
     return 0 if shown else 1

@@ -8,33 +8,43 @@ use rerun::blueprint::{
 
 use super::logger::METRIC_UNITS;
 
-/// 3D view of everything spatial but M1 on the left (M0 with its cut lines' stored form),
-/// above a view of M1 on the body (patches coloured by the rule that refined them, its cut
+/// Top left, two tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
+/// the collision marks and the framework) and the Body (partition tint, landmarks, rings,
+/// partition bounds, dress forms, sections; labels on hover, the partition legend a table
+/// in its own tab); below them a view of M1 on the body (patches coloured by the rule that refined them, its cut
 /// lines, its crossing edges before and after its collision), a close view of the collision
 /// (hits, response arrows, what is left; it frames itself on them) and one of the constraint
 /// network with the feature curves (solver iterations on the `iter` timeline); on the right
 /// the metrics, one tab per unit (counts, metres, millimetres, ratios, milliseconds), and the
-/// per-stage log; the time panel on the `stage` timeline; the blueprint and selection panels
+/// per-stage log with the clearance scale and the partition table as tabs; the time panel on the `stage` timeline; the blueprint and selection panels
 /// collapsed.
 pub fn default_blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
             Vertical::new([
-                Spatial3DView::new("Scene")
-                    .with_origin("/")
-                    .with_contents([
-                        "+ /body/**",
-                        "+ /mannequin/**",
-                        "+ /section/**",
-                        "+ /garment/**",
-                        "+ /collision/**",
-                        "+ /constraints/**",
-                        "- /garment/clearance",
-                        "- /garment/m1/**",
-                        "- /garment/cut_lines/**",
-                        "- /collision/m1/**",
-                    ])
-                    .into(),
+                Tabs::new([
+                    // M0 on the plain body, with the collision marks and the framework.
+                    Spatial3DView::new("Garment")
+                        .with_origin("/")
+                        .with_contents([
+                            "+ /body/mesh",
+                            "+ /garment/**",
+                            "+ /collision/**",
+                            "+ /constraints/**",
+                            "- /garment/clearance",
+                            "- /garment/m1/**",
+                            "- /garment/cut_lines/**",
+                            "- /collision/m1/**",
+                        ])
+                        .into(),
+                    // The body's own stages: partition tint, landmarks, rings, partition
+                    // bounds, the dress forms and sections.
+                    Spatial3DView::new("Body")
+                        .with_origin("/")
+                        .with_contents(["+ /body/**", "- /body/mesh", "+ /mannequin/**", "+ /section/**"])
+                        .into(),
+                ])
+                .into(),
                 Horizontal::new([
                     Tabs::new([
                         Spatial3DView::new("M1")
@@ -80,6 +90,9 @@ pub fn default_blueprint() -> Blueprint {
                     TextLogView::new("Log").with_origin("/log").into(),
                     TextDocumentView::new("Clearance scale")
                         .with_origin("/legend/clearance")
+                        .into(),
+                    TextDocumentView::new("Partitions")
+                        .with_origin("/legend/partitions")
                         .into(),
                 ])
                 .into(),

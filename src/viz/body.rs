@@ -1,7 +1,7 @@
 //! Logging the scene's body: the mesh, its landmarks, the landmark rings, the partitions
 //! A-G with their legend, and body sections.
 
-use rerun::{LineStrips3D, Mesh3D, Points3D, TextLogLevel};
+use rerun::{LineStrips3D, Mesh3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{partition_color, partition_tint};
 use super::logger::{RerunLogger, closed, f32s, to_sink};
@@ -79,7 +79,7 @@ impl RerunLogger {
                     .with_labels(labels)
                     .with_colors(colors)
                     .with_radii([0.008])
-                    .with_show_labels(true),
+                    .with_show_labels(false), // on hover: labels over the body hide it
             )
             .map_err(to_sink)?;
         let listed: Vec<String> = LandmarkKind::ALL
@@ -135,16 +135,24 @@ impl RerunLogger {
             .iter()
             .map(|id| id.map_or([200, 200, 200], partition_tint))
             .collect();
+        // The tinted body is its own mesh, shown in the Body view only: everywhere else the
+        // body keeps its plain skin tone, so that the garment stands apart from it.
         self.rec
-            .log("body/mesh", &Mesh3D::update_fields().with_vertex_colors(colors))
+            .log(
+                "body/partitions/tint",
+                &Mesh3D::new(mesh.positions_f32())
+                    .with_triangle_indices(mesh.triangles.iter().copied())
+                    .with_vertex_normals(mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()))
+                    .with_vertex_colors(colors),
+            )
             .map_err(to_sink)?;
         let mut lines = vec!["partitions (bounds m, triangles with margin, test, response):".to_string()];
-        // A legend column beside the body, one labelled dot per partition at mid-height.
-        // In the gap right of the body (its left hand is at +x), before the mannequins.
-        let legend_x = mesh.bounds().map_or(0.8, |(_, hi)| hi.x + 0.35) as f32;
-        let mut legend_points = Vec::new();
-        let mut legend_labels = Vec::new();
-        let mut legend_colors = Vec::new();
+        // The legend is a table in its own panel, not labels over the body.
+        let mut legend = String::from(
+            "## Body partitions\n\nEach garment vertex is tested against the partition it falls in, \
+             with that partition's test and response.\n\n\
+             | | partition | height m | triangles | test | response |\n|---|---|---|---:|---|---|\n",
+        );
         for p in partitions.iter() {
             let strips: Vec<Vec<[f32; 3]>> = p.rings.iter().map(|r| closed(&r.points)).collect();
             self.rec
@@ -155,15 +163,17 @@ impl RerunLogger {
                         .with_colors([partition_color(p.id)]),
                 )
                 .map_err(to_sink)?;
-            legend_points.push([legend_x, (0.5 * (p.lower_y + p.upper_y)) as f32, 0.0]);
-            legend_labels.push(format!(
-                "{} {}: {} test, {} response",
+            let [r, g, b] = partition_color(p.id);
+            legend.push_str(&format!(
+                "| rgb({r}, {g}, {b}) | {} {} | {:.3}..{:.3} | {} | {} | {} |\n",
                 p.id.letter(),
                 p.id.region(),
+                p.lower_y,
+                p.upper_y,
+                p.triangle_count,
                 method_name(p.method),
                 response_name(p.response)
             ));
-            legend_colors.push(partition_color(p.id));
             lines.push(format!(
                 "  {} {:<8} {:.3}..{:.3}  {:>5}  {}  {}",
                 p.id.letter(),
@@ -176,14 +186,7 @@ impl RerunLogger {
             ));
         }
         self.rec
-            .log(
-                "body/partitions/legend",
-                &Points3D::new(legend_points)
-                    .with_labels(legend_labels)
-                    .with_colors(legend_colors)
-                    .with_radii([0.02])
-                    .with_show_labels(true),
-            )
+            .log("legend/partitions", &TextDocument::from_markdown(legend))
             .map_err(to_sink)?;
         self.text(TextLogLevel::INFO, lines.join("\n"))
     }

@@ -122,8 +122,9 @@ fn is_final(stage: &Stage<'_>) -> bool {
 }
 
 /// The units the metrics are plotted by: the folder under `metrics/` each figure goes to.
-pub const METRIC_UNITS: [(&str, &str); 5] = [
+pub const METRIC_UNITS: [(&str, &str); 6] = [
     ("count", "Counts"),
+    ("size", "Mesh sizes"),
     ("m", "Lengths (m)"),
     ("mm", "Mannequin (mm)"),
     ("ratio", "Ratios"),
@@ -132,8 +133,9 @@ pub const METRIC_UNITS: [(&str, &str); 5] = [
 
 /// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
 /// `metrics/mm/...` for names ending in `_mm`, `metrics/m/...` for lengths and residuals
-/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/count/...`
-/// otherwise.
+/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/size/...` for
+/// mesh sizes and the vertices a detection tested or skipped (thousands, which would flatten
+/// the collision counts beside them), `metrics/count/...` otherwise.
 pub fn metric_path(path: &str) -> String {
     let Some(rest) = path.strip_prefix("metrics/") else {
         return path.to_string();
@@ -146,6 +148,11 @@ pub fn metric_path(path: &str) -> String {
         "m"
     } else if rest.contains("stretch") {
         "ratio"
+    } else if rest.ends_with("faces")
+        || (rest.ends_with("_vertices") && !rest.contains("penetrating"))
+        || rest.contains("skipped")
+    {
+        "size"
     } else {
         "count"
     };

@@ -52,7 +52,7 @@ impl RerunLogger {
                     &Points3D::new([top.as_vec3().to_array()])
                         .with_labels([format!("{name}: max {:.2} mm", worst * 1e3)])
                         .with_radii([0.001])
-                        .with_show_labels(true),
+                        .with_show_labels(false), // on hover; the figures are in the log
                 )
                 .map_err(to_sink)?;
         }

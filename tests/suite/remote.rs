@@ -41,6 +41,8 @@ fn serving(args: &[&str]) -> (Child, String) {
             return (child, printed);
         }
     }
+    child.kill().ok();
+    child.wait().ok();
     panic!("drape never said it was serving: {printed}");
 }
 
