@@ -280,10 +280,12 @@ fn demo_chunks() -> Vec<Chunk> {
 
 /// Two runs write the same chunks in the same order (what plain `rerun rrd compare`
 /// checks): chunk by chunk, the same entity, timelines, components and values (Rerun's own
-/// `Chunk::ensure_similar`, which ignores only chunk and row ids). With the `rerun` command
-/// installed, the two files of two runs of the binary also pass `rerun rrd compare`.
+/// `Chunk::ensure_similar`, which ignores only chunk and row ids). Then two runs of the
+/// binary, one pinned to one core (`taskset -c 0`: one thread) and one on every core, write
+/// files with the same data in the same order; with the `rerun` command installed, they
+/// also pass plain `rerun rrd compare`.
 #[test]
-fn two_runs_write_the_same_chunks_in_the_same_order() {
+fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_more() {
     let (a, b) = (demo_chunks(), demo_chunks());
     assert_eq!(a.len(), b.len(), "chunk counts");
     for (k, (x, y)) in a.iter().zip(&b).enumerate() {
@@ -291,23 +293,31 @@ fn two_runs_write_the_same_chunks_in_the_same_order() {
             panic!("chunk {k} ({} vs {}): {e:#}", x.entity_path(), y.entity_path());
         }
     }
+    let dir = std::env::temp_dir().join(format!("drape-compare-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let files: Vec<std::path::PathBuf> = (0..2).map(|i| dir.join(format!("run{i}.rrd"))).collect();
+    let one_core = std::process::Command::new("taskset")
+        .args(["-c", "0", env!("CARGO_BIN_EXE_drape"), "run", "--save"])
+        .arg(&files[0])
+        .output()
+        .expect("taskset runs (util-linux)");
+    assert!(one_core.status.success(), "{}", String::from_utf8_lossy(&one_core.stderr));
+    let (code, stderr) = super::session_errors::drape(&["run", "--save", files[1].to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    let data = |f: &std::path::Path| drape::viz::replay::read_rrd(f).expect("decodes");
+    let (x, y) = (data(&files[0]), data(&files[1]));
+    assert!(x.len() > 1000, "{} chunks", x.len());
+    assert_eq!(drape::viz::replay::first_difference(&x, &y, 0.0), None);
     let cli = std::process::Command::new("rerun").arg("--version").output();
     if cli.is_ok_and(|o| o.status.success()) {
-        let dir = std::env::temp_dir().join(format!("drape-compare-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let files: Vec<std::path::PathBuf> = (0..2).map(|i| dir.join(format!("run{i}.rrd"))).collect();
-        for f in &files {
-            let (code, stderr) = super::session_errors::drape(&["run", "--save", f.to_str().unwrap()]);
-            assert_eq!(code, 0, "{stderr}");
-        }
         let out = std::process::Command::new("rerun")
             .args(["rrd", "compare"])
             .args(&files)
             .output()
             .expect("rerun runs");
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-        std::fs::remove_dir_all(&dir).ok();
     }
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The summary of the demo logged at `detail`.
