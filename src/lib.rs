@@ -30,4 +30,5 @@ pub mod mannequin;
 pub mod mesh;
 pub mod par;
 pub mod session;
+pub mod stress;
 pub mod viz;

@@ -60,6 +60,75 @@ pub(crate) enum Command {
     /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
     /// and print each method's deviation from the true surface per region.
     Mannequin(MannequinArgs),
+    /// Random edit sessions on every body (gentle to hostile numbers: dimensions beyond
+    /// their ranges, drags from 0.1 mm to 1 m, undos, the ease down to 0), each judged:
+    /// steps accepted, refused (by reason) and failed, panics, NaN or infinite outputs,
+    /// garments left in the body, solver residuals, time per step. Exit 1 if any panic,
+    /// non-finite value or garment left in the body; each such session is shrunk to its
+    /// fewest steps and written (--out) so that `drape run FILE` replays it.
+    #[command(after_help = STRESS_HELP, args_conflicts_with_subcommands = true)]
+    Stress(StressArgs),
+}
+
+const STRESS_HELP: &str = "Sweeps over many machines: --shard I/N runs the sessions whose number is I modulo N \
+(0 <= I < N), the same sessions on every machine; `drape stress merge a.json b.json ...` joins the --report files \
+of the shards into the report of the whole sweep. See the README's array-job recipe (Slurm, Kubernetes).";
+
+#[derive(Args, Debug)]
+pub(crate) struct StressArgs {
+    #[command(subcommand)]
+    pub(crate) command: Option<StressCommand>,
+    /// Every .obj in this folder, in name order [default: the built-in body].
+    #[arg(long, value_name = "DIR")]
+    pub(crate) bodies: Option<PathBuf>,
+    /// Sessions per body.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u64).range(1..=1_000_000))]
+    pub(crate) sessions: u64,
+    /// Steps per session after the garment.
+    #[arg(long, default_value_t = 8, value_parser = clap::builder::RangedU64ValueParser::<usize>::new().range(1..=1000))]
+    pub(crate) steps: usize,
+    /// The seed: session K under seed S is the same session everywhere, always.
+    #[arg(long, default_value_t = 1)]
+    pub(crate) seed: u64,
+    /// Run only shard I of N (I counted from 0).
+    #[arg(long, value_name = "I/N", default_value = "0/1", value_parser = parse_shard)]
+    pub(crate) shard: (u64, u64),
+    /// Print the report as JSON (records and totals) instead of text.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Also write the JSON report here (what `stress merge` reads).
+    #[arg(long, value_name = "PATH")]
+    pub(crate) report: Option<PathBuf>,
+    /// Where sessions that found a bug are written.
+    #[arg(long, value_name = "DIR", default_value = "tests/fixtures/stress")]
+    pub(crate) out: PathBuf,
+    /// Write failing sessions as generated, without shrinking them.
+    #[arg(long)]
+    pub(crate) no_shrink: bool,
+}
+
+#[derive(Subcommand, Debug)]
+pub(crate) enum StressCommand {
+    /// Join the JSON reports of the shards of one sweep (same seed, sessions, steps).
+    Merge {
+        /// The reports (`drape stress --shard I/N --report FILE`).
+        #[arg(required = true)]
+        reports: Vec<PathBuf>,
+        /// Print JSON instead of text.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// `I/N` with `I < N`.
+fn parse_shard(s: &str) -> Result<(u64, u64), String> {
+    let (i, n) = s.split_once('/').ok_or_else(|| format!("'{s}': expected I/N, e.g. 0/4"))?;
+    let i: u64 = i.trim().parse().map_err(|_| format!("'{s}': I is not a number"))?;
+    let n: u64 = n.trim().parse().map_err(|_| format!("'{s}': N is not a number"))?;
+    if n == 0 || i >= n {
+        return Err(format!("'{s}': need 0 <= I < N"));
+    }
+    Ok((i, n))
 }
 
 #[derive(Args, Debug)]

@@ -12,6 +12,7 @@ mod network;
 mod progress;
 mod replay;
 mod run;
+mod stress;
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -36,6 +37,7 @@ fn main() -> ExitCode {
         Some(Command::Constraints { session }) => network::constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin::mannequin(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
+        Some(Command::Stress(args)) => stress::stress(&args),
         Some(Command::Edit(args)) => edit::edit(&args),
     };
     match result {
