@@ -82,10 +82,13 @@ fn impossible_edits_are_refused_naming_the_limit_and_the_session_goes_on() {
     }
 }
 
+/// Without edge rounds, edges of the new garment cross the body: a new garment has
+/// nothing to fall back on, so it is kept and reported loudly (a guarantee shortfall, a red
+/// mark, a WARN line); an edit that leaves edges crossing (the tight ease) is refused and
+/// the garment stays as it was.
 #[test]
 fn a_step_that_leaves_the_garment_in_the_body_says_so_and_strict_fails_the_run() {
-    // Without edge rounds the tight ease leaves edges crossing the body.
-    let text = "drape 1\ngarment jumpsuit resolution=4\nset ease 0.003\n";
+    let text = "drape 1\ngarment jumpsuit resolution=3\nset ease 0.003\n";
     let session = parse_session(text, "unmet.drape", std::path::Path::new(".")).expect("parses");
     let mut options = RunOptions::default();
     options.collision.response.edge_rounds = 0;
@@ -103,10 +106,17 @@ fn a_step_that_leaves_the_garment_in_the_body_says_so_and_strict_fails_the_run()
             Shortfall::Refused(_) => None,
         })
         .collect();
-    assert!(
-        !unmet.is_empty(),
-        "the tight ease without edge rounds left nothing crossing"
+    assert_eq!(
+        unmet.iter().map(|u| u.0).collect::<Vec<_>>(),
+        vec![1],
+        "the new garment without edge rounds left nothing crossing, or the edit was not refused"
     );
+    let refused = report.steps[2].figures["refused"].as_str().unwrap_or_default();
+    assert!(
+        refused.starts_with("the garment cannot be kept clear of the body after this edit"),
+        "{refused}"
+    );
+    assert_eq!(report.steps[2].figures["guarantee_met"], false);
     for (step, inside, crossing) in &unmet {
         let m = &report.steps[*step];
         assert_eq!(m.figures["guarantee_met"], false);

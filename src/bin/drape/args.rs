@@ -105,6 +105,9 @@ pub(crate) struct StressArgs {
     /// Write failing sessions as generated, without shrinking them.
     #[arg(long)]
     pub(crate) no_shrink: bool,
+    /// Print the text of session K (under --seed and --steps) and run nothing.
+    #[arg(long, value_name = "K")]
+    pub(crate) show: Option<u64>,
 }
 
 #[derive(Subcommand, Debug)]

@@ -15,15 +15,20 @@ pub(crate) fn stress(args: &StressArgs) -> Result<ExitCode> {
     if let Some(StressCommand::Merge { reports, json }) = &args.command {
         return merge(reports, *json);
     }
+    let generate = GenerateOptions {
+        steps: args.steps,
+        ..GenerateOptions::default()
+    };
+    if let Some(k) = args.show {
+        print!("{}", drape::stress::session_text(&mut drape::stress::Rng::for_session(args.seed, k), &generate));
+        return Ok(ExitCode::SUCCESS);
+    }
     let bodies = bodies(args.bodies.as_deref())?;
     let (i, n) = args.shard;
     let options = StressOptions {
         sessions: args.sessions,
         seed: args.seed,
-        generate: GenerateOptions {
-            steps: args.steps,
-            ..GenerateOptions::default()
-        },
+        generate,
         shard: (i, n),
     };
     // Panics are caught and reported per session; the default hook's message would only

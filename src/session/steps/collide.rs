@@ -6,9 +6,9 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::super::emit::{Shortfall, StepScope};
+use super::super::emit::StepScope;
 use super::super::runner::RunOptions;
-use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, Stage};
+use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::GarmentState;
 use super::StepContext;
 use crate::body::Body;
@@ -119,16 +119,45 @@ impl<'a> CollisionFigures<'a> {
 
 /// Collides the new garment state's M0 with the body (then builds M1, when the scene asks
 /// for it), records the figures and emits the stages: what every step that makes an M0
-/// ends with.
+/// ends with. Returns what the response could not clear: `Some((inside, crossing))` when
+/// vertices are left inside the body or edges crossing it (the caller refuses an edit
+/// that leaves them, or reports a new garment that does).
+#[must_use]
 pub(super) fn collide_and_emit(
     scope: &mut StepScope<'_, '_, '_>,
     body: &Body,
     index: &BodyIndex,
     state: &mut GarmentState,
     cx: &StepContext<'_>,
-) {
+) -> Option<(usize, usize)> {
     collide_garment(scope, body, index, state, cx.options, cx.session.scene.m1.as_ref());
     emit_collision(scope, state, index);
+    let q = &state.collision.as_ref()?.collision.quality;
+    (q.penetrating_vertices > 0 || q.crossing_edges > 0).then_some((q.penetrating_vertices, q.crossing_edges))
+}
+
+/// The refusal of an edit whose M0 the response could not clear of the body (`unmet`:
+/// vertices inside, edges crossing): the kept garment's M0 and collision are emitted again
+/// after the attempt's, so that the last thing logged is what the session holds; returns the
+/// message. The caller keeps the state and refuses the edit with it.
+pub(super) fn unclear(
+    scope: &mut StepScope<'_, '_, '_>,
+    kept: &GarmentState,
+    index: &BodyIndex,
+    (inside, crossing): (usize, usize),
+) -> String {
+    let message = format!(
+        "the garment cannot be kept clear of the body after this edit: {inside} vertices inside and {crossing} \
+         edges crossing it after the response"
+    );
+    if let Some(fw) = &kept.framework {
+        scope.emit(
+            GarmentPart::Mesh.stage_name(),
+            Stage::Garment(GarmentStage::Part(fw, GarmentPart::Mesh)),
+        );
+    }
+    emit_collision(scope, kept, index);
+    message
 }
 
 /// Collides the state's M0 with the body, recording the figures in the step's metrics.
@@ -162,13 +191,6 @@ fn collide_garment(
         })
     });
     scope.record(&CollisionFigures::new(index, &collision, verify.as_ref()));
-    let q = &collision.quality;
-    if q.penetrating_vertices > 0 || q.crossing_edges > 0 {
-        scope.shortfalls.push(Shortfall::Guarantee {
-            inside: q.penetrating_vertices,
-            crossing: q.crossing_edges,
-        });
-    }
     state.collision = Some(CollisionOutcome {
         garment,
         collision,

@@ -10,7 +10,7 @@ use super::super::error::{DragRefusal, StepError};
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
-use super::collide::collide_and_emit;
+use super::collide::{collide_and_emit, unclear};
 use crate::constraint::{self, ConstraintNet, Edit, Solution, SolverOptions};
 use crate::garment::assemble::assemble;
 use crate::garment::{BodyProbe, Framework};
@@ -133,26 +133,36 @@ pub(super) fn run(
                     scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
                 }
             }
-            collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
+            if let Some(unmet) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx) {
+                // The response could not clear the new M0: refused like a drag the solver
+                // cannot honour.
+                let message = unclear(scope, current, probe.index(), unmet);
+                refuse(scope, &mut state.history, current, edit, &message);
+                return Ok(());
+            }
             state.advance(next);
         }
-        Err(refusal) => {
-            // Refused: the garment stays as it was (an `undo` of this step changes
-            // nothing); the session goes on.
-            let message = refusal.to_string();
-            state.history.push(current.clone());
-            scope.record(&Refusal { refused: &message });
-            scope.shortfalls.push(Shortfall::Refused(message.clone()));
-            scope.emit(
-                "constraints.refused",
-                Stage::Constraints(ConstraintStage::Refused {
-                    edit,
-                    message: &message,
-                }),
-            );
-        }
+        Err(refusal) => refuse(scope, &mut state.history, current, edit, &refusal.to_string()),
     }
     Ok(())
+}
+
+/// Refuses the drag: the garment stays as it was (an `undo` of this step changes nothing),
+/// the refusal is recorded and emitted, and the session goes on.
+fn refuse(
+    scope: &mut StepScope<'_, '_, '_>,
+    history: &mut Vec<GarmentState>,
+    kept: &GarmentState,
+    edit: &Edit,
+    message: &str,
+) {
+    history.push(kept.clone());
+    scope.record(&Refusal { refused: message });
+    scope.shortfalls.push(Shortfall::Refused(message.to_string()));
+    scope.emit(
+        "constraints.refused",
+        Stage::Constraints(ConstraintStage::Refused { edit, message }),
+    );
 }
 
 /// Solves a drag on `before` (the framework of `state`) and re-surfaces the changed

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
+use super::super::emit::{Shortfall, StepScope};
 use super::super::error::StepError;
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
@@ -79,8 +79,11 @@ pub(super) fn run(
         );
     }
     next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
-    if let Some(probe) = &state.probe {
-        collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
+    if let Some(probe) = &state.probe
+        && let Some((inside, crossing)) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
+    {
+        // A new garment has nothing to fall back on: kept, and reported loudly.
+        scope.shortfalls.push(Shortfall::Guarantee { inside, crossing });
     }
     state.garment = Some(next);
     Ok(())

@@ -8,13 +8,11 @@ use super::super::emit::{Shortfall, StepScope};
 use super::super::error::StepError;
 use super::super::format::Change;
 use super::super::stage::{GarmentPart, GarmentStage, Stage};
-use super::super::state::SessionState;
+use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
-use super::collide::collide_and_emit;
+use super::collide::{collide_and_emit, unclear};
 use super::drag::replay_edits;
 use super::garment::solve_garment;
-use crate::garment::FrameworkError;
-use crate::garment::ring::RingBuildError;
 
 /// The change asked for.
 #[derive(Serialize)]
@@ -42,15 +40,12 @@ struct Refusal<'a> {
 }
 
 /// Whether a failure of the re-solve means the change cannot be honoured (refused, the
-/// session goes on) rather than that the step failed.
+/// session goes on) rather than that the step failed: any failure to build the framework
+/// with the new value (a dimension out of its range, a ring too small or too large, a
+/// section the new shape no longer cuts, ...) leaves the garment before it intact, so the
+/// change is refused with the reason; what remains a failure is a step with no garment.
 fn refuses(e: &StepError) -> bool {
-    matches!(
-        e,
-        StepError::Framework(
-            FrameworkError::Dimension { .. }
-                | FrameworkError::Ring(RingBuildError::GirthTooSmall { .. } | RingBuildError::GirthTooLarge { .. })
-        ) | StepError::Replay { .. }
-    )
+    matches!(e, StepError::Framework(_) | StepError::Replay { .. })
 }
 
 pub(super) fn run(
@@ -81,20 +76,7 @@ pub(super) fn run(
     let mut next = match solved {
         Ok(next) => next,
         Err(e) if refuses(&e) => {
-            // Refused: the garment stays as it was (an `undo` of this step changes nothing);
-            // the session goes on.
-            let message = e.to_string();
-            state.history.push(current_state.clone());
-            scope.record(&Refusal { refused: &message });
-            scope.shortfalls.push(Shortfall::Refused(message.clone()));
-            scope.emit(
-                "garment.refused",
-                Stage::Garment(GarmentStage::Refused {
-                    name,
-                    value,
-                    message: &message,
-                }),
-            );
+            refuse(scope, &mut state.history, current_state, name, value, &e.to_string());
             return Ok(());
         }
         Err(e) => return Err(e),
@@ -119,9 +101,34 @@ pub(super) fn run(
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(after, part)));
         }
     }
-    if let Some(probe) = &state.probe {
-        collide_and_emit(scope, &state.body, probe.index(), &mut next, cx);
+    if let Some(probe) = &state.probe
+        && let Some(unmet) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
+    {
+        // The response could not clear the new M0: refused like a change the framework
+        // cannot take.
+        let message = unclear(scope, current_state, probe.index(), unmet);
+        refuse(scope, &mut state.history, current_state, name, value, &message);
+        return Ok(());
     }
     state.advance(next);
     Ok(())
+}
+
+/// Refuses the change: the garment stays as it was (an `undo` of this step changes
+/// nothing), the refusal is recorded and emitted, and the session goes on.
+fn refuse(
+    scope: &mut StepScope<'_, '_, '_>,
+    history: &mut Vec<GarmentState>,
+    kept: &GarmentState,
+    name: &str,
+    value: f64,
+    message: &str,
+) {
+    history.push(kept.clone());
+    scope.record(&Refusal { refused: message });
+    scope.shortfalls.push(Shortfall::Refused(message.to_string()));
+    scope.emit(
+        "garment.refused",
+        Stage::Garment(GarmentStage::Refused { name, value, message }),
+    );
 }

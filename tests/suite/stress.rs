@@ -1,0 +1,162 @@
+//! Stress: the bounded sweep CI runs (`drape stress --sessions 20 --seed 1` on the shipped
+//! body), its last garments checked against the brute-force truth; shards that merge into
+//! the whole sweep; and every session a stress run found a bug with, kept as a regression.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use drape::collision::ground_truth;
+use drape::session::{CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session};
+use drape::stress::{StressOptions, run_one, sessions_of};
+use glam::DVec3;
+
+/// The last collided M0 of a session: positions after the response and the edges.
+#[derive(Default)]
+struct LastGarment(Option<(Vec<DVec3>, Vec<[u32; 2]>)>);
+
+impl StageSink for LastGarment {
+    fn collision(&mut self, _: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            self.0 = Some((
+                stage.outcome.collision.mesh.positions.clone(),
+                stage.outcome.garment.edges.clone(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+fn stress_json(args: &[&str]) -> serde_json::Value {
+    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
+        .arg("stress")
+        .args(args)
+        .output()
+        .expect("drape stress runs");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.code().is_some_and(|c| c <= 1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("not JSON ({e}): {stdout}"))
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("drape-stress-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The CI sweep reports no panic, no NaN and no garment left in the body, and exits 0;
+/// and it is not idle: most steps are accepted and some are refused. Then, independently
+/// of drape's own quality check, the garment each session ends with is tested by the
+/// brute-force truth (winding number for every vertex, every edge against every body
+/// triangle): nothing inside, nothing crossing.
+#[test]
+fn the_ci_sweep_on_the_shipped_body_finds_no_bug_and_its_garments_are_clear() {
+    let dir = scratch("ci");
+    let report = stress_json(&["--sessions", "20", "--seed", "1", "--json", "--out", dir.to_str().unwrap()]);
+    let all = &report["overall"];
+    for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
+        assert_eq!(all[key], 0, "{key}: {all}");
+    }
+    let steps = all["steps"].as_u64().unwrap();
+    let accepted = all["accepted"].as_u64().unwrap();
+    assert!(steps >= 150 && accepted * 2 > steps, "{all}");
+    assert!(!all["refused"].as_object().unwrap().is_empty(), "{all}");
+
+    let body = super::common::real_body();
+    let options = StressOptions {
+        sessions: 20,
+        seed: 1,
+        ..StressOptions::default()
+    };
+    let mut checked = 0;
+    for (k, text) in sessions_of(&options) {
+        let session = parse_session(&text, "stress.drape", Path::new(".")).expect("parses");
+        let mut last = LastGarment::default();
+        run_session(&session, &RunOptions::default(), &mut [&mut last]);
+        let Some((positions, edges)) = last.0 else { continue };
+        let truth = ground_truth(&body.mesh.mesh, &positions, &edges);
+        assert_eq!(
+            (truth.inside_count(), truth.crossing.iter().filter(|c| **c).count()),
+            (0, 0),
+            "session {k}:\n{text}"
+        );
+        checked += 1;
+    }
+    assert!(checked >= 15, "{checked} sessions ended with a garment");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A sweep split in three shards, each run alone and written with --report, merged by
+/// `drape stress merge`, holds the same sessions with the same outcomes as the sweep run
+/// whole (times aside, which no two runs share).
+#[test]
+fn three_shards_merged_equal_the_whole_sweep() {
+    let dir = scratch("shards");
+    let common = ["--sessions", "7", "--steps", "3", "--seed", "5", "--no-shrink"];
+    let out = dir.join("out");
+    let whole = stress_json(&[&common[..], &["--json", "--out", out.to_str().unwrap()]].concat());
+    let mut reports = Vec::new();
+    for i in 0..3 {
+        let file = dir.join(format!("shard{i}.json"));
+        let shard = format!("{i}/3");
+        stress_json(
+            &[
+                &common[..],
+                &["--shard", &shard, "--json", "--report", file.to_str().unwrap(), "--out", out.to_str().unwrap()],
+            ]
+            .concat(),
+        );
+        reports.push(file);
+    }
+    let mut args = vec!["merge".to_string(), "--json".to_string()];
+    args.extend(reports.iter().map(|p| p.display().to_string()));
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let merged = stress_json(&args);
+    let without_times = |r: &serde_json::Value| -> Vec<serde_json::Value> {
+        r["records"]
+            .as_array()
+            .expect("records")
+            .iter()
+            .map(|rec| {
+                let mut rec = rec.clone();
+                rec["outcome"]["step_ms"] = serde_json::Value::Null;
+                rec
+            })
+            .collect()
+    };
+    assert_eq!(without_times(&whole).len(), 7);
+    assert_eq!(without_times(&merged), without_times(&whole));
+    assert_eq!(merged["shards"], serde_json::json!([[0, 3], [1, 3], [2, 3]]));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Every session a stress run found a bug with (shrunk, in tests/fixtures/stress/) runs
+/// clean now: no panic, no non-finite output, no garment left in the body; and its last
+/// garment passes the brute-force truth.
+#[test]
+fn every_stress_regression_session_runs_clean() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir("tests/fixtures/stress")
+        .expect("tests/fixtures/stress")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|x| x == "drape"))
+        .collect();
+    files.sort();
+    assert!(!files.is_empty());
+    let body = super::common::real_body();
+    for file in files {
+        let text = std::fs::read_to_string(&file).expect("reads");
+        let outcome = run_one(&text, None);
+        assert!(!outcome.is_bug(), "{}: {outcome:?}", file.display());
+        assert!(outcome.failed.is_none(), "{}: {outcome:?}", file.display());
+        let session = parse_session(&text, "fixture.drape", Path::new(".")).expect("parses");
+        let mut last = LastGarment::default();
+        run_session(&session, &RunOptions::default(), &mut [&mut last]);
+        let (positions, edges) = last.0.expect("a garment");
+        let truth = ground_truth(&body.mesh.mesh, &positions, &edges);
+        assert_eq!(truth.inside_count(), 0, "{}", file.display());
+        assert!(truth.crossing.iter().all(|c| !c), "{}", file.display());
+    }
+}
