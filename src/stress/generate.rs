@@ -93,12 +93,7 @@ pub fn session_text(rng: &mut Rng, options: &GenerateOptions) -> String {
 fn vector(rng: &mut Rng) -> String {
     let length = rng.log_range(DRAG_RANGE_M.0, DRAG_RANGE_M.1);
     let [x, y, z] = rng.direction();
-    format!(
-        "{},{},{}",
-        number(x * length),
-        number(y * length),
-        number(z * length)
-    )
+    format!("{},{},{}", number(x * length), number(y * length), number(z * length))
 }
 
 /// A number as a session writes it: shortest round-trip form, so the text is exactly the

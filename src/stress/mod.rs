@@ -49,7 +49,12 @@ pub fn sessions_of(options: &StressOptions) -> Vec<(u64, String)> {
     let (i, n) = options.shard;
     (0..options.sessions)
         .filter(|k| k % n.max(1) == i)
-        .map(|k| (k, session_text(&mut Rng::for_session(options.seed, k), &options.generate)))
+        .map(|k| {
+            (
+                k,
+                session_text(&mut Rng::for_session(options.seed, k), &options.generate),
+            )
+        })
         .collect()
 }
 

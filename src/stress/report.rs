@@ -186,7 +186,12 @@ impl Report {
             {
                 return Err(format!(
                     "reports of different sweeps: seed {} / {} sessions / {} steps against seed {} / {} / {}",
-                    r.seed, r.sessions_per_body, r.steps_per_session, out.seed, out.sessions_per_body, out.steps_per_session
+                    r.seed,
+                    r.sessions_per_body,
+                    r.steps_per_session,
+                    out.seed,
+                    out.sessions_per_body,
+                    out.steps_per_session
                 ));
             }
             out.shards.extend(r.shards);
@@ -194,7 +199,8 @@ impl Report {
         }
         out.shards.sort_unstable();
         out.shards.dedup();
-        out.records.sort_by(|a, b| (&a.body, a.session).cmp(&(&b.body, b.session)));
+        out.records
+            .sort_by(|a, b| (&a.body, a.session).cmp(&(&b.body, b.session)));
         out.records.dedup_by(|a, b| a.body == b.body && a.session == b.session);
         Ok(out)
     }
@@ -266,7 +272,10 @@ pub fn bug_summary(o: &SessionOutcome) -> String {
         parts.push(format!("non-finite: {}", o.non_finite.join("; ")));
     }
     if !o.guarantee_failures.is_empty() {
-        parts.push(format!("garment left in the body after step(s) {:?}", o.guarantee_failures));
+        parts.push(format!(
+            "garment left in the body after step(s) {:?}",
+            o.guarantee_failures
+        ));
     }
     parts.join("; ")
 }

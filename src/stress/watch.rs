@@ -40,12 +40,7 @@ pub struct Watch {
     pub step_ms: Vec<f64>,
 }
 
-fn check<'a>(
-    out: &mut Vec<NonFinite>,
-    step: usize,
-    place: &str,
-    values: impl IntoIterator<Item = &'a glam::DVec3>,
-) {
+fn check<'a>(out: &mut Vec<NonFinite>, step: usize, place: &str, values: impl IntoIterator<Item = &'a glam::DVec3>) {
     if values.into_iter().any(|p| !p.is_finite()) {
         out.push(NonFinite {
             step,
@@ -69,7 +64,12 @@ impl StageSink for Watch {
                     }
                 }
                 GarmentPart::Mesh => {
-                    check(&mut self.non_finite, info.step, "garment.m0 positions", &fw.m0.mesh.positions);
+                    check(
+                        &mut self.non_finite,
+                        info.step,
+                        "garment.m0 positions",
+                        &fw.m0.mesh.positions,
+                    );
                 }
                 _ => {}
             }
@@ -87,7 +87,12 @@ impl StageSink for Watch {
                 &stage.outcome.garment.mesh.positions,
             ),
             CollisionPart::Respond => {
-                check(&mut self.non_finite, info.step, "collision output positions", &c.mesh.positions);
+                check(
+                    &mut self.non_finite,
+                    info.step,
+                    "collision output positions",
+                    &c.mesh.positions,
+                );
                 let q = &c.quality;
                 if !(q.max_depth_m.is_finite() && q.max_move_m.is_finite() && q.max_stretch.is_finite()) {
                     self.non_finite.push(NonFinite {
@@ -101,7 +106,12 @@ impl StageSink for Watch {
     }
 
     fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
-        check(&mut self.non_finite, info.step, "m1 positions", &stage.outcome.collision.positions);
+        check(
+            &mut self.non_finite,
+            info.step,
+            "m1 positions",
+            &stage.outcome.collision.positions,
+        );
         Ok(())
     }
 

@@ -30,7 +30,9 @@ pub mod target;
 pub use blueprint::default_blueprint;
 pub use logger::{LogOptions, RerunLogger};
 pub use rerun::RecordingStream;
-pub use target::{RecordingTarget, WebViewerError, KeptFile, ViewerFlush, open_recording, open_recording_kept, serve_web_viewer};
+pub use target::{
+    KeptFile, RecordingTarget, ViewerFlush, WebViewerError, open_recording, open_recording_kept, serve_web_viewer,
+};
 
 /// The Rerun application id of every drape recording.
 pub const APP_ID: &str = "drape";

@@ -79,7 +79,7 @@ pub fn open_recording_kept(
 /// The file copy of a recording that goes to a viewer or a server: a sink beside the
 /// viewer's, closed on its own so that a viewer that went away (whose sink would wait for it
 /// for good when dropped) cannot keep the file from being finished.
-#[derive(Clone, Default)]
+#[derive(Clone)]
 pub struct KeptFile(Arc<Mutex<Option<rerun::sink::FileSink>>>);
 
 /// How closing a [`KeptFile`] went for the viewer (the file is closed either way).

@@ -301,7 +301,11 @@ fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_more() {
         .arg(&files[0])
         .output()
         .expect("taskset runs (util-linux)");
-    assert!(one_core.status.success(), "{}", String::from_utf8_lossy(&one_core.stderr));
+    assert!(
+        one_core.status.success(),
+        "{}",
+        String::from_utf8_lossy(&one_core.stderr)
+    );
     let (code, stderr) = super::session_errors::drape(&["run", "--save", files[1].to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     let data = |f: &std::path::Path| drape::viz::replay::read_rrd(f).expect("decodes");

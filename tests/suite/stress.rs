@@ -6,7 +6,9 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use drape::collision::ground_truth;
-use drape::session::{CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session};
+use drape::session::{
+    CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session,
+};
 use drape::stress::{StressOptions, run_one, sessions_of};
 use glam::DVec3;
 
@@ -55,7 +57,15 @@ fn scratch(name: &str) -> PathBuf {
 #[test]
 fn the_ci_sweep_on_the_shipped_body_finds_no_bug_and_its_garments_are_clear() {
     let dir = scratch("ci");
-    let report = stress_json(&["--sessions", "20", "--seed", "1", "--json", "--out", dir.to_str().unwrap()]);
+    let report = stress_json(&[
+        "--sessions",
+        "20",
+        "--seed",
+        "1",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
     let all = &report["overall"];
     for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
         assert_eq!(all[key], 0, "{key}: {all}");
@@ -105,7 +115,15 @@ fn three_shards_merged_equal_the_whole_sweep() {
         stress_json(
             &[
                 &common[..],
-                &["--shard", &shard, "--json", "--report", file.to_str().unwrap(), "--out", out.to_str().unwrap()],
+                &[
+                    "--shard",
+                    &shard,
+                    "--json",
+                    "--report",
+                    file.to_str().unwrap(),
+                    "--out",
+                    out.to_str().unwrap(),
+                ],
             ]
             .concat(),
         );

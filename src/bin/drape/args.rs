@@ -125,7 +125,9 @@ pub(crate) enum StressCommand {
 
 /// `I/N` with `I < N`.
 fn parse_shard(s: &str) -> Result<(u64, u64), String> {
-    let (i, n) = s.split_once('/').ok_or_else(|| format!("'{s}': expected I/N, e.g. 0/4"))?;
+    let (i, n) = s
+        .split_once('/')
+        .ok_or_else(|| format!("'{s}': expected I/N, e.g. 0/4"))?;
     let i: u64 = i.trim().parse().map_err(|_| format!("'{s}': I is not a number"))?;
     let n: u64 = n.trim().parse().map_err(|_| format!("'{s}': N is not a number"))?;
     if n == 0 || i >= n {

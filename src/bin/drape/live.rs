@@ -8,7 +8,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context as _;
-use drape::viz::{KeptFile, RecordingStream, ViewerFlush, RecordingTarget, open_recording_kept, serve_web_viewer};
+use drape::viz::{KeptFile, RecordingStream, RecordingTarget, ViewerFlush, open_recording_kept, serve_web_viewer};
 
 use crate::args::ViewerArgs;
 use crate::failure::{Classify, Result};
@@ -115,9 +115,9 @@ impl LiveRecording {
                 let to = connect.as_deref().unwrap_or("the server");
                 eprintln!("warning: the viewer at {to} did not get everything ({e}); the file has it all");
             }
-            Some(ViewerFlush::TimedOut) => eprintln!(
-                "warning: the viewer did not take the data within a minute; the file may lack the last of it"
-            ),
+            Some(ViewerFlush::TimedOut) => {
+                eprintln!("warning: the viewer did not take the data within a minute; the file may lack the last of it")
+            }
         }
         let path = rename(file)?;
         if connect.is_some() {

@@ -20,7 +20,10 @@ pub(crate) fn stress(args: &StressArgs) -> Result<ExitCode> {
         ..GenerateOptions::default()
     };
     if let Some(k) = args.show {
-        print!("{}", drape::stress::session_text(&mut drape::stress::Rng::for_session(args.seed, k), &generate));
+        print!(
+            "{}",
+            drape::stress::session_text(&mut drape::stress::Rng::for_session(args.seed, k), &generate)
+        );
         return Ok(ExitCode::SUCCESS);
     }
     let bodies = bodies(args.bodies.as_deref())?;
@@ -120,8 +123,19 @@ fn bodies(dir: Option<&Path>) -> Result<Vec<Option<PathBuf>>> {
 
 /// Writes a session that found a bug (shrunk unless asked not to) into `dir`, its body
 /// named relative to the file so that `drape run FILE` replays it from anywhere.
-fn save_case(dir: &Path, body: Option<&Path>, seed: u64, k: u64, text: &str, no_shrink: bool) -> anyhow::Result<String> {
-    let text = if no_shrink { text.to_string() } else { shrink(text, body) };
+fn save_case(
+    dir: &Path,
+    body: Option<&Path>,
+    seed: u64,
+    k: u64,
+    text: &str,
+    no_shrink: bool,
+) -> anyhow::Result<String> {
+    let text = if no_shrink {
+        text.to_string()
+    } else {
+        shrink(text, body)
+    };
     let stem = body_name(body);
     let stem = stem.trim_end_matches(".obj");
     let path = dir.join(format!("{stem}-seed{seed}-session{k}.drape"));
