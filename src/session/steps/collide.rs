@@ -137,8 +137,8 @@ pub(super) fn collide_and_emit(
 }
 
 /// The refusal of an edit whose M0 the response could not clear of the body (`unmet`:
-/// vertices inside, edges crossing): the kept garment's M0 and collision are emitted again
-/// after the attempt's, so that the last thing logged is what the session holds; returns the
+/// vertices inside, edges crossing): the kept garment is emitted again after the attempt
+/// ([`emit_kept`]), so that the last thing logged is what the session holds; returns the
 /// message. The caller keeps the state and refuses the edit with it.
 pub(super) fn unclear(
     scope: &mut StepScope<'_, '_, '_>,
@@ -146,18 +146,22 @@ pub(super) fn unclear(
     index: &BodyIndex,
     (inside, crossing): (usize, usize),
 ) -> String {
-    let message = format!(
+    emit_kept(scope, kept, index);
+    format!(
         "the garment cannot be kept clear of the body after this edit: {inside} vertices inside and {crossing} \
          edges crossing it after the response"
-    );
+    )
+}
+
+/// Emits a garment state the session returns to (after an undo, or a refused attempt): its
+/// re-surfaced parts (curves, patches, M0), then its collision and M1.
+pub(super) fn emit_kept(scope: &mut StepScope<'_, '_, '_>, kept: &GarmentState, index: &BodyIndex) {
     if let Some(fw) = &kept.framework {
-        scope.emit(
-            GarmentPart::Mesh.stage_name(),
-            Stage::Garment(GarmentStage::Part(fw, GarmentPart::Mesh)),
-        );
+        for part in GarmentPart::RESURFACED {
+            scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
+        }
     }
     emit_collision(scope, kept, index);
-    message
 }
 
 /// Collides the state's M0 with the body, recording the figures in the step's metrics.

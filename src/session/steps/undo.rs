@@ -6,9 +6,9 @@ use serde::Serialize;
 
 use super::super::emit::StepScope;
 use super::super::error::StepError;
-use super::super::stage::{GarmentPart, GarmentStage, Stage};
+use super::super::stage::{GarmentStage, Stage};
 use super::super::state::SessionState;
-use super::collide::emit_collision;
+use super::collide::emit_kept;
 
 /// The state restored.
 #[derive(Serialize)]
@@ -30,12 +30,9 @@ pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -
                 net: previous.net.as_ref(),
             }),
         );
-        for part in GarmentPart::RESURFACED {
-            scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
-        }
     }
     if let Some(probe) = &state.probe {
-        emit_collision(scope, &previous, probe.index());
+        emit_kept(scope, &previous, probe.index());
     }
     state.garment = Some(previous);
     Ok(())
