@@ -22,6 +22,7 @@
 pub mod body;
 pub mod collision;
 pub mod constraint;
+pub mod convergence;
 pub mod garment;
 pub mod geom;
 pub mod input;

@@ -1,6 +1,8 @@
 //! Data parallelism over independent items, results in input order (so output does not
 //! depend on the number of threads): vertex and edge checks, the ground truth.
 
+use crate::convergence;
+
 /// `f(0..n)` on all cores, in order. Small inputs (fewer than 256 items) run on the
 /// calling thread.
 pub fn par_map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
@@ -14,17 +16,29 @@ pub fn par_map_from<T: Send>(n: usize, min: usize, f: impl Fn(usize) -> T + Sync
         return (0..n).map(f).collect();
     }
     let chunk = n.div_ceil(threads);
+    // Loop stops reported on the workers are merged back into this thread's collector.
+    let collecting = convergence::collecting();
     std::thread::scope(|s| {
         let handles: Vec<_> = (0..n)
             .step_by(chunk)
             .map(|start| {
                 let f = &f;
-                s.spawn(move || (start..(start + chunk).min(n)).map(f).collect::<Vec<T>>())
+                s.spawn(move || {
+                    let run = || (start..(start + chunk).min(n)).map(f).collect::<Vec<T>>();
+                    if collecting {
+                        convergence::collect(run)
+                    } else {
+                        (run(), convergence::Tallies::new())
+                    }
+                })
             })
             .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().unwrap_or_else(|e| std::panic::resume_unwind(e)))
-            .collect()
+        let mut out = Vec::with_capacity(n);
+        for h in handles {
+            let (items, stops) = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
+            convergence::absorb(&stops);
+            out.extend(items);
+        }
+        out
     })
 }

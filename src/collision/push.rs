@@ -6,6 +6,7 @@
 use glam::DVec3;
 
 use crate::body::index::BodyIndex;
+use crate::convergence::{Bisection, Stop, record};
 
 /// Where a push ends: the point, the gap it aimed at (m; the ease, or less where the body
 /// leaves no room), and its distance to the body minus that gap (m).
@@ -72,7 +73,7 @@ pub(super) fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Opti
         let (mut short, mut beyond): (Option<f64>, Option<f64>) = (None, None);
         let mut t = 0.0;
         let mut inside = false;
-        for _ in 0..PUSH_STEPS {
+        for step in 0..PUSH_STEPS {
             s = start + d * t;
             let Some(near) = index.nearest(s, reach) else {
                 return Some(Pushed {
@@ -88,6 +89,7 @@ pub(super) fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Opti
             }
             let err = ease - signed;
             if err.abs() <= EASE_TOLERANCE * ease {
+                record("collision.push.secant", Stop::Converged, step + 1, err);
                 return Some(Pushed {
                     to: s,
                     target: ease,
@@ -116,6 +118,7 @@ pub(super) fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Opti
             // The steps ran out: the nearest point known beyond the gap, else the last.
             let s = start + d * beyond.unwrap_or(t);
             let signed = index.signed_distance(s, reach).unwrap_or(reach);
+            record("collision.push.secant", Stop::IterationLimit, PUSH_STEPS, signed - ease);
             return Some(Pushed {
                 to: s,
                 target: ease,
@@ -162,15 +165,13 @@ fn best_along(index: &BodyIndex, from: DVec3, d: DVec3, len: f64, ease: f64) -> 
     if v > ease {
         // Room enough after all: where the distance first reaches the ease (bisection from
         // the start, which stands nearer).
-        let (mut lo, mut hi) = (0.0, t);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if dist(mid) < ease {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+        let (_, hi) = Bisection {
+            name: "collision.push.bisection",
+            steps: 60,
+            tolerance: EASE_TOLERANCE * ease,
+            stop_at_tolerance: false,
         }
+        .run(0.0, t, |mid| dist(mid) < ease);
         t = hi;
     }
     let v = dist(t);
@@ -188,11 +189,15 @@ fn best_along(index: &BodyIndex, from: DVec3, d: DVec3, len: f64, ease: f64) -> 
 pub(super) fn settle(index: &BodyIndex, mut q: DVec3, ease: f64) -> Pushed {
     let reach = 0.2 * index.height;
     let mut reached = index.signed_distance(q, reach).unwrap_or(reach);
-    for _ in 0..PUSH_STEPS {
+    let mut stop = (Stop::IterationLimit, PUSH_STEPS);
+    for step in 0..PUSH_STEPS {
         if (reached - ease).abs() <= EASE_TOLERANCE * ease {
+            stop = (Stop::Converged, step);
             break;
         }
         let Some(near) = index.nearest(q, reach) else {
+            // Nothing of the body within reach: as free as it gets.
+            stop = (Stop::Converged, step);
             break;
         };
         let out = if near.distance > 0.0 {
@@ -203,10 +208,12 @@ pub(super) fn settle(index: &BodyIndex, mut q: DVec3, ease: f64) -> Pushed {
         let next = near.foot + out * ease;
         let now = index.signed_distance(next, reach).unwrap_or(reach);
         if now <= reached {
+            stop = (Stop::Stalled, step);
             break;
         }
         (q, reached) = (next, now);
     }
+    record("collision.push.settle", stop.0, stop.1, reached - ease);
     let target = reached.min(ease);
     Pushed {
         to: q,

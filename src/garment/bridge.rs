@@ -17,6 +17,8 @@
 
 use glam::DVec3;
 
+use crate::convergence::Bisection;
+
 use super::probe::BodyProbe;
 
 /// Relative tolerance on a distance when deciding that a point has it.
@@ -81,15 +83,13 @@ pub fn bridge(probe: &BodyProbe, p: DVec3, dir: DVec3, b: &Bridging) -> DVec3 {
         }
         if done(next) {
             // The first point that will do lies within the last step: bisection.
-            let (mut lo, mut hi) = (q, next);
-            for _ in 0..60 {
-                let mid = lo.lerp(hi, 0.5);
-                if done(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
+            let (_, hi) = Bisection {
+                name: "bridge.bisection",
+                steps: 60,
+                tolerance: 1e-9 * b.gap,
+                stop_at_tolerance: false,
             }
+            .run(q, next, |mid| !done(mid));
             return hi;
         }
         q = next;

@@ -10,6 +10,7 @@ use glam::{DVec2, DVec3};
 use thiserror::Error;
 
 use super::convexify::extremes;
+use crate::convergence::Bisection;
 use crate::geom::Plane;
 
 /// How much room the garment leaves.
@@ -158,21 +159,17 @@ pub fn ease_ring(garment: &[DVec3], body: &[DVec3], plane: &Plane, ease: Ease) -
             // Bisection on the monotone gap along the ray, beyond the exit (tolerances
             // relative to the ring's size: the exit's distance from the centre).
             let size = exit.max(f64::MIN_POSITIVE);
-            let (mut lo, mut hi) = (exit, exit + target.max(1e-9 * size));
+            let (lo, mut hi) = (exit, exit + target.max(1e-9 * size));
             while distance_to_ring(o + dir * hi, &flat) < target {
                 hi = exit + 2.0 * (hi - exit);
             }
-            for _ in 0..200 {
-                let mid = 0.5 * (lo + hi);
-                if distance_to_ring(o + dir * mid, &flat) < target {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-                if hi - lo <= 1e-13 * size {
-                    break;
-                }
+            let (lo, hi) = Bisection {
+                name: "garment.ease.bisection",
+                steps: 200,
+                tolerance: 1e-13 * size,
+                stop_at_tolerance: true,
             }
+            .run(lo, hi, |mid| distance_to_ring(o + dir * mid, &flat) < target);
             let w = o + dir * (0.5 * (lo + hi));
             Ok(origin + u * w.x + v * w.y)
         })

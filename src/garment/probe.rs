@@ -8,6 +8,10 @@ use glam::DVec3;
 use crate::body::Body;
 use crate::body::index::BodyIndex;
 use crate::body::slices::SliceOptions;
+use crate::convergence::{Stop, record};
+
+/// Most passes of [`BodyProbe::clear`].
+const CLEAR_PASSES: usize = 4;
 
 /// A body prepared for clearance queries: it owns the body's one [`BodyIndex`].
 #[derive(Debug)]
@@ -49,11 +53,18 @@ impl BodyProbe {
     /// already `gap` away are returned unchanged (bit for bit).
     pub fn clear(&self, p: DVec3, gap: f64) -> DVec3 {
         let mut q = p;
-        for _ in 0..4 {
+        let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
+        for pass in 0..=CLEAR_PASSES {
             let Some((foot, d, normal)) = self.nearest(q) else {
+                stop = (Stop::Converged, pass, 0.0);
                 break;
             };
             if d >= gap * (1.0 - 1e-9) {
+                stop = (Stop::Converged, pass, 0.0);
+                break;
+            }
+            if pass == CLEAR_PASSES {
+                stop.2 = gap - d;
                 break;
             }
             let mut out = (q - foot) * d.signum();
@@ -61,6 +72,9 @@ impl BodyProbe {
                 out = normal;
             }
             q = foot + out.normalize_or_zero() * gap;
+        }
+        if stop.1 > 0 {
+            record("garment.probe.clear", stop.0, stop.1, stop.2);
         }
         q
     }

@@ -3,6 +3,8 @@
 //! points; an open ring is split into 2 arcs about its middle point (by length).
 
 use glam::DVec3;
+
+use crate::convergence::Bisection;
 use thiserror::Error;
 
 /// Why a ring cannot be resampled.
@@ -70,15 +72,13 @@ fn arc_samples(polyline: &[DVec3], count: usize) -> Vec<DVec3> {
             points[count - 1].distance(end) - c
         }
     };
-    let (mut lo, mut hi) = (0.0, total / count as f64);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if residual(mid) > 0.0 {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
+    let (lo, hi) = Bisection {
+        name: "garment.resample.bisection",
+        steps: 80,
+        tolerance: 1e-12 * total,
+        stop_at_tolerance: false,
     }
+    .run(0.0, total / count as f64, |c| residual(c) > 0.0);
     let mut out = march(polyline, 0.5 * (lo + hi), count - 1);
     out.truncate(count);
     out

@@ -10,7 +10,11 @@ use super::anchors::{AnchorSpec, locate};
 use super::convexify::convex_ring;
 use super::ease::{Ease, EaseError, ease_ring};
 use super::resample::{ResampleError, resample_closed};
+use crate::convergence::{Stop, record};
 use crate::geom::{ChordSpline3, CurveEnds, Plane, SplineError, polygon};
+
+/// Most secant steps fitting a ring's girth to its target.
+const GIRTH_STEPS: usize = 40;
 
 /// Settings of ring processing.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -412,12 +416,19 @@ impl GarmentRing {
             // Secant on girth(extra) = target; the girth grows by about 2 pi per metre of ease.
             let (mut x0, mut g0) = (0.0, result.girth);
             let mut x1 = ((target - g0) / std::f64::consts::TAU).max(floor);
-            for _ in 0..40 {
+            let mut stop = (Stop::IterationLimit, GIRTH_STEPS);
+            for step in 0..GIRTH_STEPS {
                 let r = attempt(x1)?;
                 let g1 = r.girth;
                 extra = x1;
                 result = r;
                 if (g1 - target).abs() <= options.girth_tolerance * target {
+                    stop = (Stop::Converged, step + 1);
+                    break;
+                }
+                if step > 0 && x1 == x0 {
+                    // The step changed nothing (pinned at the floor).
+                    stop = (Stop::Stalled, step + 1);
                     break;
                 }
                 let slope = if (x1 - x0).abs() > 0.0 {
@@ -429,6 +440,7 @@ impl GarmentRing {
                 (x0, g0) = (x1, g1);
                 x1 = (x1 + (target - g1) / slope).max(floor);
             }
+            record("garment.ring.girth_secant", stop.0, stop.1, result.girth - target);
         }
         let Attempt {
             eased,

@@ -9,6 +9,7 @@ use glam::DVec3;
 use parry3d::query::PointQueryWithLocation;
 
 use super::dress_form::{DressForm, Region, ring_angle};
+use crate::convergence::{Stop, record};
 
 /// Max and RMS of a set of distances.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
@@ -47,6 +48,10 @@ pub struct TrueSurface {
 }
 
 const SEARCH_LAYERS: usize = 240;
+/// Most Gauss-Newton steps of a closest-point search on the true surface.
+const GAUSS_NEWTON_STEPS: usize = 30;
+/// A Gauss-Newton step shorter than this (parameter units) has converged.
+const GAUSS_NEWTON_TOLERANCE: f64 = 1e-13;
 const SEARCH_POINTS: usize = 288;
 
 impl TrueSurface {
@@ -101,13 +106,15 @@ impl TrueSurface {
         let mut s = w[0] * params[0].0 + w[1] * params[1].0 + w[2] * params[2].0;
         let mut t = w[0] * params[0].1 + w[1] * params[1].1 + w[2] * params[2].1;
         let mut best = self.form.point(s, t).distance(q);
-        for _ in 0..30 {
+        let mut stop = (Stop::IterationLimit, GAUSS_NEWTON_STEPS, 0.0);
+        for step in 0..GAUSS_NEWTON_STEPS {
             let r = self.form.point(s, t) - q;
             let (ps, pt) = self.form.tangents(s, t);
             let (a11, a12, a22) = (ps.dot(ps), ps.dot(pt), pt.dot(pt));
             let (g1, g2) = (ps.dot(r), pt.dot(r));
             let det = a11 * a22 - a12 * a12;
             if det.abs() <= f64::MIN_POSITIVE {
+                stop = (Stop::Stalled, step, stop.2);
                 break;
             }
             let ds = -(a22 * g1 - a12 * g2) / det;
@@ -123,10 +130,18 @@ impl TrueSurface {
                 }
                 scale *= 0.5;
             }
-            if !improved || (ds * scale).abs() + (dt * scale).abs() < 1e-13 {
+            let moved = (ds * scale).abs() + (dt * scale).abs();
+            stop.2 = moved;
+            if moved < GAUSS_NEWTON_TOLERANCE {
+                stop = (Stop::Converged, step + 1, moved);
+                break;
+            }
+            if !improved {
+                stop = (Stop::Stalled, step + 1, moved);
                 break;
             }
         }
+        record("mannequin.gauss_newton", stop.0, stop.1, stop.2);
         (best, Region::of(s))
     }
 }

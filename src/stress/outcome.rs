@@ -5,6 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::convergence::{self, Tallies};
 use crate::session::{RunOptions, Shortfall, parse_session, run_session};
 
 use super::watch::Watch;
@@ -30,6 +31,9 @@ pub struct SessionOutcome {
     pub step_ms: Vec<f64>,
     /// The session did not parse (a generator bug: reported, never expected).
     pub parse_error: Option<String>,
+    /// Why the iterative loops stopped, by loop (see [`crate::convergence`]).
+    #[serde(default)]
+    pub loops: Tallies,
 }
 
 impl SessionOutcome {
@@ -98,10 +102,15 @@ pub fn run_one(text: &str, body: Option<&Path>) -> SessionOutcome {
         ..RunOptions::default()
     };
     let mut watch = Watch::default();
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        run_session(&session, &options, &mut [&mut watch])
-    }));
-    let mut out = SessionOutcome::default();
+    let (result, loops) = convergence::collect(|| {
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            run_session(&session, &options, &mut [&mut watch])
+        }))
+    });
+    let mut out = SessionOutcome {
+        loops,
+        ..SessionOutcome::default()
+    };
     match result {
         Err(payload) => {
             out.panic = Some(

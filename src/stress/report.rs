@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::outcome::SessionOutcome;
+use crate::convergence::{LOOPS, Tallies, merge_into};
 
 /// One session's record.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -65,6 +66,9 @@ pub struct Totals {
     pub max_residual_converged: f64,
     /// Compute time per step, ms: median, 99th percentile, max.
     pub step_ms: Percentiles,
+    /// Why the iterative loops stopped, by loop: converged, at the iteration limit or
+    /// stalled, with the largest residuals (see [`crate::convergence::LOOPS`] for units).
+    pub loops: Tallies,
 }
 
 /// Median, 99th percentile and maximum.
@@ -124,6 +128,7 @@ impl Totals {
                 }
             }
             times.extend_from_slice(&o.step_ms);
+            merge_into(&mut t.loops, &o.loops);
         }
         t.step_ms = Percentiles::of(&times);
         t
@@ -246,6 +251,9 @@ impl Report {
                 s.push_str(&format!("  {n:>5}  {reason}\n"));
             }
         }
+        if !all.loops.is_empty() {
+            s.push_str(&loops_table(&all.loops));
+        }
         for r in self.records.iter().filter(|r| r.outcome.is_bug()) {
             s.push_str(&format!(
                 "BUG {} session {}: {}{}\n",
@@ -257,6 +265,33 @@ impl Report {
         }
         s
     }
+}
+
+/// Why the loops stopped, one line per loop: stops by reason, the most iterations and the
+/// largest residuals, with the residual's unit.
+pub fn loops_table(loops: &Tallies) -> String {
+    let mut s = format!(
+        "loops: {:<31} {:>9} {:>9} {:>8} {:>6} {:>11} {:>11}  residual\n",
+        "name", "converged", "limit", "stalled", "iters", "max conv.", "max other"
+    );
+    for (name, t) in loops {
+        let unit = LOOPS.iter().find(|(n, _)| n == name).map_or("", |(_, u)| u);
+        s.push_str(&format!(
+            "       {name:<31} {:>9} {:>9} {:>8} {:>6} {:>11.2e} {:>11.2e}  {unit}{}\n",
+            t.converged,
+            t.iteration_limit,
+            t.stalled,
+            t.max_iterations,
+            t.max_residual_converged,
+            t.max_residual_not_converged,
+            if t.non_finite > 0 {
+                format!(" ({} NaN or infinite)", t.non_finite)
+            } else {
+                String::new()
+            }
+        ));
+    }
+    s
 }
 
 /// The kind of bug an outcome holds, in words.

@@ -5,7 +5,12 @@
 use glam::DVec2;
 
 use crate::body::profile::{MeasuredLoop, outer_loops};
+use crate::convergence::Bisection;
 use crate::mesh::{Adjacency, TriMesh};
+
+/// The landmark heights found by bisection count as converged once known to this fraction
+/// of the body's height (a micrometre per metre).
+const LANDMARK_TOLERANCE: f64 = 1e-6;
 
 /// The item whose `key` is nearest `y`.
 pub(super) fn nearest<T>(items: &[T], y: f64, key: impl Fn(&T) -> f64) -> Option<&T> {
@@ -37,21 +42,14 @@ impl Scan<'_> {
 
     /// Largest `t` in `[lo, hi]` where `separate(t)` still holds, given it holds at `lo`
     /// and not at `hi`.
-    pub(super) fn bisect(
-        &self,
-        mut lo: f64,
-        mut hi: f64,
-        steps: usize,
-        separate: impl Fn(&[MeasuredLoop]) -> bool,
-    ) -> f64 {
-        for _ in 0..steps {
-            let mid = 0.5 * (lo + hi);
-            if separate(&self.loops(mid)) {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
+    pub(super) fn bisect(&self, lo: f64, hi: f64, steps: usize, separate: impl Fn(&[MeasuredLoop]) -> bool) -> f64 {
+        let (lo, hi) = Bisection {
+            name: "landmarks.bisection",
+            steps,
+            tolerance: LANDMARK_TOLERANCE * self.height,
+            stop_at_tolerance: false,
         }
+        .run(lo, hi, |mid| separate(&self.loops(mid)));
         0.5 * (lo + hi)
     }
 }

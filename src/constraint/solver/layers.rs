@@ -11,6 +11,7 @@ use super::limits::{JOINT_ROUNDS, SelfLimits, mirror_pushes};
 use super::{CurveHits, EditError, NodeHit, Run, refit_error};
 use crate::constraint::curves::{self, CurveKind, CurveNode};
 use crate::constraint::kinds::SAMPLES_PER_SPAN;
+use crate::convergence::{Bisection, Stop, record};
 
 impl Run<'_> {
     /// Moves `p` out of the body until it stands `gap` off it: along the body normal, kept
@@ -38,17 +39,13 @@ impl Run<'_> {
             hi *= 2.0;
             grow += 1;
         }
-        for _ in 0..80 {
-            let mid = 0.5 * (lo + hi);
-            if sd(mid) < gap {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-            if hi - lo <= 1e-12 * self.net.scale {
-                break;
-            }
+        let (_, hi) = Bisection {
+            name: "constraint.layers.push_out",
+            steps: 80,
+            tolerance: 1e-12 * self.net.scale,
+            stop_at_tolerance: true,
         }
+        .run(lo, hi, |mid| sd(mid) < gap);
         p + u * hi
     }
 
@@ -67,16 +64,20 @@ impl Run<'_> {
         let start = curves::points(&self.fw, &node).to_vec();
         let centre = start.iter().sum::<DVec3>() / start.len().max(1) as f64;
         let mut now = start.clone();
-        for _ in 0..JOINT_ROUNDS {
+        let (mut rounds, mut last, mut idle) = (0, 0.0, false);
+        for round in 0..=JOINT_ROUNDS {
             let mut push = vec![DVec3::ZERO; now.len()];
             for (i, p) in now.iter().enumerate() {
                 if !keep.contains(&i) && self.probe.signed_distance(*p) < gaps[i] * (1.0 - 1e-9) {
                     push[i] = self.push_out(*p, plane, centre, gaps[i]) - *p;
                 }
             }
-            if push.iter().all(|d| *d == DVec3::ZERO) {
+            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
+            idle = push.iter().all(|d| *d == DVec3::ZERO);
+            if idle || round == JOINT_ROUNDS {
                 break;
             }
+            rounds = round + 1;
             mirror_pushes(&pairs, &mut push, keep);
             for (p, d) in now.iter_mut().zip(&push) {
                 if *d != DVec3::ZERO {
@@ -85,6 +86,8 @@ impl Run<'_> {
             }
             ease.hold(&pairs, keep, &mut now, self.options.tolerance * self.net.scale);
         }
+        let stop = if idle { Stop::Converged } else { Stop::IterationLimit };
+        record("constraint.layers.joint_rounds", stop, rounds, last);
         let out: Vec<NodeHit> = (0..start.len())
             .filter(|&i| now[i] != start[i])
             .map(|i| NodeHit {

@@ -7,6 +7,7 @@ use glam::{DVec2, DVec3};
 
 use crate::constraint::kinds::{Kind, nearest_on_polygon, signed_gap};
 use crate::constraint::network::ConstraintNet;
+use crate::convergence::{Stop, record};
 use crate::garment::{Ease, ease_ring};
 
 /// A curve's ease and design region, ready to apply point by point in its plane.
@@ -66,7 +67,8 @@ impl<'a> SelfLimits<'a> {
         if self.ease.is_empty() && self.regions.is_empty() {
             return;
         }
-        for _ in 0..JOINT_ROUNDS {
+        let (mut rounds, mut last, mut idle) = (0, 0.0, false);
+        for round in 0..=JOINT_ROUNDS {
             let mut push: Vec<DVec3> = control
                 .iter()
                 .enumerate()
@@ -78,14 +80,19 @@ impl<'a> SelfLimits<'a> {
                     }
                 })
                 .collect();
-            if push.iter().all(|d| *d == DVec3::ZERO) {
+            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
+            idle = push.iter().all(|d| *d == DVec3::ZERO);
+            if idle || round == JOINT_ROUNDS {
                 break;
             }
+            rounds = round + 1;
             mirror_pushes(pairs, &mut push, keep);
             for (p, d) in control.iter_mut().zip(&push) {
                 *p += *d;
             }
         }
+        let stop = if idle { Stop::Converged } else { Stop::IterationLimit };
+        record("constraint.limits.hold", stop, rounds, last);
     }
 }
 

@@ -39,6 +39,7 @@ use glam::DVec3;
 use super::curves::{self, CurveKind, CurveNode};
 use super::kinds::Kind;
 use super::network::ConstraintNet;
+use crate::convergence::{Stop, record};
 use crate::garment::{BodyProbe, Framework};
 
 pub use edit::{Edit, EditError, Target, point_names};
@@ -147,6 +148,8 @@ pub fn solve(
     let mut solved_all: BTreeSet<usize> = BTreeSet::new();
     let mut passes = 0;
     let mut converged = false;
+    let mut stop = Stop::IterationLimit;
+    let mut broken_before: Option<Vec<(usize, usize)>> = None;
     for pass in 0..options.passes.max(1) {
         passes = pass + 1;
         let broken = run.pass(pass, &mut pending, &mut solved_all)?;
@@ -160,14 +163,23 @@ pub fn solve(
         }
         if broken.is_empty() {
             converged = true;
+            stop = Stop::Converged;
             break;
         }
         if options.chains == Chains::Split {
             break;
         }
+        // The same constraints broken by the same curves in the last two passes: the
+        // chains are not closing (reported as a stall when the passes run out so).
+        stop = if broken_before.as_ref() == Some(&broken) {
+            Stop::Stalled
+        } else {
+            Stop::IterationLimit
+        };
         // Close the chain: move the element solved first (A) to meet the constraint the
         // later one (C) broke, and solve again from A.
         pending = run.close_chains(&broken);
+        broken_before = Some(broken);
     }
     let residuals = net.residuals(&run.fw);
     let violations = residuals
@@ -176,6 +188,8 @@ pub fn solve(
         .filter(|(k, r)| net.violated(*k, **r, options.tolerance))
         .map(|(k, r)| (k, *r))
         .collect();
+    let largest = residuals.iter().map(|r| r.abs()).fold(0.0, f64::max);
+    record("constraint.passes", stop, passes, largest);
     let solved: Vec<usize> = solved_all.into_iter().collect();
     let clearance_deficit = solved
         .iter()
