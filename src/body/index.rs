@@ -6,6 +6,8 @@
 //! that lie inside another part left out, see [`super::shell`]), and the horizontal slice
 //! stack the line-line test and the ring-centre response read.
 
+use std::cmp::Ordering;
+
 use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, TraversalAction};
@@ -14,6 +16,7 @@ use super::shell::{Shell, find_shell};
 use super::slices::{SliceOptions, SliceStack};
 use super::{Body, DetectionMethod, PartitionId, ResponseRule};
 use crate::geom::closest::{Feature, closest_on_triangle};
+use crate::geom::predicates::{segment_crosses_triangle, side};
 use crate::geom::ray::ray_triangle;
 use parry3d::query::PointQuery;
 
@@ -32,17 +35,18 @@ pub struct Nearest {
     pub distance: f64,
     /// Outward pseudo-normal of that feature (unit; zero on a fully degenerate feature).
     pub normal: DVec3,
+    /// Where the foot lies inside a face: whether the query point lies behind the face's
+    /// plane, decided exactly ([`crate::geom::predicates::side`]); `None` on an edge or a
+    /// corner (and next to a self-crossing), where the pseudo-normal decides.
+    pub behind: Option<bool>,
 }
 
 impl Nearest {
     /// Signed distance of `p` (m): negative inside the body (the point lies behind the
     /// feature's angle-weighted pseudo-normal, Baerentzen and Aanaes 2005), zero on the surface.
     pub fn signed(&self, p: DVec3) -> f64 {
-        if (p - self.foot).dot(self.normal) < 0.0 {
-            -self.distance
-        } else {
-            self.distance
-        }
+        let behind = self.behind.unwrap_or_else(|| (p - self.foot).dot(self.normal) < 0.0);
+        if behind { -self.distance } else { self.distance }
     }
 }
 
@@ -295,6 +299,12 @@ impl BodyIndex {
 
     /// Distance from `p` to triangle `t`, with its foot, feature and pseudo-normal.
     pub fn nearest_on(&self, p: DVec3, t: u32) -> Nearest {
+        self.exact_side(p, self.candidate(p, t))
+    }
+
+    /// [`Self::nearest_on`] without the exact side (`behind` is `None`): for the candidates
+    /// of a search, the winner gets its side afterwards.
+    fn candidate(&self, p: DVec3, t: u32) -> Nearest {
         let (foot, feature) = closest_on_triangle(p, self.corners(t));
         let normal = match feature {
             Feature::Face => self.face_normals[t as usize],
@@ -307,14 +317,24 @@ impl BodyIndex {
             feature,
             distance: p.distance(foot),
             normal,
+            behind: None,
         }
+    }
+
+    /// `n` with the exact side of `p` where its foot lies inside a face.
+    fn exact_side(&self, p: DVec3, mut n: Nearest) -> Nearest {
+        if n.feature == Feature::Face {
+            let [a, b, c] = self.corners(n.triangle);
+            n.behind = Some(side(a, b, c, p) == Ordering::Less);
+        }
+        n
     }
 
     /// The nearest point among `candidates` (ties: the lowest triangle index).
     pub fn nearest_among(&self, p: DVec3, candidates: impl Iterator<Item = u32>) -> Option<Nearest> {
         let mut best: Option<Nearest> = None;
         for t in candidates {
-            let n = self.nearest_on(p, t);
+            let n = self.candidate(p, t);
             if best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle)) {
                 best = Some(n);
             }
@@ -329,10 +349,12 @@ impl BodyIndex {
 
     /// `n` with a normal that gives `p` its true side where the pseudo-normals cannot be
     /// trusted (next to a self-crossing): the side counted along rays.
-    fn settle(&self, p: DVec3, mut n: Nearest) -> Nearest {
+    fn settle(&self, p: DVec3, n: Nearest) -> Nearest {
+        let mut n = self.exact_side(p, n);
         if n.distance > 0.0 && self.tangled.get(n.triangle as usize).copied().unwrap_or(false) {
             let away = (p - n.foot) / n.distance;
             n.normal = if self.winding(p) >= 1 { -away } else { away };
+            n.behind = None;
         }
         n
     }
@@ -372,7 +394,7 @@ impl BodyIndex {
         let first = bvh.find_best(
             reach as f32 + self.slack as f32,
             |node, _| node.aabb().distance_to_local_point(q, true),
-            |leaf, _| Some(self.nearest_on(p, map(leaf)).distance as f32),
+            |leaf, _| Some(self.candidate(p, map(leaf)).distance as f32),
         );
         let mut bound = first.map_or(reach, |(_, d)| (f64::from(d) * (1.0 + 1e-5) + self.slack).min(reach));
         let mut best: Option<Nearest> = None;
@@ -383,7 +405,7 @@ impl BodyIndex {
             }
             if let Some(leaf) = node.leaf_data() {
                 let t = map(leaf);
-                let n = self.nearest_on(p, t);
+                let n = self.candidate(p, t);
                 let better =
                     best.is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle));
                 if n.distance <= reach && better {
@@ -427,8 +449,16 @@ impl BodyIndex {
         ray_triangle(origin, dir, self.corners(triangle), t_min, t_max).map(|hit| (hit, triangle))
     }
 
-    /// Whether the segment `a..b` meets the body surface.
+    /// Whether the segment `a..b` passes through the body surface (its ends strictly on
+    /// either side of a triangle it meets), decided by exact predicates: a segment through
+    /// an edge or a corner shared by triangles is never let through the crack between
+    /// them, as rounded ray-triangle tests can (see [`crate::geom::predicates`]).
     pub fn segment_hits(&self, a: DVec3, b: DVec3) -> bool {
-        self.cast_ray(a, b - a, 0.0, 1.0).is_some()
+        let d = b - a;
+        let ray = parry3d::query::Ray::new(a.as_vec3(), d.as_vec3());
+        let pad = self.slack / d.length().max(f64::MIN_POSITIVE);
+        self.whole
+            .leaves(|node| node.cast_ray(&ray, (1.0 + pad) as f32) < f32::MAX)
+            .any(|leaf| segment_crosses_triangle(a, b, self.corners(self.leaves[leaf as usize])))
     }
 }

@@ -67,7 +67,6 @@ pub fn point_face(index: &BodyIndex, search: Search, p: DVec3, reach: &Reach) ->
             .filter(|n| n.distance <= r),
         Search::PartitionBvh(k) => index.nearest_in_partition(k, p, r),
     };
-    let inside = nearest
-        .is_some_and(|n| n.distance > reach.surface && n.distance <= reach.inside && (p - n.foot).dot(n.normal) < 0.0);
+    let inside = nearest.is_some_and(|n| n.distance > reach.surface && n.distance <= reach.inside && n.signed(p) < 0.0);
     PointFace { nearest, inside }
 }

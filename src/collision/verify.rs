@@ -10,7 +10,7 @@ use super::detect::Detection;
 use super::quality::Quality;
 use crate::body::DetectionMethod;
 use crate::geom::inside::winding_number;
-use crate::geom::ray::ray_triangle;
+use crate::geom::predicates::segment_crosses_triangle;
 use crate::mesh::TriMesh;
 use crate::par::par_map as parallel;
 
@@ -50,7 +50,7 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
         let (a, b) = (positions[a as usize], positions[b as usize]);
         let (lo, hi) = (a.min(b), a.max(b));
         boxes.iter().enumerate().any(|(t, (tlo, thi))| {
-            tlo.cmple(hi).all() && thi.cmpge(lo).all() && ray_triangle(a, b - a, body.corners(t), 0.0, 1.0).is_some()
+            tlo.cmple(hi).all() && thi.cmpge(lo).all() && segment_crosses_triangle(a, b, body.corners(t))
         })
     });
     GroundTruth { inside, crossing }

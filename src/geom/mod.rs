@@ -6,6 +6,7 @@ pub mod coons;
 pub mod inside;
 pub mod plane;
 pub mod polygon;
+pub mod predicates;
 pub mod ray;
 pub mod section;
 pub mod spline;

@@ -3,8 +3,9 @@
 //! Repairs (each counted in [`MeshReport`]): triangles that repeat a vertex and exact
 //! duplicate triangles are dropped; triangles are flipped so that neighbours agree and
 //! each closed part faces outward. Errors: an edge shared by three or more triangles, a
-//! part that cannot be oriented, or nothing left. Open boundaries and zero-area triangles
-//! are reported and kept.
+//! part that cannot be oriented, or nothing left. Zero-area triangles are reported and
+//! kept. Holes (boundary loops, such as a scan's gap under the arm) are closed by a fan
+//! of triangles about each loop's centroid, so that inside and outside stay defined.
 
 use std::collections::VecDeque;
 
@@ -28,8 +29,11 @@ pub struct MeshReport {
     pub zero_area_triangles: usize,
     /// Triangles flipped to agree with their neighbours or to face outward.
     pub flipped: usize,
-    /// Edges with a single triangle (0 for a closed mesh).
+    /// Edges with a single triangle as read (0 for a closed mesh).
     pub boundary_edges: usize,
+    /// Holes closed: boundary loops, each filled by a fan about a new vertex at its
+    /// centroid (the triangles are counted in `triangles`).
+    pub holes_filled: usize,
     /// Edge-connected parts.
     pub components: usize,
     /// Vertices no triangle uses.
@@ -49,11 +53,13 @@ impl MeshReport {
         note(self.dropped_duplicates, "duplicate triangle(s) dropped");
         note(self.zero_area_triangles, "zero-area triangle(s) kept");
         note(self.flipped, "triangle(s) flipped to a consistent outward orientation");
-        note(
-            self.boundary_edges,
-            "boundary edge(s): the mesh is open, inside/outside is approximate",
-        );
         note(self.unused_vertices, "unused vertex(es)");
+        if self.boundary_edges > 0 {
+            notes.push(format!(
+                "{} boundary edge(s): the mesh was open; {} hole(s) filled by a fan about the centroid",
+                self.boundary_edges, self.holes_filled
+            ));
+        }
         if self.components > 1 {
             notes.push(format!("{} separate parts", self.components));
         }
@@ -248,6 +254,17 @@ pub fn validate_and_repair(
     }
     report.flipped = flipped.iter().filter(|f| **f).count();
     report.components = parts.len();
+    if report.boundary_edges > 0 {
+        report.holes_filled = fill_holes(mesh, &adjacency);
+        adjacency = Adjacency::try_new(mesh).map_err(|e| MeshError::NonManifold {
+            place: place.clone(),
+            a: e.vertices[0] + 1,
+            b: e.vertices[1] + 1,
+            count: e.triangles.len(),
+            lines: " (after filling holes)".into(),
+        })?;
+    }
+    let n = mesh.triangles.len();
     report.triangles = n;
     let diagonal_sq = mesh.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
     report.zero_area_triangles = (0..n)
@@ -261,6 +278,53 @@ pub fn validate_and_repair(
     }
     report.unused_vertices = used.iter().filter(|u| !**u).count();
     Ok((report, adjacency))
+}
+
+/// Closes every boundary loop of the consistently oriented `mesh` with a fan about a new
+/// vertex at the loop's centroid; returns how many loops were closed. A loop that passes a
+/// vertex twice is split there into simple loops, so the fans keep every edge manifold.
+fn fill_holes(mesh: &mut TriMesh, adjacency: &Adjacency) -> usize {
+    // Boundary edges a -> b as the triangles run them, by start vertex (sorted: the fill
+    // is deterministic).
+    let mut from: std::collections::BTreeMap<u32, Vec<u32>> = std::collections::BTreeMap::new();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for k in 0..3 {
+            if adjacency.neighbours[t][k] == NO_NEIGHBOUR {
+                from.entry(tri[k]).or_default().push(tri[(k + 1) % 3]);
+            }
+        }
+    }
+    for ends in from.values_mut() {
+        ends.sort_unstable();
+        ends.reverse();
+    }
+    let mut loops: Vec<Vec<u32>> = Vec::new();
+    while let Some((&start, _)) = from.iter().find(|(_, ends)| !ends.is_empty()) {
+        let mut path = vec![start];
+        let mut at = start;
+        while let Some(next) = from.get_mut(&at).and_then(Vec::pop) {
+            if let Some(i) = path.iter().position(|&v| v == next) {
+                loops.push(path.split_off(i));
+                path.push(next);
+            } else {
+                path.push(next);
+            }
+            at = next;
+        }
+    }
+    let mut filled = 0;
+    for l in loops.iter().filter(|l| l.len() >= 3) {
+        let centre = l.iter().map(|&v| mesh.positions[v as usize]).sum::<glam::DVec3>() / l.len() as f64;
+        let c = mesh.positions.len() as u32;
+        mesh.positions.push(centre);
+        for k in 0..l.len() {
+            let (a, b) = (l[k], l[(k + 1) % l.len()]);
+            // The mesh runs a -> b; the fan runs it back.
+            mesh.triangles.push([b, a, c]);
+        }
+        filled += 1;
+    }
+    filled
 }
 
 /// Where the directed edge `a -> b` runs in `tri`, if it does.

@@ -203,3 +203,43 @@ pub fn shipped_bodies() -> Vec<std::path::PathBuf> {
     assert_eq!(out.len(), 5, "{out:?}");
     out
 }
+
+/// The last collided M0 of a session: positions after the response, and the edges.
+#[derive(Default)]
+pub struct LastGarment(pub Option<(Vec<DVec3>, Vec<[u32; 2]>)>);
+
+impl drape::session::StageSink for LastGarment {
+    fn collision(
+        &mut self,
+        _: &drape::session::StageInfo,
+        stage: drape::session::CollisionStage<'_>,
+    ) -> Result<(), drape::session::SinkError> {
+        if stage.part == drape::session::CollisionPart::Respond {
+            self.0 = Some((
+                stage.outcome.collision.mesh.positions.clone(),
+                stage.outcome.garment.edges.clone(),
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Girth of every triangle's own crossing segment with the plane `y`, summed: an
+/// independent section with no chaining.
+pub fn soup_girth(mesh: &TriMesh, y: f64) -> f64 {
+    let mut soup = 0.0;
+    for t in 0..mesh.triangles.len() {
+        let p = mesh.corners(t);
+        let mut pts = Vec::new();
+        for k in 0..3 {
+            let (a, b) = (p[k], p[(k + 1) % 3]);
+            if (a.y >= y) != (b.y >= y) {
+                pts.push(a + (b - a) * ((y - a.y) / (b.y - a.y)));
+            }
+        }
+        if pts.len() == 2 {
+            soup += pts[0].distance(pts[1]);
+        }
+    }
+    soup
+}

@@ -84,8 +84,19 @@ fn duplicates_and_repeated_vertices_are_dropped_and_open_edges_reported() {
     assert_eq!(report.dropped_duplicates, 1);
     assert_eq!(report.dropped_repeated_vertex, 1);
     assert_eq!(report.boundary_edges, 3);
-    assert_eq!(mesh.triangles.len(), 11);
-    assert!(report.notes().iter().any(|n| n.contains("boundary edge")));
+    // The hole (one triangle's worth) is closed by a fan of three about its centroid, which
+    // lies in the cube's face: the cube is whole again, volume 1.
+    assert_eq!(report.holes_filled, 1);
+    assert_eq!(mesh.triangles.len(), 11 + 3);
+    assert_eq!(mesh.positions.len(), 8 + 1);
+    assert!((mesh.signed_volume() - 1.0).abs() < 1e-12, "{}", mesh.signed_volume());
+    assert_eq!(Adjacency::try_new(&mesh).unwrap().boundary_edges, 0);
+    assert!(
+        report
+            .notes()
+            .iter()
+            .any(|n| n.contains("boundary edge") && n.contains("1 hole(s) filled"))
+    );
 }
 
 #[test]

@@ -12,6 +12,7 @@ mod landmarks;
 mod m1;
 mod mannequin;
 mod meshes;
+mod nasty;
 mod obj_errors;
 mod refusals;
 mod remote;

@@ -6,7 +6,7 @@ use drape::geom::{Plane, section_mesh};
 use drape::mesh::validate_and_repair;
 use glam::DVec3;
 
-use super::common::{angle, closed_grid, ellipse_perimeter, ellipse_point, real_body};
+use super::common::{angle, closed_grid, ellipse_perimeter, ellipse_point, real_body, soup_girth};
 
 #[test]
 fn cylinder_girth_is_exact() {
@@ -110,20 +110,7 @@ fn body_sections_agree_with_an_independent_segment_soup() {
             .iter()
             .map(|l| l.length())
             .sum();
-        let mut soup = 0.0;
-        for t in 0..mesh.triangles.len() {
-            let p = mesh.corners(t);
-            let mut pts = Vec::new();
-            for k in 0..3 {
-                let (a, b) = (p[k], p[(k + 1) % 3]);
-                if (a.y >= y) != (b.y >= y) {
-                    pts.push(a + (b - a) * ((y - a.y) / (b.y - a.y)));
-                }
-            }
-            if pts.len() == 2 {
-                soup += pts[0].distance(pts[1]);
-            }
-        }
+        let soup = soup_girth(mesh, y);
         assert!((walked - soup).abs() < 1e-9, "y={y}: walk {walked} soup {soup}");
     }
 }
