@@ -29,6 +29,7 @@ pub mod input;
 pub mod m1;
 pub mod mannequin;
 pub mod mesh;
+pub mod nurbs;
 pub mod par;
 pub mod session;
 pub mod stress;

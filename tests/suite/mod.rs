@@ -13,6 +13,7 @@ mod m1;
 mod mannequin;
 mod meshes;
 mod nasty;
+mod nurbs;
 mod obj_errors;
 mod refusals;
 mod remote;
