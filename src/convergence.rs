@@ -33,9 +33,12 @@ pub const LOOPS: [(&str, &str); 14] = [
         "constraint.passes",
         "m or rad, largest constraint residual after the solve",
     ),
-    ("constraint.layers.joint_rounds", "m, longest push of the last round"),
+    (
+        "constraint.layers.joint_rounds",
+        "m, longest push of the last round made",
+    ),
     ("constraint.layers.push_out", "m, bracket width"),
-    ("constraint.limits.hold", "m, longest push of the last round"),
+    ("constraint.limits.hold", "m, longest push of the last round made"),
     ("collision.push.bisection", "m, bracket width"),
     ("collision.push.secant", "m, distance from the ease"),
     ("collision.push.settle", "m, distance from the ease"),
@@ -111,13 +114,17 @@ pub fn merge_into(into: &mut Tallies, from: &Tallies) {
     }
 }
 
+/// Tallies as collected on one thread, keyed by the loops' static names.
+pub(crate) type Collected = BTreeMap<&'static str, Tally>;
+
 thread_local! {
-    static COLLECTOR: RefCell<Option<BTreeMap<&'static str, Tally>>> = const { RefCell::new(None) };
+    static COLLECTOR: RefCell<Option<Collected>> = const { RefCell::new(None) };
 }
 
-/// Reports that loop `name` stopped for `stop` after `iterations` with `residual`. Does
-/// nothing unless a collector runs on this thread.
+/// Reports that loop `name` (one of [`LOOPS`]) stopped for `stop` after `iterations` with
+/// `residual`. Does nothing unless a collector runs on this thread.
 pub fn record(name: &'static str, stop: Stop, iterations: usize, residual: f64) {
+    debug_assert!(LOOPS.iter().any(|(n, _)| *n == name), "loop {name} is not in LOOPS");
     COLLECTOR.with(|c| {
         if let Some(t) = c.borrow_mut().as_mut() {
             t.entry(name).or_default().add(stop, iterations, residual);
@@ -131,7 +138,7 @@ pub fn collecting() -> bool {
 }
 
 /// Restores the collector that ran before, also when the closure panics.
-struct Restore(Option<BTreeMap<&'static str, Tally>>);
+struct Restore(Option<Collected>);
 
 impl Drop for Restore {
     fn drop(&mut self) {
@@ -142,25 +149,28 @@ impl Drop for Restore {
 
 /// Runs `f` with a fresh collector on this thread; returns its result and the stops it
 /// reported. A collector that ran before is restored afterwards (the stops are not added
-/// to it; see [`absorb`]).
+/// to it).
 pub fn collect<R>(f: impl FnOnce() -> R) -> (R, Tallies) {
-    let before = COLLECTOR.with(|c| c.borrow_mut().replace(BTreeMap::new()));
-    let restore = Restore(before);
-    let out = f();
-    let got = COLLECTOR.with(|c| c.borrow_mut().take()).unwrap_or_default();
-    drop(restore);
+    let (out, got) = collect_here(f);
     (out, got.into_iter().map(|(k, v)| (k.to_string(), v)).collect())
 }
 
-/// Adds `tallies` to the collector running on this thread, if one does (the stops of
-/// worker threads, merged back by [`crate::par`]).
-pub fn absorb(tallies: &Tallies) {
+/// [`collect`] with the tallies as collected (for worker threads, see [`absorb`]).
+pub(crate) fn collect_here<R>(f: impl FnOnce() -> R) -> (R, Collected) {
+    let restore = Restore(COLLECTOR.with(|c| c.borrow_mut().replace(BTreeMap::new())));
+    let out = f();
+    let got = COLLECTOR.with(|c| c.borrow_mut().take()).unwrap_or_default();
+    drop(restore);
+    (out, got)
+}
+
+/// Adds a worker thread's `collected` stops to the collector running on this thread, if
+/// one does ([`crate::par`] merges its workers back so).
+pub(crate) fn absorb(collected: &Collected) {
     COLLECTOR.with(|c| {
         if let Some(t) = c.borrow_mut().as_mut() {
-            for (name, tally) in tallies {
-                if let Some((key, _)) = LOOPS.iter().find(|(n, _)| n == name) {
-                    t.entry(key).or_default().merge(tally);
-                }
+            for (name, tally) in collected {
+                t.entry(name).or_default().merge(tally);
             }
         }
     });

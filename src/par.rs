@@ -26,9 +26,9 @@ pub fn par_map_from<T: Send>(n: usize, min: usize, f: impl Fn(usize) -> T + Sync
                 s.spawn(move || {
                     let run = || (start..(start + chunk).min(n)).map(f).collect::<Vec<T>>();
                     if collecting {
-                        convergence::collect(run)
+                        convergence::collect_here(run)
                     } else {
-                        (run(), convergence::Tallies::new())
+                        (run(), convergence::Collected::new())
                     }
                 })
             })

@@ -299,16 +299,17 @@ fn fill_holes(mesh: &mut TriMesh, adjacency: &Adjacency) -> usize {
         ends.reverse();
     }
     let mut loops: Vec<Vec<u32>> = Vec::new();
-    while let Some((&start, _)) = from.iter().find(|(_, ends)| !ends.is_empty()) {
+    let starts: Vec<u32> = from.keys().copied().collect();
+    for start in starts {
+        // Walk on from `start` while it has unused boundary edges; a vertex met again
+        // closes the loop since its last visit.
         let mut path = vec![start];
         let mut at = start;
         while let Some(next) = from.get_mut(&at).and_then(Vec::pop) {
             if let Some(i) = path.iter().position(|&v| v == next) {
                 loops.push(path.split_off(i));
-                path.push(next);
-            } else {
-                path.push(next);
             }
+            path.push(next);
             at = next;
         }
     }

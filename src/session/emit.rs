@@ -97,6 +97,21 @@ impl StepScope<'_, '_, '_> {
         out
     }
 
+    /// Refuses the step's edit with `message` (which names the limit): the metrics record
+    /// it as `refused`, stage `name` goes to the sinks and the refusal to the shortfalls.
+    /// The caller keeps the garment as it was.
+    pub(crate) fn refuse(&mut self, message: &str, name: &'static str, stage: Stage<'_>) {
+        /// An edit refused.
+        #[derive(Serialize)]
+        struct Refusal<'a> {
+            /// Why, naming the limit.
+            refused: &'a str,
+        }
+        self.record(&Refusal { refused: message });
+        self.emit(name, stage);
+        self.shortfalls.push(Shortfall::Refused(message.to_string()));
+    }
+
     /// Records a group of figures (see [`StepMetrics::record`]).
     pub(crate) fn record<T: Serialize + ?Sized>(&mut self, figures: &T) {
         self.metrics.record(figures);

@@ -71,18 +71,17 @@ pub enum ReplayError {
     },
 }
 
+/// Appends `value(i)` for each row `i` of `array` to `out`, `Null` for null rows.
+fn push_rows(out: &mut Vec<Value>, array: &dyn Array, value: impl Fn(usize) -> Value) {
+    out.extend((0..array.len()).map(|i| if array.is_null(i) { Value::Null } else { value(i) }));
+}
+
 /// Appends the values of `array` (recursively through lists and structs) to `out`.
 fn flatten(array: &dyn Array, out: &mut Vec<Value>) {
     macro_rules! prim {
         ($t:ty) => {{
             let a = array.as_primitive::<$t>();
-            for i in 0..a.len() {
-                out.push(if a.is_null(i) {
-                    Value::Null
-                } else {
-                    Value::Num(a.value(i) as f64)
-                });
-            }
+            push_rows(out, array, |i| Value::Num(a.value(i) as f64));
         }};
     }
     match array.data_type() {
@@ -98,33 +97,15 @@ fn flatten(array: &dyn Array, out: &mut Vec<Value>) {
         DataType::UInt64 => prim!(adt::UInt64Type),
         DataType::Boolean => {
             let a = array.as_boolean();
-            for i in 0..a.len() {
-                out.push(if a.is_null(i) {
-                    Value::Null
-                } else {
-                    Value::Num(f64::from(u8::from(a.value(i))))
-                });
-            }
+            push_rows(out, array, |i| Value::Num(f64::from(u8::from(a.value(i)))));
         }
         DataType::Utf8 => {
             let a = array.as_string::<i32>();
-            for i in 0..a.len() {
-                out.push(if a.is_null(i) {
-                    Value::Null
-                } else {
-                    Value::Text(a.value(i).to_string())
-                });
-            }
+            push_rows(out, array, |i| Value::Text(a.value(i).to_string()));
         }
         DataType::LargeUtf8 => {
             let a = array.as_string::<i64>();
-            for i in 0..a.len() {
-                out.push(if a.is_null(i) {
-                    Value::Null
-                } else {
-                    Value::Text(a.value(i).to_string())
-                });
-            }
+            push_rows(out, array, |i| Value::Text(a.value(i).to_string()));
         }
         DataType::FixedSizeList(..) | DataType::List(_) => {
             for i in 0..array.len() {

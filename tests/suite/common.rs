@@ -141,55 +141,37 @@ pub fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// The nearest hit of the ray `p + t d`, `t > 0`, with the mesh (Möller-Trumbore per
-/// triangle, written here), if any.
-pub fn ray_hit(mesh: &TriMesh, p: DVec3, d: DVec3) -> Option<f64> {
-    let mut best: Option<f64> = None;
-    for t in 0..mesh.triangles.len() {
+/// The distances `t > 0` at which the ray `p + t d` meets the mesh's triangles
+/// (Möller-Trumbore per triangle, written here).
+fn ray_hits(mesh: &TriMesh, p: DVec3, d: DVec3) -> impl Iterator<Item = f64> + '_ {
+    (0..mesh.triangles.len()).filter_map(move |t| {
         let [a, b, c] = mesh.corners(t);
         let (e1, e2) = (b - a, c - a);
         let h = d.cross(e2);
         let det = e1.dot(h);
         if det.abs() < 1e-15 {
-            continue;
+            return None;
         }
         let s = p - a;
         let u = s.dot(h) / det;
         let q = s.cross(e1);
         let v = d.dot(q) / det;
         let dist = e2.dot(q) / det;
-        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 0.0 {
-            best = Some(best.map_or(dist, |x| x.min(dist)));
-        }
-    }
-    best
+        ((0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 0.0).then_some(dist)
+    })
+}
+
+/// The nearest hit of the ray `p + t d`, `t > 0`, with the mesh, if any.
+pub fn ray_hit(mesh: &TriMesh, p: DVec3, d: DVec3) -> Option<f64> {
+    ray_hits(mesh, p, d).min_by(f64::total_cmp)
 }
 
 /// Whether `p` is inside the closed mesh by ray parity: the ray from `p` along a fixed
-/// oblique direction crosses the surface an odd number of times (Möller-Trumbore per
-/// triangle, written here). The direction is irrational enough that no test point's ray
-/// grazes an edge of the shipped body.
+/// oblique direction crosses the surface an odd number of times. The direction is
+/// irrational enough that no test point's ray grazes an edge of the shipped body.
 pub fn inside_by_parity(mesh: &TriMesh, p: DVec3) -> bool {
     let d = DVec3::new(0.5773, 0.0071, 0.8165).normalize();
-    let mut count = 0;
-    for t in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.corners(t);
-        let (e1, e2) = (b - a, c - a);
-        let h = d.cross(e2);
-        let det = e1.dot(h);
-        if det.abs() < 1e-15 {
-            continue;
-        }
-        let s = p - a;
-        let u = s.dot(h) / det;
-        let q = s.cross(e1);
-        let v = d.dot(q) / det;
-        let dist = e2.dot(q) / det;
-        if (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && dist > 0.0 {
-            count += 1;
-        }
-    }
-    count % 2 == 1
+    ray_hits(mesh, p, d).count() % 2 == 1
 }
 
 /// The five shipped bodies, `assets/bodies/*.obj`, sorted.

@@ -65,18 +65,20 @@ impl Run<'_> {
         let centre = start.iter().sum::<DVec3>() / start.len().max(1) as f64;
         let mut now = start.clone();
         let (mut rounds, mut last, mut idle) = (0, 0.0, false);
-        for round in 0..=JOINT_ROUNDS {
+        // At the limit, the residual is the longest push of the last round (which still
+        // moved something).
+        for round in 0..JOINT_ROUNDS {
             let mut push = vec![DVec3::ZERO; now.len()];
             for (i, p) in now.iter().enumerate() {
                 if !keep.contains(&i) && self.probe.signed_distance(*p) < gaps[i] * (1.0 - 1e-9) {
                     push[i] = self.push_out(*p, plane, centre, gaps[i]) - *p;
                 }
             }
-            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
             idle = push.iter().all(|d| *d == DVec3::ZERO);
-            if idle || round == JOINT_ROUNDS {
+            if idle {
                 break;
             }
+            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
             rounds = round + 1;
             mirror_pushes(&pairs, &mut push, keep);
             for (p, d) in now.iter_mut().zip(&push) {
@@ -87,7 +89,12 @@ impl Run<'_> {
             ease.hold(&pairs, keep, &mut now, self.options.tolerance * self.net.scale);
         }
         let stop = if idle { Stop::Converged } else { Stop::IterationLimit };
-        record("constraint.layers.joint_rounds", stop, rounds, last);
+        record(
+            "constraint.layers.joint_rounds",
+            stop,
+            rounds,
+            if idle { 0.0 } else { last },
+        );
         let out: Vec<NodeHit> = (0..start.len())
             .filter(|&i| now[i] != start[i])
             .map(|i| NodeHit {

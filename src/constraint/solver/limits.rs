@@ -68,7 +68,9 @@ impl<'a> SelfLimits<'a> {
             return;
         }
         let (mut rounds, mut last, mut idle) = (0, 0.0, false);
-        for round in 0..=JOINT_ROUNDS {
+        // At the limit, the residual is the longest push of the last round (which still
+        // moved something).
+        for round in 0..JOINT_ROUNDS {
             let mut push: Vec<DVec3> = control
                 .iter()
                 .enumerate()
@@ -80,11 +82,11 @@ impl<'a> SelfLimits<'a> {
                     }
                 })
                 .collect();
-            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
             idle = push.iter().all(|d| *d == DVec3::ZERO);
-            if idle || round == JOINT_ROUNDS {
+            if idle {
                 break;
             }
+            last = push.iter().map(|d| d.length()).fold(0.0, f64::max);
             rounds = round + 1;
             mirror_pushes(pairs, &mut push, keep);
             for (p, d) in control.iter_mut().zip(&push) {
@@ -92,7 +94,7 @@ impl<'a> SelfLimits<'a> {
             }
         }
         let stop = if idle { Stop::Converged } else { Stop::IterationLimit };
-        record("constraint.limits.hold", stop, rounds, last);
+        record("constraint.limits.hold", stop, rounds, if idle { 0.0 } else { last });
     }
 }
 

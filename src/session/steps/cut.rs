@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::{Shortfall, StepScope};
+use super::super::emit::StepScope;
 use super::super::error::StepError;
 use super::super::stage::{GarmentStage, M1Stage, Stage};
 use super::super::state::SessionState;
@@ -20,12 +20,6 @@ struct CutFigures {
     cut_points: usize,
     /// Of those, on flipped edges (stored through the plane construction).
     cut_points_flipped: usize,
-}
-
-/// Why a cut was refused.
-#[derive(Serialize)]
-struct Refusal<'a> {
-    refused: &'a str,
 }
 
 pub(super) fn run(
@@ -52,15 +46,14 @@ pub(super) fn run(
             "cut '{name}': the plane through ({:.4}, {:.4}, {:.4}) m misses the garment: edit refused",
             plane.point.x, plane.point.y, plane.point.z
         );
-        scope.record(&Refusal { refused: &message });
-        scope.emit(
+        scope.refuse(
+            &message,
             "garment.refused",
             Stage::Garment(GarmentStage::CutRefused {
                 name,
                 message: &message,
             }),
         );
-        scope.shortfalls.push(Shortfall::Refused(message));
         return Ok(());
     }
     scope.record(&CutFigures {

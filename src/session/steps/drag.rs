@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::{Shortfall, StepScope};
+use super::super::emit::StepScope;
 use super::super::error::{DragRefusal, StepError};
 use super::super::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
 use super::super::state::{GarmentState, SessionState};
@@ -91,13 +91,6 @@ impl<'a> SolveFigures<'a> {
     }
 }
 
-/// A drag the solver refused.
-#[derive(Serialize)]
-struct Refusal<'a> {
-    /// Why.
-    refused: &'a str,
-}
-
 /// Drags replayed after a dimension change.
 #[derive(Serialize)]
 struct ReplayFigures {
@@ -157,9 +150,8 @@ fn refuse(
     message: &str,
 ) {
     history.push(kept.clone());
-    scope.record(&Refusal { refused: message });
-    scope.shortfalls.push(Shortfall::Refused(message.to_string()));
-    scope.emit(
+    scope.refuse(
+        message,
         "constraints.refused",
         Stage::Constraints(ConstraintStage::Refused { edit, message }),
     );

@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::super::emit::{Shortfall, StepScope};
+use super::super::emit::StepScope;
 use super::super::error::StepError;
 use super::super::format::Change;
 use super::super::stage::{GarmentPart, GarmentStage, Stage};
@@ -30,13 +30,6 @@ struct SetFigures<'a> {
 struct MoveFigures {
     /// Largest distance between a vertex of M0 before and after, m.
     max_vertex_move_m: f64,
-}
-
-/// A change refused.
-#[derive(Serialize)]
-struct Refusal<'a> {
-    /// Why, naming the limit.
-    refused: &'a str,
 }
 
 /// Whether a failure of the re-solve means the change cannot be honoured (refused, the
@@ -125,9 +118,8 @@ fn refuse(
     message: &str,
 ) {
     history.push(kept.clone());
-    scope.record(&Refusal { refused: message });
-    scope.shortfalls.push(Shortfall::Refused(message.to_string()));
-    scope.emit(
+    scope.refuse(
+        message,
         "garment.refused",
         Stage::Garment(GarmentStage::Refused { name, value, message }),
     );
