@@ -27,7 +27,7 @@ pub enum Stop {
 }
 
 /// The loops that report, with the unit of their residual.
-pub const LOOPS: [(&str, &str); 14] = [
+pub const LOOPS: [(&str, &str); 16] = [
     ("bridge.bisection", "m, bracket width along the bridging direction"),
     (
         "constraint.passes",
@@ -48,6 +48,8 @@ pub const LOOPS: [(&str, &str); 14] = [
     ("garment.ring.girth_secant", "m, girth minus its target"),
     ("landmarks.bisection", "m, bracket width in height"),
     ("mannequin.gauss_newton", "parameter units, length of the last step"),
+    ("nurbs.distance.newton", "parameter units, length of the last step"),
+    ("nurbs.pose.bisection", "m, bracket width of the lift"),
 ];
 
 /// What one loop's stops added up to.

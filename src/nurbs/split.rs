@@ -110,14 +110,17 @@ pub fn split_at(s: &NurbsSurface, dir: Direction, t: f64) -> Option<(NurbsSurfac
     ))
 }
 
-/// The Greville abscissa of the middle control point in `dir` (the mean of the `degree`
-/// knots after its index), or the middle of the range when that is not strictly inside it.
+/// The parameter where the middle of the control net lies in `dir`: the Greville abscissa
+/// (the mean of the `degree` knots after a point's index) of the middle control point, or,
+/// for an even count, the mean of the two middle points' abscissae (the paper inserts a
+/// point between them); the middle of the range when that is not strictly inside it.
 pub fn middle_parameter(s: &NurbsSurface, dir: Direction) -> f64 {
     let d = dir.index();
     let p = s.degree()[d];
-    let m = (s.count()[d] - 1) / 2;
+    let n = s.count()[d];
     let knots = &s.knots()[d];
-    let g = knots[m + 1..=m + p].iter().sum::<f64>() / p as f64;
+    let greville = |m: usize| knots[m + 1..=m + p].iter().sum::<f64>() / p as f64;
+    let g = 0.5 * (greville((n - 1) / 2) + greville(n / 2));
     let (lo, hi) = s.range(dir);
     if g > lo && g < hi { g } else { 0.5 * (lo + hi) }
 }

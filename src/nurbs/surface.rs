@@ -311,3 +311,166 @@ impl NurbsSurface {
         h.truncate() / h.w
     }
 }
+
+/// The non-zero basis functions of span `k` at `t` and their derivatives up to order `n`:
+/// `out[r][j]` is the `r`-th derivative of `N_{k-p+j}` (The NURBS Book, algorithm A2.3).
+pub(crate) fn basis_derivatives(p: usize, knots: &[f64], k: usize, t: f64, n: usize) -> Vec<Vec<f64>> {
+    let mut ndu = vec![vec![0.0; p + 1]; p + 1];
+    let (mut left, mut right) = (vec![0.0; p + 1], vec![0.0; p + 1]);
+    ndu[0][0] = 1.0;
+    for j in 1..=p {
+        left[j] = t - knots[k + 1 - j];
+        right[j] = knots[k + j] - t;
+        let mut saved = 0.0;
+        for r in 0..j {
+            // Lower triangle: knot differences; upper: basis functions.
+            ndu[j][r] = right[r + 1] + left[j - r];
+            let temp = ndu[r][j - 1] / ndu[j][r];
+            ndu[r][j] = saved + right[r + 1] * temp;
+            saved = left[j - r] * temp;
+        }
+        ndu[j][j] = saved;
+    }
+    let mut out = vec![vec![0.0; p + 1]; n + 1];
+    for j in 0..=p {
+        out[0][j] = ndu[j][p];
+    }
+    let mut a = [vec![0.0; p + 1], vec![0.0; p + 1]];
+    for r in 0..=p {
+        let (mut s1, mut s2) = (0, 1);
+        a[0][0] = 1.0;
+        for order in 1..=n.min(p) {
+            let mut d = 0.0;
+            let (rk, pk) = (r as isize - order as isize, p - order);
+            if r >= order {
+                let rk = rk as usize;
+                a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+                d = a[s2][0] * ndu[rk][pk];
+            }
+            let j1 = if rk >= -1 { 1 } else { (-rk) as usize };
+            let j2 = if (r as isize - 1) <= pk as isize {
+                order - 1
+            } else {
+                p - r
+            };
+            for j in j1..=j2 {
+                let idx = (rk + j as isize) as usize;
+                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
+                d += a[s2][j] * ndu[idx][pk];
+            }
+            if r <= pk {
+                a[s2][order] = -a[s1][order - 1] / ndu[pk + 1][r];
+                d += a[s2][order] * ndu[r][pk];
+            }
+            out[order][r] = d;
+            std::mem::swap(&mut s1, &mut s2);
+        }
+    }
+    let mut factor = p as f64;
+    for (order, row) in out.iter_mut().enumerate().take(n.min(p) + 1).skip(1) {
+        for value in row.iter_mut() {
+            *value *= factor;
+        }
+        factor *= (p - order) as f64;
+    }
+    out
+}
+
+/// A surface point with its first and second partial derivatives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceJet {
+    /// The point.
+    pub point: DVec3,
+    /// d/du.
+    pub du: DVec3,
+    /// d/dv.
+    pub dv: DVec3,
+    /// d²/du².
+    pub duu: DVec3,
+    /// d²/du dv.
+    pub duv: DVec3,
+    /// d²/dv².
+    pub dvv: DVec3,
+}
+
+impl NurbsSurface {
+    /// The point and its partial derivatives up to the second at `(u, v)` (clamped into the
+    /// ranges): derivatives of the homogeneous surface from the basis functions'
+    /// derivatives, then the quotient rule (The NURBS Book, algorithm A4.4). A derivative
+    /// of order above the degree is zero.
+    pub fn jet(&self, u: f64, v: f64) -> SurfaceJet {
+        let [pu, pv] = self.degree;
+        let nv = self.count[1];
+        let (u0, u1) = self.range(Direction::U);
+        let (v0, v1) = self.range(Direction::V);
+        let (u, v) = (u.clamp(u0, u1), v.clamp(v0, v1));
+        let (ku, kv) = (span(pu, &self.knots[0], u), span(pv, &self.knots[1], v));
+        let bu = basis_derivatives(pu, &self.knots[0], ku, u, 2);
+        let bv = basis_derivatives(pv, &self.knots[1], kv, v, 2);
+        // h[a][b]: the homogeneous derivative of order a in u and b in v.
+        let mut h = [[DVec4::ZERO; 3]; 3];
+        for (a, row) in h.iter_mut().enumerate() {
+            for (b, cell) in row.iter_mut().enumerate().take(3 - a) {
+                let mut sum = DVec4::ZERO;
+                for (i, nu_i) in bu[a].iter().enumerate() {
+                    let row = &self.net[(ku - pu + i) * nv + kv - pv..][..=pv];
+                    let line: DVec4 = row.iter().zip(&bv[b]).map(|(h, n)| *h * *n).sum();
+                    sum += line * *nu_i;
+                }
+                *cell = sum;
+            }
+        }
+        let w = |a: usize, b: usize| h[a][b].w;
+        let p = |a: usize, b: usize| h[a][b].truncate();
+        let s = p(0, 0) / w(0, 0);
+        let du = (p(1, 0) - s * w(1, 0)) / w(0, 0);
+        let dv = (p(0, 1) - s * w(0, 1)) / w(0, 0);
+        let duu = (p(2, 0) - 2.0 * du * w(1, 0) - s * w(2, 0)) / w(0, 0);
+        let dvv = (p(0, 2) - 2.0 * dv * w(0, 1) - s * w(0, 2)) / w(0, 0);
+        let duv = (p(1, 1) - du * w(0, 1) - dv * w(1, 0) - s * w(1, 1)) / w(0, 0);
+        SurfaceJet {
+            point: s,
+            du,
+            dv,
+            duu,
+            duv,
+            dvv,
+        }
+    }
+}
+
+impl NurbsSurface {
+    /// The surface under the affine map `x -> m x + t` (exact: a NURBS surface is affinely
+    /// invariant, so mapping the control points maps every point).
+    pub fn mapped(&self, m: glam::DMat3, t: DVec3) -> Self {
+        let net = self
+            .net
+            .iter()
+            .map(|h| ((m * (h.truncate() / h.w) + t) * h.w).extend(h.w))
+            .collect();
+        Self { net, ..self.clone() }
+    }
+
+    /// The surface sampled on an `nu x nv` grid of parameters, uniform over both ranges:
+    /// positions row-major (`a * nv + b`, `a` along `u`) and two triangles per cell.
+    pub fn grid(&self, nu: usize, nv: usize) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+        let (nu, nv) = (nu.max(2), nv.max(2));
+        let (u0, u1) = self.range(Direction::U);
+        let (v0, v1) = self.range(Direction::V);
+        let at = |k: usize, n: usize, lo: f64, hi: f64| lo + (hi - lo) * k as f64 / (n - 1) as f64;
+        let positions = (0..nu)
+            .flat_map(|a| (0..nv).map(move |b| (a, b)))
+            .map(|(a, b)| self.point(at(a, nu, u0, u1), at(b, nv, v0, v1)))
+            .collect();
+        let mut triangles = Vec::with_capacity(2 * (nu - 1) * (nv - 1));
+        for a in 0..nu - 1 {
+            for b in 0..nv - 1 {
+                let k = (a * nv + b) as u32;
+                let (right, down) = (k + 1, k + nv as u32);
+                triangles.push([k, down, right]);
+                triangles.push([right, down, down + 1]);
+            }
+        }
+        (positions, triangles)
+    }
+}

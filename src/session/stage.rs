@@ -46,6 +46,8 @@ pub enum Stage<'a> {
     Body(BodyStage<'a>),
     /// The mannequin refined and measured against its true surface.
     Mannequin(&'a MannequinResult),
+    /// The [nurbs] L/T experiment.
+    NurbsExperiment(&'a crate::nurbs::Experiment),
     /// A horizontal section of the body.
     Section(SectionCut<'a>),
     /// The garment framework and its mesh M0.
@@ -362,6 +364,11 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// The [nurbs] L/T experiment.
+    fn nurbs_experiment(&mut self, _info: &StageInfo, _result: &crate::nurbs::Experiment) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// A body section.
     fn section(&mut self, _info: &StageInfo, _cut: SectionCut<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -406,6 +413,7 @@ impl Stage<'_> {
         match self {
             Self::Body(s) => sink.body(info, s),
             Self::Mannequin(r) => sink.mannequin(info, r),
+            Self::NurbsExperiment(r) => sink.nurbs_experiment(info, r),
             Self::Section(c) => sink.section(info, c),
             Self::Garment(s) => sink.garment(info, s),
             Self::Collision(s) => sink.collision(info, s),

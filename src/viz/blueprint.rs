@@ -110,3 +110,52 @@ pub fn default_blueprint() -> Blueprint {
     .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
     .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
 }
+
+/// The [nurbs] experiment's layout: the near pose (the whole scene) above the crossing pose
+/// (framed on the hulls where the surfaces cross), hulls per level on the `level` timeline;
+/// the figures in metres and counts, and the log.
+pub fn nurbs_blueprint() -> Blueprint {
+    Blueprint::new(
+        Horizontal::new([
+            Vertical::new([
+                Spatial3DView::new("Near pose: the butterfly, the leaf hulls the level opens, nearest points")
+                    .with_origin("/nurbs/near")
+                    .with_contents([
+                        "+ /nurbs/near/butterfly/**",
+                        "+ /nurbs/near/hulls/**",
+                        "+ /nurbs/near/closest/**",
+                    ])
+                    .into(),
+                Horizontal::new([
+                    Spatial3DView::new("Scene")
+                        .with_origin("/nurbs/near")
+                        .with_contents(["+ /nurbs/near/leaf/**", "+ /nurbs/near/butterfly/**"])
+                        .into(),
+                    Spatial3DView::new("Crossing pose: hulls where the surfaces cross")
+                        .with_origin("/nurbs/crossing")
+                        .with_contents(["+ /nurbs/crossing/hulls/**"])
+                        .into(),
+                ])
+                .into(),
+            ])
+            .with_row_shares([3.0, 2.0])
+            .into(),
+            Vertical::new([
+                TimeSeriesView::new("Distances (m)").with_origin("/metrics/m").into(),
+                TimeSeriesView::new("Hull pairs tested")
+                    .with_origin("/metrics/count")
+                    .into(),
+                TextLogView::new("Log").with_origin("/log").into(),
+            ])
+            .into(),
+        ])
+        .with_column_shares([3.0, 1.0]),
+    )
+    .with_time_panel(
+        TimePanel::new()
+            .with_timeline("level")
+            .with_state(PanelState::Collapsed),
+    )
+    .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
+    .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
+}

@@ -286,6 +286,10 @@ impl StageSink for RerunLogger {
         self.log_mannequin(result)
     }
 
+    fn nurbs_experiment(&mut self, _info: &StageInfo, result: &crate::nurbs::Experiment) -> Result<(), SinkError> {
+        self.log_nurbs_experiment(result)
+    }
+
     fn section(&mut self, _info: &StageInfo, cut: SectionCut<'_>) -> Result<(), SinkError> {
         self.log_section(cut)
     }

@@ -13,7 +13,10 @@
 //! `collision/mesh/crossing_edges`, `constraints/network/{links,curves}` (green met, red
 //! violated), `constraints/solve/{curve,control,node_hits}` (per solver iteration),
 //! `constraints/drag/{path,points}`, `metrics/<unit>/...` (scalars, one folder per unit), `log` (text per stage).
-//! Timelines: `step`, `stage`, and `iter` (solver iterations over the session).
+//! `nurbs/{near,crossing}/{leaf,butterfly}/{surface,net}`, `nurbs/<scene>/hulls/<side>` and
+//! `nurbs/near/closest/{control,true}` (the [nurbs] experiment, per `level`).
+//! Timelines: `step`, `stage`, `iter` (solver iterations over the session) and `level`
+//! (subdivision levels of the [nurbs] experiment).
 
 pub mod blueprint;
 mod body;
@@ -24,14 +27,16 @@ mod garment;
 pub mod logger;
 mod m1;
 mod mannequin;
+mod nurbs;
 pub mod replay;
 pub mod target;
 
-pub use blueprint::default_blueprint;
+pub use blueprint::{default_blueprint, nurbs_blueprint};
 pub use logger::{LogOptions, RerunLogger};
 pub use rerun::RecordingStream;
 pub use target::{
-    KeptFile, RecordingTarget, ViewerFlush, WebViewerError, open_recording, open_recording_kept, serve_web_viewer,
+    KeptFile, RecordingTarget, ViewerFlush, WebViewerError, open_file_recording, open_recording, open_recording_kept,
+    serve_web_viewer,
 };
 
 /// The Rerun application id of every drape recording.

@@ -33,6 +33,23 @@ pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamRe
     open_recording_kept(target, name, None).map(|(rec, _)| rec)
 }
 
+/// A recording to a file with its own `blueprint` (the studies' layouts), otherwise as
+/// [`open_recording`].
+pub fn open_file_recording(
+    path: &Path,
+    name: &str,
+    blueprint: rerun::blueprint::Blueprint,
+) -> RecordingStreamResult<RecordingStream> {
+    let rec = RecordingStreamBuilder::new(APP_ID)
+        .recording_id(format!("drape-{name}"))
+        .recording_name(name)
+        .batcher_config(batcher())
+        .with_blueprint(blueprint)
+        .save(path)?;
+    rec.set_log_time_enabled(false);
+    Ok(rec)
+}
+
 /// [`open_recording`], with a copy of everything logged also written to the file `keep` when
 /// the target is a viewer or a server: if the viewer goes away mid-session, the session goes
 /// on and the file holds every step. The file is closed by [`KeptFile::close`], which does

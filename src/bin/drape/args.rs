@@ -60,6 +60,12 @@ pub(crate) enum Command {
     /// Refine the analytic dress form both ways (polar and chord-length cubic splines)
     /// and print each method's deviation from the true surface per region.
     Mannequin(MannequinArgs),
+    /// The [nurbs] L/T experiment: a butterfly (81 control points) held near a corn leaf
+    /// (175), collided at subdivision levels 3..8 with the paper's control-point distance,
+    /// the true surface distance beside it; a crossing pose that must be detected at every
+    /// level; and the level and threshold recommended for --accuracy.
+    #[command(name = "nurbs-experiment", after_help = EXIT_CODES)]
+    NurbsExperiment(NurbsExperimentArgs),
     /// Random edit sessions on every body (gentle to hostile numbers: dimensions beyond
     /// their ranges, drags from 0.1 mm to 1 m, undos, the ease down to 0), each judged:
     /// steps accepted, refused (by reason) and failed, panics, NaN or infinite outputs,
@@ -241,6 +247,47 @@ pub(crate) struct RunArgs {
     /// collision, or refuses an edit (the run goes on and reports every one).
     #[arg(long)]
     pub(crate) strict: bool,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct NurbsExperimentArgs {
+    /// The accuracy wanted of the distance test, m: the recommended level is the least
+    /// whose control-point distance is within it of the true distance.
+    #[arg(long, value_name = "M", default_value_t = 0.0005)]
+    pub(crate) accuracy: f64,
+    /// Least subdivision level.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u8).range(0..=9))]
+    pub(crate) min_level: u8,
+    /// Greatest subdivision level (each level has 4 times the leaves of the one before).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(0..=9))]
+    pub(crate) max_level: u8,
+    /// The butterfly (`.nurbs`, see assets/nurbs/README.md); default: the shipped one.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) butterfly: Option<PathBuf>,
+    /// The leaf (`.nurbs`); default: the shipped corn leaf.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) leaf: Option<PathBuf>,
+    /// Where the butterfly sits: leaf parameters u,v.
+    #[arg(long, value_name = "U,V", value_delimiter = ',', num_args = 2, default_values_t = [0.6, 0.43])]
+    pub(crate) at: Vec<f64>,
+    /// The butterfly's turn about the leaf's normal, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 25.0, allow_negative_numbers = true)]
+    pub(crate) yaw: f64,
+    /// The butterfly's roll about its body, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 30.0, allow_negative_numbers = true)]
+    pub(crate) roll: f64,
+    /// The true distance at which the near pose holds the butterfly, m.
+    #[arg(long, value_name = "M", default_value_t = 0.001)]
+    pub(crate) distance: f64,
+    /// Wall time over which each level's detection is repeated (the median is reported), ms.
+    #[arg(long, value_name = "MS", default_value_t = 200.0)]
+    pub(crate) timing_ms: f64,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Log both surfaces, the leaf hulls per level and the closest points to this recording.
+    #[arg(long, value_name = "PATH", default_value = "recordings/nurbs-experiment.rrd")]
+    pub(crate) save: PathBuf,
 }
 
 #[derive(Args, Debug)]

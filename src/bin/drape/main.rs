@@ -9,6 +9,7 @@ mod interrupt;
 mod live;
 mod mannequin;
 mod network;
+mod nurbs;
 mod progress;
 mod replay;
 mod run;
@@ -36,6 +37,7 @@ fn main() -> ExitCode {
         Some(Command::Check { session }) => check(&session),
         Some(Command::Constraints { session }) => network::constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin::mannequin(&args),
+        Some(Command::NurbsExperiment(args)) => nurbs::experiment(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
         Some(Command::Stress(args)) => stress::stress(&args),
         Some(Command::Edit(args)) => edit::edit(&args),

@@ -1,0 +1,151 @@
+//! Logging the [nurbs] experiment: the leaf and the butterfly in both poses (the crossing
+//! pose beside the near one), their control nets, and per subdivision level (the `level`
+//! timeline) the leaf hulls that the level opens, the nearest control points and the true
+//! nearest points, with the figures as scalars.
+
+use glam::DVec3;
+use rerun::{LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel, Transform3D};
+
+use super::logger::{RerunLogger, f32s, to_sink};
+use crate::nurbs::{Experiment, Kdop, NurbsSurface};
+use crate::session::SinkError;
+
+/// How far the crossing pose is drawn beside the near one, in leaf widths.
+const CROSSING_OFFSET: f64 = 3.0;
+
+/// Grid samples per control-point interval when drawing a surface.
+const SAMPLES_PER_SPAN: usize = 6;
+
+fn net_lines(s: &NurbsSurface) -> Vec<Vec<[f32; 3]>> {
+    let [nu, nv] = s.count();
+    let points: Vec<DVec3> = s.control_points().collect();
+    let rows = (0..nu).map(|i| f32s(&points[i * nv..(i + 1) * nv]));
+    let columns = (0..nv).map(|j| f32s(&(0..nu).map(|i| points[i * nv + j]).collect::<Vec<_>>()));
+    rows.chain(columns).collect()
+}
+
+fn hull_lines(hulls: &[Kdop]) -> Vec<[[f32; 3]; 2]> {
+    hulls
+        .iter()
+        .flat_map(|h| h.edges())
+        .map(|[a, b]| [a.as_vec3().to_array(), b.as_vec3().to_array()])
+        .collect()
+}
+
+impl RerunLogger {
+    fn nurbs_surface(&self, path: &str, s: &NurbsSurface, color: [u8; 3]) -> Result<(), SinkError> {
+        let [nu, nv] = s.count();
+        let (positions, triangles) = s.grid(SAMPLES_PER_SPAN * nu, SAMPLES_PER_SPAN * nv);
+        // Static: the surfaces stand on every timeline, the `level` one included.
+        self.rec
+            .log_static(
+                format!("{path}/surface"),
+                &Mesh3D::new(f32s(&positions))
+                    .with_triangle_indices(triangles)
+                    .with_albedo_factor(rerun::Rgba32::from_unmultiplied_rgba(color[0], color[1], color[2], 255)),
+            )
+            .map_err(to_sink)?;
+        self.rec
+            .log_static(
+                format!("{path}/net"),
+                &LineStrips3D::new(net_lines(s))
+                    .with_radii([Radius::new_ui_points(0.5)])
+                    .with_colors([[60, 60, 60]]),
+            )
+            .map_err(to_sink)
+    }
+
+    pub(super) fn log_nurbs_experiment(&self, e: &Experiment) -> Result<(), SinkError> {
+        let width = {
+            let h = Kdop::from_points(e.leaf.control_points());
+            h.max[0] - h.min[0]
+        };
+        let shift = (CROSSING_OFFSET * width) as f32;
+        self.rec
+            .log_static("nurbs/crossing", &Transform3D::from_translation([shift, 0.0, 0.0]))
+            .map_err(to_sink)?;
+        for scene in ["near", "crossing"] {
+            self.nurbs_surface(&format!("nurbs/{scene}/leaf"), &e.leaf, [90, 170, 70])?;
+        }
+        self.nurbs_surface("nurbs/near/butterfly", &e.near, [240, 150, 40])?;
+        self.nurbs_surface("nurbs/crossing/butterfly", &e.crossing_butterfly, [240, 150, 40])?;
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "nurbs experiment: butterfly {} control points, leaf {}; near pose lifted {:.4} mm (true distance {:.4} mm), crossing pose {:.4} mm",
+                e.near.net().len(),
+                e.leaf.net().len(),
+                e.near_pose.gap * 1e3,
+                e.levels.first().map_or(f64::NAN, |r| r.true_distance_m * 1e3),
+                e.crossing_pose.gap * 1e3
+            ),
+        )?;
+        for (row, picture) in e.levels.iter().zip(&e.pictures) {
+            self.rec.set_time_sequence("level", i64::from(row.level));
+            for (scene, hulls) in [("near", &picture.near_hulls), ("crossing", &picture.crossing_hulls)] {
+                for (side, color) in [("butterfly", [200, 90, 20]), ("leaf", [30, 110, 40])] {
+                    let k = usize::from(side == "leaf");
+                    self.rec
+                        .log(
+                            format!("nurbs/{scene}/hulls/{side}"),
+                            &LineStrips3D::new(hull_lines(&hulls[k]))
+                                .with_radii([Radius::new_ui_points(0.75)])
+                                .with_colors([color]),
+                        )
+                        .map_err(to_sink)?;
+                }
+            }
+            for (name, points, color) in [
+                ("control", picture.cp_points, [220, 30, 30]),
+                ("true", picture.true_points, [30, 60, 220]),
+            ] {
+                let pts = f32s(&points);
+                self.rec
+                    .log(
+                        format!("nurbs/near/closest/{name}"),
+                        &Points3D::new(pts.clone())
+                            .with_radii([Radius::new_ui_points(5.0)])
+                            .with_colors([color]),
+                    )
+                    .map_err(to_sink)?;
+                self.rec
+                    .log(
+                        format!("nurbs/near/closest/{name}/segment"),
+                        &LineStrips3D::new([pts])
+                            .with_radii([Radius::new_ui_points(2.0)])
+                            .with_colors([color]),
+                    )
+                    .map_err(to_sink)?;
+            }
+            self.scalar("metrics/nurbs/cp_min_distance_m", row.cp_min_distance_m)?;
+            self.scalar("metrics/nurbs/true_distance_m", row.true_distance_m)?;
+            self.scalar("metrics/nurbs/error_m", row.error_m)?;
+            self.scalar("metrics/nurbs/pairs_tested", row.pairs_tested as f64)?;
+            let crossing = e.crossing.iter().find(|c| c.level == row.level);
+            self.text(
+                TextLogLevel::INFO,
+                format!(
+                    "L = {}: {} hull pairs tested, {} leaf pairs compared; control-point distance {:.4} mm, true {:.4} mm, error {:+.4} mm; crossing pose {}",
+                    row.level,
+                    row.pairs_tested,
+                    row.leaf_pairs,
+                    row.cp_min_distance_m * 1e3,
+                    row.true_distance_m * 1e3,
+                    row.error_m * 1e3,
+                    crossing.map_or("not run", |c| if c.detected { "detected" } else { "MISSED" })
+                ),
+            )?;
+        }
+        self.rec.disable_timeline("level");
+        let r = &e.recommended;
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "recommended: L = {}, T = {:.4} mm for an accuracy of {:.3} mm",
+                r.level,
+                r.threshold_m * 1e3,
+                r.accuracy_m * 1e3
+            ),
+        )
+    }
+}
