@@ -14,6 +14,7 @@ mod mannequin;
 mod meshes;
 mod nasty;
 mod nurbs;
+mod nurbs_collision;
 mod obj_errors;
 mod refusals;
 mod remote;

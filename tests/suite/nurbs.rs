@@ -9,7 +9,7 @@ use glam::DVec3;
 use super::common::Lcg;
 
 /// Cox-de Boor: the B-spline basis function `N_{i,p}(t)` on `knots` (the last span closed).
-fn basis(i: usize, p: usize, knots: &[f64], t: f64) -> f64 {
+pub(super) fn basis(i: usize, p: usize, knots: &[f64], t: f64) -> f64 {
     if p == 0 {
         let last = knots[knots.len() - 1];
         let (a, b) = (knots[i], knots[i + 1]);
@@ -31,7 +31,7 @@ fn basis(i: usize, p: usize, knots: &[f64], t: f64) -> f64 {
 
 /// The rational surface by its definition: sum of N_i(u) N_j(v) w_ij P_ij over the same
 /// sum without P.
-fn reference(
+pub(super) fn reference(
     degree: [usize; 2],
     knots: &[Vec<f64>; 2],
     count: [usize; 2],
@@ -54,7 +54,7 @@ fn reference(
 
 /// A clamped knot vector for `count` points of degree `p` with random interior knots
 /// (one of them doubled when there are two or more).
-fn knots(rng: &mut Lcg, count: usize, p: usize) -> Vec<f64> {
+pub(super) fn knots(rng: &mut Lcg, count: usize, p: usize) -> Vec<f64> {
     let interior = count - p - 1;
     let mut inner: Vec<f64> = (0..interior).map(|_| 0.05 + 0.9 * rng.next()).collect();
     inner.sort_by(f64::total_cmp);
@@ -68,7 +68,7 @@ fn knots(rng: &mut Lcg, count: usize, p: usize) -> Vec<f64> {
 }
 
 /// A random surface of degrees `degree` with `count` points and weights in [0.5, 2].
-fn random_surface(
+pub(super) fn random_surface(
     rng: &mut Lcg,
     degree: [usize; 2],
     count: [usize; 2],
