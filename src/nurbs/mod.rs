@@ -9,6 +9,7 @@ pub mod distance;
 pub mod experiment;
 pub mod file;
 pub mod hull;
+pub mod scene;
 pub mod split;
 pub mod surface;
 pub mod tree;
@@ -20,6 +21,7 @@ pub use distance::{
 pub use experiment::{Experiment, ExperimentOptions, Placement, Recommendation, place, run_experiment, shipped_pair};
 pub use file::{NamedSurface, NurbsFileError};
 pub use hull::{AXES, Kdop};
+pub use scene::{BodyHulls, Contact, NurbsOptions, NurbsPart, collide_body, collide_parts};
 pub use split::{insert_knot, middle_parameter, quarter, split_at};
 pub use surface::{Direction, NurbsError, NurbsSurface, SurfaceJet};
 pub use tree::{HullNode, HullTree, PairVisitor, Patch, PatchTree, descend};

@@ -91,6 +91,16 @@ pub enum StepError {
     /// `undo` with nothing to take back.
     #[error("nothing to undo: no drag, set or cut step of the current garment ran")]
     NothingToUndo,
+    /// A NURBS part's file cannot be read or is not a valid surface.
+    #[error("NURBS part '{name}' from {}: {message}", path.display())]
+    NurbsFile {
+        /// The part.
+        name: String,
+        /// Its file.
+        path: std::path::PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// Sinks failed (the recording, the export), at these stages.
     #[error("{}", join(.0))]
     Sinks(Vec<(&'static str, SinkError)>),
@@ -105,7 +115,7 @@ impl StepError {
     /// Bad input, a failed step, or drape's own failure.
     pub fn kind(&self) -> FailureKind {
         match self {
-            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) => FailureKind::BadInput,
+            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) | Self::NurbsFile { .. } => FailureKind::BadInput,
             Self::Sinks(_) => FailureKind::Internal,
             _ => FailureKind::StepFailed,
         }

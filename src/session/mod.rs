@@ -25,7 +25,7 @@ pub use metrics::StepMetrics;
 pub use runner::{LiveSession, RunOptions, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
-    M1Stage, RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
+    M1Stage, NurbsStage, RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

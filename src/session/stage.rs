@@ -48,6 +48,8 @@ pub enum Stage<'a> {
     Mannequin(&'a MannequinResult),
     /// The [nurbs] L/T experiment.
     NurbsExperiment(&'a crate::nurbs::Experiment),
+    /// The NURBS parts of a scene after a `nurbs` or `move` step, with their contacts.
+    Nurbs(NurbsStage<'a>),
     /// A horizontal section of the body.
     Section(SectionCut<'a>),
     /// The garment framework and its mesh M0.
@@ -60,6 +62,19 @@ pub enum Stage<'a> {
     M1(M1Stage<'a>),
     /// The end of a step: done with its metrics, or failed.
     Step(StepEnd<'a>),
+}
+
+/// The NURBS parts of a scene.
+#[derive(Clone, Copy, Debug)]
+pub struct NurbsStage<'a> {
+    /// Every part, where it stands after the step.
+    pub parts: &'a [crate::nurbs::NurbsPart],
+    /// The part the step added or moved.
+    pub moved: &'a str,
+    /// What that part comes within the threshold of (the body, other parts).
+    pub contacts: &'a [crate::nurbs::Contact],
+    /// Refused: the step left the part where it was, and why.
+    pub refused: Option<&'a str>,
 }
 
 /// The scene's body stages, in the order they are emitted.
@@ -369,6 +384,11 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// The NURBS parts.
+    fn nurbs(&mut self, _info: &StageInfo, _stage: NurbsStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// A body section.
     fn section(&mut self, _info: &StageInfo, _cut: SectionCut<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -414,6 +434,7 @@ impl Stage<'_> {
             Self::Body(s) => sink.body(info, s),
             Self::Mannequin(r) => sink.mannequin(info, r),
             Self::NurbsExperiment(r) => sink.nurbs_experiment(info, r),
+            Self::Nurbs(s) => sink.nurbs(info, s),
             Self::Section(c) => sink.section(info, c),
             Self::Garment(s) => sink.garment(info, s),
             Self::Collision(s) => sink.collision(info, s),

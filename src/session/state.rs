@@ -19,6 +19,10 @@ pub(crate) struct SessionState {
     pub(crate) garment: Option<GarmentState>,
     /// Garment states before each drag or set of the current garment, for `undo`.
     pub(crate) history: Vec<GarmentState>,
+    /// NURBS parts, in the order added (none: no NURBS work at all).
+    pub(crate) nurbs: Vec<crate::nurbs::NurbsPart>,
+    /// The body's triangle hulls for the NURBS parts, built with the first part.
+    pub(crate) nurbs_body: Option<crate::nurbs::BodyHulls>,
 }
 
 impl SessionState {
@@ -29,6 +33,8 @@ impl SessionState {
             probe: None,
             garment: None,
             history: Vec::new(),
+            nurbs: Vec::new(),
+            nurbs_body: None,
         }
     }
 

@@ -31,6 +31,8 @@ pub fn default_blueprint() -> Blueprint {
                             "+ /garment/**",
                             "+ /collision/**",
                             "+ /constraints/**",
+                            "+ /nurbs/parts/**",
+                            "+ /nurbs/contacts",
                             "- /garment/clearance",
                             "- /garment/m1/**",
                             "- /garment/cut_lines/**",
@@ -42,6 +44,11 @@ pub fn default_blueprint() -> Blueprint {
                     Spatial3DView::new("Body")
                         .with_origin("/")
                         .with_contents(["+ /body/**", "- /body/mesh", "+ /mannequin/**", "+ /section/**"])
+                        .into(),
+                    // NURBS parts on the body, with their contacts.
+                    Spatial3DView::new("NURBS")
+                        .with_origin("/")
+                        .with_contents(["+ /body/mesh", "+ /nurbs/parts/**", "+ /nurbs/contacts"])
                         .into(),
                 ])
                 .into(),

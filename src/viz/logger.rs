@@ -116,7 +116,7 @@ fn is_final(stage: &Stage<'_>) -> bool {
         Stage::Garment(g) => !matches!(g, GarmentStage::Part(_, part) if *part != crate::session::GarmentPart::Mesh),
         Stage::Collision(c) => c.part == crate::session::CollisionPart::Respond,
         Stage::Constraints(c) => matches!(c, ConstraintStage::Refused { .. }),
-        Stage::M1(_) | Stage::Step(_) => true,
+        Stage::M1(_) | Stage::Step(_) | Stage::Nurbs(_) => true,
         _ => false,
     }
 }
@@ -288,6 +288,10 @@ impl StageSink for RerunLogger {
 
     fn nurbs_experiment(&mut self, _info: &StageInfo, result: &crate::nurbs::Experiment) -> Result<(), SinkError> {
         self.log_nurbs_experiment(result)
+    }
+
+    fn nurbs(&mut self, _info: &StageInfo, stage: crate::session::NurbsStage<'_>) -> Result<(), SinkError> {
+        self.log_nurbs_parts(stage)
     }
 
     fn section(&mut self, _info: &StageInfo, cut: SectionCut<'_>) -> Result<(), SinkError> {

@@ -8,7 +8,7 @@ use rerun::{LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel, Transform3D};
 
 use super::logger::{RerunLogger, f32s, to_sink};
 use crate::nurbs::{Experiment, Kdop, NurbsSurface};
-use crate::session::SinkError;
+use crate::session::{NurbsStage, SinkError};
 
 /// How far the crossing pose is drawn beside the near one, in leaf widths.
 const CROSSING_OFFSET: f64 = 3.0;
@@ -33,6 +33,87 @@ fn hull_lines(hulls: &[Kdop]) -> Vec<[[f32; 3]; 2]> {
 }
 
 impl RerunLogger {
+    /// The parts of a scene after a `nurbs` or `move` step: each surface and net (on the
+    /// step's timelines), the moved part's contacts as segments (red: colliding), and a line
+    /// in the log.
+    pub(super) fn log_nurbs_parts(&self, stage: NurbsStage<'_>) -> Result<(), SinkError> {
+        for part in stage.parts {
+            let (positions, triangles) = part.surface.grid(
+                SAMPLES_PER_SPAN * part.surface.count()[0],
+                SAMPLES_PER_SPAN * part.surface.count()[1],
+            );
+            self.rec
+                .log(
+                    format!("nurbs/parts/{}/surface", part.name),
+                    &Mesh3D::new(f32s(&positions))
+                        .with_triangle_indices(triangles)
+                        .with_albedo_factor(rerun::Rgba32::from_unmultiplied_rgba(240, 150, 40, 255)),
+                )
+                .map_err(to_sink)?;
+            self.rec
+                .log(
+                    format!("nurbs/parts/{}/net", part.name),
+                    &LineStrips3D::new(net_lines(&part.surface))
+                        .with_radii([Radius::new_ui_points(0.5)])
+                        .with_colors([[60, 60, 60]]),
+                )
+                .map_err(to_sink)?;
+        }
+        let segments: Vec<[[f32; 3]; 2]> = stage
+            .contacts
+            .iter()
+            .filter(|c| c.distance_m.is_finite())
+            .map(|c| [c.points[0].as_vec3().to_array(), c.points[1].as_vec3().to_array()])
+            .collect();
+        let colors: Vec<[u8; 3]> = stage
+            .contacts
+            .iter()
+            .filter(|c| c.distance_m.is_finite())
+            .map(|c| if c.colliding { [230, 30, 30] } else { [40, 160, 60] })
+            .collect();
+        self.rec
+            .log(
+                "nurbs/contacts",
+                &LineStrips3D::new(segments)
+                    .with_colors(colors)
+                    .with_radii([Radius::new_ui_points(2.0)]),
+            )
+            .map_err(to_sink)?;
+        let each: Vec<String> = stage
+            .contacts
+            .iter()
+            .map(|c| {
+                let inside = if c.inside > 0 {
+                    format!(", {} point(s) inside", c.inside)
+                } else {
+                    String::new()
+                };
+                format!("{} {:.3} mm{inside}", c.other, c.distance_m * 1e3)
+            })
+            .collect();
+        let colliding = stage.contacts.iter().any(|c| c.colliding);
+        let (level, text) = match stage.refused {
+            Some(why) => (TextLogLevel::WARN, why.to_string()),
+            None if colliding => (
+                TextLogLevel::WARN,
+                format!("NURBS part '{}' collides: {}", stage.moved, each.join(", ")),
+            ),
+            None if each.is_empty() => (
+                TextLogLevel::INFO,
+                format!("NURBS part '{}': clear of the body and the other parts", stage.moved),
+            ),
+            None => (
+                TextLogLevel::INFO,
+                format!(
+                    "NURBS part '{}': within the threshold of {}",
+                    stage.moved,
+                    each.join(", ")
+                ),
+            ),
+        };
+        self.text(level, text)
+    }
+
     fn nurbs_surface(&self, path: &str, s: &NurbsSurface, color: [u8; 3]) -> Result<(), SinkError> {
         let [nu, nv] = s.count();
         let (positions, triangles) = s.grid(SAMPLES_PER_SPAN * nu, SAMPLES_PER_SPAN * nv);

@@ -395,3 +395,150 @@ fn the_experiment_holds_the_butterfly_at_its_distance_and_detects_the_crossing_a
         "one side only"
     );
 }
+
+/// Every `nurbs` stage of a run: the parts' surfaces after it, its contacts and refusal.
+#[derive(Default)]
+struct NurbsStages(
+    Vec<(
+        usize,
+        Vec<(String, NurbsSurface)>,
+        Vec<drape::nurbs::Contact>,
+        Option<String>,
+    )>,
+);
+
+impl drape::session::StageSink for NurbsStages {
+    fn nurbs(
+        &mut self,
+        info: &drape::session::StageInfo,
+        stage: drape::session::NurbsStage<'_>,
+    ) -> Result<(), drape::session::SinkError> {
+        let parts = stage
+            .parts
+            .iter()
+            .map(|p| (p.name.clone(), p.surface.clone()))
+            .collect();
+        self.0.push((
+            info.step,
+            parts,
+            stage.contacts.to_vec(),
+            stage.refused.map(str::to_string),
+        ));
+        Ok(())
+    }
+}
+
+fn run_nurbs_session(text: &str) -> (drape::session::RunReport, NurbsStages) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sessions");
+    let session = drape::session::parse_session(text, "nurbs-test.drape", &dir).expect("parses");
+    let mut sink = NurbsStages::default();
+    let report = drape::session::run_session(&session, &drape::session::RunOptions::default(), &mut [&mut sink]);
+    (report, sink)
+}
+
+#[test]
+fn a_part_moved_into_the_body_is_refused_and_stays_outside_by_the_ray_parity_truth() {
+    let (report, stages) = run_nurbs_session(
+        "drape 1\nbody builtin\nnurbs \"../nurbs/butterfly.nurbs\" name=b\nmove b by=0.25,1.40,0\n\
+         move b by=-0.20,0,0\nmove b by=-0.05,0,0 turn=90\n",
+    );
+    assert!(report.error.is_none(), "{:?}", report.error);
+    assert_eq!(stages.0.len(), 4);
+    let mesh = &super::common::real_body().mesh.mesh;
+    let inside_count = |s: &NurbsSurface| {
+        let (points, _) = s.grid(30, 30);
+        points
+            .iter()
+            .filter(|p| super::common::inside_by_parity(mesh, **p))
+            .count()
+    };
+    // Step 3 (into the shoulder) is refused: the move would put points inside the body by
+    // the independent truth, and the part stays where step 2 left it.
+    let (_, before, _, _) = &stages.0[1];
+    let (_, after, contacts, refused) = &stages.0[2];
+    let why = refused.as_deref().expect("refused");
+    assert!(
+        why.contains("'b' would have") && why.contains("inside the body"),
+        "{why}"
+    );
+    assert_eq!(before[0].1, after[0].1, "the part stays");
+    let would = before[0].1.mapped(glam::DMat3::IDENTITY, DVec3::new(-0.20, 0.0, 0.0));
+    assert!(inside_count(&would) > 0, "the truth agrees the move goes into the body");
+    assert!(contacts.iter().any(|c| c.other == "body" && c.colliding));
+    // Every accepted pose is outside the body by the truth.
+    for (step, parts, _, refused) in &stages.0 {
+        if refused.is_none() {
+            assert_eq!(inside_count(&parts[0].1), 0, "step {step}");
+        }
+    }
+    assert_eq!(report.shortfalls.len(), 1, "{:?}", report.shortfalls);
+}
+
+#[test]
+fn parts_collide_with_each_other_by_their_true_distance_and_a_scene_without_parts_does_no_nurbs_work() {
+    // The butterfly held 0.7 mm over the leaf (the experiment's pose): not colliding at the
+    // 0.5 mm threshold. The leaf moved away, then back and 0.4 mm up towards it: refused,
+    // with the distance the brute force finds for that pose.
+    let (butterfly, leaf) = shipped_pair().expect("shipped");
+    let held = experiment::hold_at(&butterfly, &leaf, ExperimentOptions::default().pose, 0.7e-3);
+    let placed = experiment::place(&butterfly, &leaf, held);
+    let dir = std::env::temp_dir().join("drape-nurbs-session");
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let path = dir.join("placed.nurbs");
+    std::fs::write(&path, file::write("placed", &placed)).expect("written");
+    let text = format!(
+        "drape 1\nbody builtin\nnurbs \"../nurbs/corn-leaf.nurbs\" name=leaf\nnurbs \"{}\" name=b\nmove leaf by=0.5,0,0\nmove leaf by=-0.5,0.0004,0\n",
+        path.display()
+    );
+    let (report, stages) = run_nurbs_session(&text);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let (_, _, contacts, refused) = &stages.0[1];
+    assert!(refused.is_none());
+    assert!(contacts.iter().all(|c| !c.colliding), "{contacts:?}");
+    if let Some(c) = contacts.iter().find(|c| c.other == "leaf") {
+        assert!((c.distance_m - 0.7e-3).abs() <= 1e-6, "{}", c.distance_m);
+    }
+    assert!(stages.0[2].3.is_none(), "moving away is accepted");
+    let why = stages.0[3].3.as_deref().expect("refused");
+    assert!(why.contains("'leaf' would come") && why.contains("from 'b'"), "{why}");
+    let raised = leaf.mapped(DMat3::IDENTITY, DVec3::new(0.0, 0.0004, 0.0));
+    let brute = brute_distance(&placed, &raised);
+    let c = stages.0[3].2.iter().find(|c| c.other == "b").expect("the contact");
+    // The brute force's grids over the 0.6 m leaf resolve to a few micrometres.
+    assert!(
+        c.distance_m <= brute + 1e-12 && brute - c.distance_m <= 1e-5 && brute < 0.5e-3,
+        "{} vs brute {brute}",
+        c.distance_m
+    );
+    assert_eq!(stages.0[3].1[0].1, stages.0[2].1[0].1, "the leaf stays where it was");
+    // Without parts: no NURBS timings, no NURBS stages.
+    let (report, stages) = run_nurbs_session("drape 1\nbody builtin\nsection y=1.0 name=waist\n");
+    assert!(report.error.is_none());
+    assert!(stages.0.is_empty());
+    for step in &report.steps {
+        assert!(
+            step.timings_ms.keys().all(|k| !k.starts_with("nurbs")),
+            "{:?}",
+            step.timings_ms
+        );
+    }
+}
+
+#[test]
+fn nurbs_steps_with_bad_files_or_unknown_parts_name_the_problem() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/sessions");
+    let e = drape::session::parse_session("drape 1\nmove wing by=0,1,0\n", "x.drape", &dir).unwrap_err();
+    assert!(e.to_string().contains("no NURBS part 'wing'"), "{e}");
+    let e = drape::session::parse_session(
+        "drape 1\nnurbs \"../nurbs/butterfly.nurbs\" name=b\nnurbs \"../nurbs/butterfly.nurbs\" name=b\n",
+        "x.drape",
+        &dir,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("already added on line 2"), "{e}");
+    let e = drape::session::parse_session("drape 1\nnurbs \"a.nurbs\" name=b\nmove b\n", "x.drape", &dir).unwrap_err();
+    assert!(e.to_string().contains("expected by=x,y,z"), "{e}");
+    let (report, _) = run_nurbs_session("drape 1\nbody builtin\nnurbs \"missing.nurbs\" name=m\n");
+    let e = report.error.expect("fails").to_string();
+    assert!(e.contains("NURBS part 'm'") && e.contains("missing.nurbs"), "{e}");
+}

@@ -4,6 +4,8 @@
 
 use std::path::{Path, PathBuf};
 
+use glam::DVec3;
+
 use super::args::{Args, integer_in, number, one_argument, vector};
 use super::lexer::{Line, Token, tokenize};
 use super::suggest::did_you_mean;
@@ -17,7 +19,17 @@ use crate::mannequin::MannequinOptions;
 mod m1;
 
 const SCENE_KEYWORDS: [&str; 7] = ["drape", "body", "units", "landmark", "solver", "m1", "log"];
-const STEP_KEYWORDS: [&str; 7] = ["mannequin", "section", "garment", "set", "drag", "undo", "cut"];
+const STEP_KEYWORDS: [&str; 9] = [
+    "mannequin",
+    "section",
+    "garment",
+    "set",
+    "drag",
+    "undo",
+    "cut",
+    "nurbs",
+    "move",
+];
 
 /// Parses and validates a session. `name` is used in messages; `base_dir` resolves
 /// relative body paths.
@@ -38,6 +50,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         steps: Vec::new(),
         garment: None,
         undoable: 0,
+        nurbs: Vec::new(),
     };
     for (index, raw) in text.lines().enumerate() {
         let line = tokenize(name, index + 1, raw)?;
@@ -82,6 +95,8 @@ struct Parser<'p> {
     garment: Option<TemplateKind>,
     /// Garment steps that `undo` can take back.
     undoable: usize,
+    /// NURBS parts added so far, with their lines.
+    nurbs: Vec<(String, usize)>,
 }
 
 impl Parser<'_> {
@@ -116,6 +131,8 @@ impl Parser<'_> {
             "section" => section(line, rest)?,
             "garment" => self.garment(line, rest)?,
             "set" => self.set(line, head, rest)?,
+            "nurbs" => self.nurbs(line, head, rest)?,
+            "move" => self.move_part(line, head, rest)?,
             other => {
                 return Err(line.error(
                     head.column,
@@ -360,6 +377,70 @@ impl Parser<'_> {
         }
         self.undoable -= 1;
         Ok(Op::Undo)
+    }
+
+    /// `nurbs "part.nurbs" name=NAME`: a NURBS part (the name defaults to the file's stem).
+    fn nurbs(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        let Some((file, args)) = rest.split_first().filter(|(t, _)| t.quoted) else {
+            let column = rest.first().map_or(line.end_column, |t| t.column);
+            return Err(line.error(column, "expected a quoted .nurbs path after 'nurbs'"));
+        };
+        let a = Args::parse(line, args, &["name"], "nurbs")?;
+        let p = PathBuf::from(file.text);
+        let path = if p.is_absolute() { p } else { self.base_dir.join(p) };
+        let name = match a.get("name") {
+            Some(t) => t.text.to_string(),
+            None => path
+                .file_stem()
+                .map_or("part".into(), |s| s.to_string_lossy().into_owned()),
+        };
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+            return Err(line.error(
+                head.column,
+                format!("a part name may hold letters, digits, '_' and '-' only, found '{name}' (give name=...)"),
+            ));
+        }
+        if let Some((_, first)) = self.nurbs.iter().find(|(n, _)| *n == name) {
+            return Err(line.error(
+                head.column,
+                format!("a part named '{name}' is already added on line {first}"),
+            ));
+        }
+        self.nurbs.push((name.clone(), line.number));
+        Ok(Op::Nurbs { name, path })
+    }
+
+    /// `move NAME by=x,y,z turn=DEG`: moves a NURBS part (m) and turns it about the vertical
+    /// through its centre (degrees).
+    fn move_part(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        let Some((which, args)) = rest.split_first() else {
+            return Err(line.error(line.end_column, "expected the name of a NURBS part after 'move'"));
+        };
+        if !self.nurbs.iter().any(|(n, _)| n == which.text) {
+            let known: Vec<&str> = self.nurbs.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(line.error(
+                which.column,
+                if known.is_empty() {
+                    format!(
+                        "no NURBS part '{}': add one first with nurbs \"FILE\" name=...",
+                        which.text
+                    )
+                } else {
+                    format!("no NURBS part '{}': the parts are {}", which.text, known.join(", "))
+                },
+            ));
+        }
+        let a = Args::parse(line, args, &["by", "turn"], "move")?;
+        let by = a.get("by").map(|t| vector(line, t, "by")).transpose()?;
+        let turn = a.get("turn").map(|t| number(line, t, "turn")).transpose()?;
+        if by.is_none() && turn.is_none() {
+            return Err(line.error(head.column, "expected by=x,y,z (m) or turn=DEG for 'move'"));
+        }
+        Ok(Op::Move {
+            name: which.text.to_string(),
+            by: by.unwrap_or(DVec3::ZERO),
+            turn_deg: turn.unwrap_or(0.0),
+        })
     }
 
     /// `garment jumpsuit|dress fit=tight|loose resolution=N`.

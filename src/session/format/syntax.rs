@@ -148,6 +148,22 @@ pub enum Op {
         /// The plane.
         plane: CutPlane,
     },
+    /// Add a NURBS part from a `.nurbs` file, collided with the body and the other parts.
+    Nurbs {
+        /// Its name.
+        name: String,
+        /// The file.
+        path: std::path::PathBuf,
+    },
+    /// Move a NURBS part; refused when it would then collide.
+    Move {
+        /// The part.
+        name: String,
+        /// Translation, m.
+        by: glam::DVec3,
+        /// Turn about the vertical through the part's centre, degrees.
+        turn_deg: f64,
+    },
 }
 
 /// A dimension change.
@@ -180,6 +196,8 @@ impl Op {
             Self::Drag(_) => "drag",
             Self::Undo => "undo",
             Self::Cut { .. } => "cut",
+            Self::Nurbs { .. } => "nurbs",
+            Self::Move { .. } => "move",
         }
     }
 }

@@ -10,6 +10,7 @@ mod drag;
 mod garment;
 mod m1;
 mod mannequin;
+mod nurbs;
 pub(super) mod scene;
 mod section;
 mod set;
@@ -48,5 +49,7 @@ pub(super) fn run_step(
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),
         Op::Cut { name, plane } => cut::run(scope, state, name, *plane),
+        Op::Nurbs { name, path } => nurbs::add(scope, state, cx, name, path),
+        Op::Move { name, by, turn_deg } => nurbs::move_part(scope, state, cx, name, *by, *turn_deg),
     }
 }
