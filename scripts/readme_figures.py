@@ -4,7 +4,8 @@
     python3 scripts/readme_figures.py            # run the demo, rewrite the README sections
     python3 scripts/readme_figures.py --check    # exit 1 if the README is out of date
     python3 scripts/readme_figures.py --metrics M.json   # use an existing metrics file
-    python3 scripts/readme_figures.py --bench    # also the M1 benchmark table (times vary)
+    python3 scripts/readme_figures.py --bench    # also the M1 benchmark, logging and NURBS
+                                                 # experiment tables (times vary)
 
 Each generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
 in README.md; nothing else is touched. Standard library only.
@@ -108,6 +109,36 @@ def m1_bench():
     return "\n\n".join(out)
 
 
+def nurbs_experiment():
+    """`drape nurbs-experiment --json`: the L/T table with the true distances (times vary run
+    to run: written with --bench only)."""
+    with tempfile.TemporaryDirectory() as tmp:
+        run = subprocess.run(["cargo", "run", "--release", "--quiet", "--", "nurbs-experiment", "--json",
+                              "--save", os.path.join(tmp, "n.rrd")],
+                             cwd=ROOT, check=True, capture_output=True, text=True)
+    out = json.loads(run.stdout)
+    rows = ["| L | time ms | query ms | hull pairs tested | leaf pairs | cp min distance mm (paper's mind) "
+            "| true distance mm | error mm | net deviation mm (butterfly / leaf) | coverage mm (butterfly / leaf) |",
+            "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in out["levels"]:
+        rows.append(f"| {r['level']} | {r['time_ms']:.2f} | {r['query_ms']:.2f} | {r['pairs_tested']} | "
+                    f"{r['leaf_pairs']} | {r['cp_min_distance_m'] * 1e3:.4f} | {r['true_distance_m'] * 1e3:.4f} | "
+                    f"{r['error_m'] * 1e3:+.4f} | {r['net_deviation_m'][0] * 1e3:.4f} / "
+                    f"{r['net_deviation_m'][1] * 1e3:.4f} | {r['coverage_m'][0] * 1e3:.3f} / "
+                    f"{r['coverage_m'][1] * 1e3:.3f} |")
+    rec = out["recommended"]
+    rows.append("")
+    rows.append(f"Recommended for an accuracy of {rec['accuracy_m'] * 1e3:.1f} mm: **L = {rec['level']}, "
+                f"T = {rec['threshold_m'] * 1e3:.3f} mm**.")
+    rows.append("")
+    rows.append("| L | crossing detected (drape) | paper's rule (cp min < T) | candidate leaf pairs | cp min mm | refined mm |")
+    rows.append("|---:|---|---|---:|---:|---:|")
+    for c in out["crossing"]:
+        rows.append(f"| {c['level']} | {'yes' if c['detected'] else 'NO'} | {'yes' if c['paper_rule'] else 'no'} | "
+                    f"{c['candidate_pairs']} | {c['cp_min_distance_m'] * 1e3:.4f} | {c['true_distance_m'] * 1e3:.4f} |")
+    return "\n".join(rows)
+
+
 def logging_budget():
     """The demo at each log detail: compute and logging time summed over its steps, and the
     recording's size (times vary run to run: written with --bench only)."""
@@ -186,6 +217,7 @@ def main():
     if args.bench:
         generated["m1-bench"] = m1_bench()
         generated["logging"] = logging_budget()
+        generated["nurbs-experiment"] = nurbs_experiment()
     for name, body in generated.items():
         pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
         if not pattern.search(new):

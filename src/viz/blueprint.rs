@@ -125,13 +125,11 @@ pub fn nurbs_blueprint() -> Blueprint {
     Blueprint::new(
         Horizontal::new([
             Vertical::new([
-                Spatial3DView::new("Near pose: the butterfly, the leaf hulls the level opens, nearest points")
-                    .with_origin("/nurbs/near")
-                    .with_contents([
-                        "+ /nurbs/near/butterfly/**",
-                        "+ /nurbs/near/hulls/**",
-                        "+ /nurbs/near/closest/**",
-                    ])
+                Spatial3DView::new(
+                    "Near pose: the leaf hulls the level opens (butterfly orange, leaf green), nearest points (control red, true blue)",
+                )
+                .with_origin("/nurbs/near")
+                .with_contents(["+ /nurbs/near/hulls/**", "+ /nurbs/near/closest/**"])
                     .into(),
                 Horizontal::new([
                     Spatial3DView::new("Scene")

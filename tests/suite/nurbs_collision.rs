@@ -396,16 +396,17 @@ fn the_experiment_holds_the_butterfly_at_its_distance_and_detects_the_crossing_a
     );
 }
 
-/// Every `nurbs` stage of a run: the parts' surfaces after it, its contacts and refusal.
-#[derive(Default)]
-struct NurbsStages(
-    Vec<(
-        usize,
-        Vec<(String, NurbsSurface)>,
-        Vec<drape::nurbs::Contact>,
-        Option<String>,
-    )>,
+/// One `nurbs` stage: its step, the parts' surfaces after it, its contacts and refusal.
+type NurbsStageSeen = (
+    usize,
+    Vec<(String, NurbsSurface)>,
+    Vec<drape::nurbs::Contact>,
+    Option<String>,
 );
+
+/// Every `nurbs` stage of a run.
+#[derive(Default)]
+struct NurbsStages(Vec<NurbsStageSeen>);
 
 impl drape::session::StageSink for NurbsStages {
     fn nurbs(
@@ -462,7 +463,7 @@ fn a_part_moved_into_the_body_is_refused_and_stays_outside_by_the_ray_parity_tru
         "{why}"
     );
     assert_eq!(before[0].1, after[0].1, "the part stays");
-    let would = before[0].1.mapped(glam::DMat3::IDENTITY, DVec3::new(-0.20, 0.0, 0.0));
+    let would = before[0].1.mapped(DMat3::IDENTITY, DVec3::new(-0.20, 0.0, 0.0));
     assert!(inside_count(&would) > 0, "the truth agrees the move goes into the body");
     assert!(contacts.iter().any(|c| c.other == "body" && c.colliding));
     // Every accepted pose is outside the body by the truth.
