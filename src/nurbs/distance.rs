@@ -263,6 +263,26 @@ pub fn refine_from_controls(a: &Patch, b: &Patch) -> Refined {
     refine(a, b, [s[0], s[1], t[0], t[1]])
 }
 
+/// The least refined distance among candidate leaf `pairs` of `a` and `b`: each refined
+/// from its nearest control points, nearest hulls first, until one touches (within
+/// [`TOUCH`] of `a`'s size); `None` when there are no pairs.
+pub fn nearest_among(a: &PatchTree, b: &PatchTree, pairs: &[LeafPair]) -> Option<Refined> {
+    let mut order: Vec<&LeafPair> = pairs.iter().collect();
+    order.sort_by(|x, y| x.gap.total_cmp(&y.gap).then(x.patches.cmp(&y.patches)));
+    let touch = TOUCH * a.tree.nodes.first().map_or(0.0, |n| n.hull.extent());
+    let mut best: Option<Refined> = None;
+    for p in order {
+        let r = refine_from_controls(&a.patches[p.patches[0] as usize], &b.patches[p.patches[1] as usize]);
+        if best.is_none_or(|b| r.distance < b.distance) {
+            best = Some(r);
+        }
+        if r.distance <= touch {
+            break;
+        }
+    }
+    best
+}
+
 /// Distances at most this fraction of the scene's size count as touching.
 pub const TOUCH: f64 = 1e-12;
 

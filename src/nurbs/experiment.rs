@@ -9,9 +9,7 @@ use std::time::Instant;
 use glam::{DMat3, DVec3};
 use serde::Serialize;
 
-use super::distance::{
-    TOUCH, coverage, nearest_control_points, net_deviation, pairs_within, refine_from_controls, surface_distance,
-};
+use super::distance::{coverage, nearest_among, nearest_control_points, net_deviation, pairs_within, surface_distance};
 use super::file::{NurbsFileError, parse};
 use super::hull::Kdop;
 use super::surface::NurbsSurface;
@@ -239,19 +237,9 @@ fn hulls_of(a: &PatchTree, b: &PatchTree, pairs: &[[u32; 2]], keep: usize) -> [V
 fn crossing_row(level: u8, a: &PatchTree, b: &PatchTree, threshold: f64) -> (CrossingRow, Vec<[u32; 2]>) {
     let (pairs, _) = pairs_within(a, b, threshold);
     let cp = pairs.iter().map(|p| p.control_distance).fold(f64::INFINITY, f64::min);
-    let mut by_gap = pairs.clone();
-    by_gap.sort_by(|x, y| x.gap.total_cmp(&y.gap).then(x.patches.cmp(&y.patches)));
-    // Refined nearest first, on to touching (not just below the threshold), so that the
-    // figure is the true distance.
-    let touch = TOUCH * a.tree.nodes.first().map_or(0.0, |n| n.hull.extent());
-    let mut best = f64::INFINITY;
-    for p in &by_gap {
-        let r = refine_from_controls(&a.patches[p.patches[0] as usize], &b.patches[p.patches[1] as usize]);
-        best = best.min(r.distance);
-        if best <= touch {
-            break;
-        }
-    }
+    // Refined on to touching (not just below the threshold), so that the figure is the
+    // true distance.
+    let best = nearest_among(a, b, &pairs).map_or(f64::INFINITY, |r| r.distance);
     let row = CrossingRow {
         level,
         detected: best < threshold,

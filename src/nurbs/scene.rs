@@ -6,7 +6,7 @@
 
 use glam::DVec3;
 
-use super::distance::{TOUCH, pairs_within, refine_from_controls};
+use super::distance::{nearest_among, pairs_within};
 use super::hull::Kdop;
 use super::surface::NurbsSurface;
 use super::tree::{HullTree, PairVisitor, PatchTree, descend};
@@ -114,23 +114,8 @@ pub struct Contact {
 /// come within it (the parts are farther apart than the threshold).
 pub fn collide_parts(a: &NurbsPart, b: &NurbsPart, threshold: f64) -> Option<Contact> {
     let (pairs, _) = pairs_within(&a.tree, &b.tree, threshold);
-    let touch = TOUCH * a.tree.tree.nodes.first().map_or(0.0, |n| n.hull.extent());
-    let mut by_gap = pairs.clone();
-    by_gap.sort_by(|x, y| x.gap.total_cmp(&y.gap).then(x.patches.cmp(&y.patches)));
-    let mut best: Option<(f64, [DVec3; 2])> = None;
-    for p in &by_gap {
-        let r = refine_from_controls(
-            &a.tree.patches[p.patches[0] as usize],
-            &b.tree.patches[p.patches[1] as usize],
-        );
-        if best.is_none_or(|(d, _)| r.distance < d) {
-            best = Some((r.distance, r.points));
-        }
-        if r.distance <= touch {
-            break;
-        }
-    }
-    let (distance_m, points) = best?;
+    let nearest = nearest_among(&a.tree, &b.tree, &pairs)?;
+    let (distance_m, points) = (nearest.distance, nearest.points);
     Some(Contact {
         part: a.name.clone(),
         other: b.name.clone(),

@@ -91,6 +91,10 @@ pub enum StepError {
     /// `undo` with nothing to take back.
     #[error("nothing to undo: no drag, set or cut step of the current garment ran")]
     NothingToUndo,
+    /// `move` names a part no `nurbs` step added (the parser refuses it; a step made by hand
+    /// may not).
+    #[error("no NURBS part '{0}': add it with a 'nurbs' step first")]
+    NoNurbsPart(String),
     /// A NURBS part's file cannot be read or is not a valid surface.
     #[error("NURBS part '{name}' from {}: {message}", path.display())]
     NurbsFile {

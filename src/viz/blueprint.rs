@@ -109,13 +109,7 @@ pub fn default_blueprint() -> Blueprint {
         ])
         .with_column_shares([3.0, 1.0]),
     )
-    .with_time_panel(
-        TimePanel::new()
-            .with_timeline("stage")
-            .with_state(PanelState::Collapsed),
-    )
-    .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
-    .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
+    .with_panels_collapsed("stage")
 }
 
 /// The [nurbs] experiment's layout: the near pose (the whole scene) above the crossing pose
@@ -156,11 +150,22 @@ pub fn nurbs_blueprint() -> Blueprint {
         ])
         .with_column_shares([3.0, 1.0]),
     )
-    .with_time_panel(
-        TimePanel::new()
-            .with_timeline("level")
-            .with_state(PanelState::Collapsed),
-    )
-    .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
-    .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
+    .with_panels_collapsed("level")
+}
+
+/// The time, blueprint and selection panels collapsed, the time panel on `timeline`.
+trait CollapsedPanels {
+    fn with_panels_collapsed(self, timeline: &str) -> Self;
+}
+
+impl CollapsedPanels for Blueprint {
+    fn with_panels_collapsed(self, timeline: &str) -> Self {
+        self.with_time_panel(
+            TimePanel::new()
+                .with_timeline(timeline)
+                .with_state(PanelState::Collapsed),
+        )
+        .with_blueprint_panel(BlueprintPanel::new().with_state(PanelState::Collapsed))
+        .with_selection_panel(SelectionPanel::new().with_state(PanelState::Collapsed))
+    }
 }

@@ -34,6 +34,7 @@ pub mod target;
 pub use blueprint::{default_blueprint, nurbs_blueprint};
 pub use logger::{LogOptions, RerunLogger};
 pub use rerun::RecordingStream;
+pub use rerun::blueprint::Blueprint;
 pub use target::{
     KeptFile, RecordingTarget, ViewerFlush, WebViewerError, open_file_recording, open_recording, open_recording_kept,
     serve_web_viewer,

@@ -38,26 +38,12 @@ impl RerunLogger {
     /// in the log.
     pub(super) fn log_nurbs_parts(&self, stage: NurbsStage<'_>) -> Result<(), SinkError> {
         for part in stage.parts {
-            let (positions, triangles) = part.surface.grid(
-                SAMPLES_PER_SPAN * part.surface.count()[0],
-                SAMPLES_PER_SPAN * part.surface.count()[1],
-            );
-            self.rec
-                .log(
-                    format!("nurbs/parts/{}/surface", part.name),
-                    &Mesh3D::new(f32s(&positions))
-                        .with_triangle_indices(triangles)
-                        .with_albedo_factor(rerun::Rgba32::from_unmultiplied_rgba(240, 150, 40, 255)),
-                )
-                .map_err(to_sink)?;
-            self.rec
-                .log(
-                    format!("nurbs/parts/{}/net", part.name),
-                    &LineStrips3D::new(net_lines(&part.surface))
-                        .with_radii([Radius::new_ui_points(0.5)])
-                        .with_colors([[60, 60, 60]]),
-                )
-                .map_err(to_sink)?;
+            self.nurbs_surface(
+                &format!("nurbs/parts/{}", part.name),
+                &part.surface,
+                [240, 150, 40],
+                false,
+            )?;
         }
         let segments: Vec<[[f32; 3]; 2]> = stage
             .contacts
@@ -114,26 +100,26 @@ impl RerunLogger {
         self.text(level, text)
     }
 
-    fn nurbs_surface(&self, path: &str, s: &NurbsSurface, color: [u8; 3]) -> Result<(), SinkError> {
+    /// A surface (sampled) and its control net under `path`: static when it stands for the
+    /// whole recording (the experiment, so that it shows on the `level` timeline too), else
+    /// on the current step.
+    fn nurbs_surface(&self, path: &str, s: &NurbsSurface, color: [u8; 3], fixed: bool) -> Result<(), SinkError> {
         let [nu, nv] = s.count();
         let (positions, triangles) = s.grid(SAMPLES_PER_SPAN * nu, SAMPLES_PER_SPAN * nv);
-        // Static: the surfaces stand on every timeline, the `level` one included.
-        self.rec
-            .log_static(
-                format!("{path}/surface"),
-                &Mesh3D::new(f32s(&positions))
-                    .with_triangle_indices(triangles)
-                    .with_albedo_factor(rerun::Rgba32::from_unmultiplied_rgba(color[0], color[1], color[2], 255)),
-            )
-            .map_err(to_sink)?;
-        self.rec
-            .log_static(
-                format!("{path}/net"),
-                &LineStrips3D::new(net_lines(s))
-                    .with_radii([Radius::new_ui_points(0.5)])
-                    .with_colors([[60, 60, 60]]),
-            )
-            .map_err(to_sink)
+        let mesh = Mesh3D::new(f32s(&positions))
+            .with_triangle_indices(triangles)
+            .with_albedo_factor(rerun::Rgba32::from_unmultiplied_rgba(color[0], color[1], color[2], 255));
+        let net = LineStrips3D::new(net_lines(s))
+            .with_radii([Radius::new_ui_points(0.5)])
+            .with_colors([[60, 60, 60]]);
+        let (surface_path, net_path) = (format!("{path}/surface"), format!("{path}/net"));
+        if fixed {
+            self.rec.log_static(surface_path, &mesh).map_err(to_sink)?;
+            self.rec.log_static(net_path, &net).map_err(to_sink)
+        } else {
+            self.rec.log(surface_path, &mesh).map_err(to_sink)?;
+            self.rec.log(net_path, &net).map_err(to_sink)
+        }
     }
 
     pub(super) fn log_nurbs_experiment(&self, e: &Experiment) -> Result<(), SinkError> {
@@ -146,10 +132,10 @@ impl RerunLogger {
             .log_static("nurbs/crossing", &Transform3D::from_translation([shift, 0.0, 0.0]))
             .map_err(to_sink)?;
         for scene in ["near", "crossing"] {
-            self.nurbs_surface(&format!("nurbs/{scene}/leaf"), &e.leaf, [90, 170, 70])?;
+            self.nurbs_surface(&format!("nurbs/{scene}/leaf"), &e.leaf, [90, 170, 70], true)?;
         }
-        self.nurbs_surface("nurbs/near/butterfly", &e.near, [240, 150, 40])?;
-        self.nurbs_surface("nurbs/crossing/butterfly", &e.crossing_butterfly, [240, 150, 40])?;
+        self.nurbs_surface("nurbs/near/butterfly", &e.near, [240, 150, 40], true)?;
+        self.nurbs_surface("nurbs/crossing/butterfly", &e.crossing_butterfly, [240, 150, 40], true)?;
         self.text(
             TextLogLevel::INFO,
             format!(

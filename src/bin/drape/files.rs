@@ -29,6 +29,35 @@ pub(crate) fn create_parent(path: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// Writes a study's recording to `path` (through a temporary name and a rename): one stage,
+/// `stage` named `name` of step 1 `op`, logged with `options` under `blueprint`.
+pub(crate) fn save_study(
+    path: &Path,
+    (op, name): (&'static str, &'static str),
+    blueprint: drape::viz::Blueprint,
+    options: drape::viz::LogOptions,
+    stage: drape::session::Stage<'_>,
+) -> anyhow::Result<()> {
+    use drape::session::StageSink as _;
+    let partial = partial_path(path);
+    create_parent(path)?;
+    {
+        let rec = drape::viz::open_file_recording(&partial, op, blueprint)?;
+        let mut logger = drape::viz::RerunLogger::new(rec, options)?;
+        let info = drape::session::StageInfo {
+            step: 1,
+            op,
+            stage: 0,
+            name,
+        };
+        logger.stage(&info, stage)?;
+    }
+    std::fs::rename(&partial, path)
+        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))?;
+    eprintln!("recording: {}", path.display());
+    Ok(())
+}
+
 pub(crate) fn session_stem(session: &Session) -> String {
     Path::new(&session.name)
         .file_stem()

@@ -2,14 +2,13 @@
 
 use std::process::ExitCode;
 
-use anyhow::Context as _;
 use drape::mannequin::{DressForm, MannequinOptions, Region, run_mannequin};
-use drape::session::{Stage, StageInfo, StageSink};
-use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+use drape::session::Stage;
+use drape::viz::{LogOptions, default_blueprint};
 
 use crate::args::MannequinArgs;
 use crate::failure::{Classify, Result};
-use crate::files::{create_parent, partial_path};
+use crate::files::save_study;
 
 pub(crate) fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
     let options = MannequinOptions::grid(usize::from(args.layers), usize::from(args.points))
@@ -48,23 +47,13 @@ pub(crate) fn mannequin(args: &MannequinArgs) -> Result<ExitCode> {
             println!("{:<9} {pm:>10.3} {pr:>10.3} {cm:>10.3} {cr:>10.3}   {better}", e.region);
         }
     }
-    let path = &args.save;
-    let partial = partial_path(path);
-    create_parent(path).internal()?;
-    {
-        let rec = open_recording(&RecordingTarget::File(partial.clone()), "mannequin").internal()?;
-        let mut logger = RerunLogger::new(rec, LogOptions::default().with_mannequin_offset_x(-0.3)).internal()?;
-        let info = StageInfo {
-            step: 1,
-            op: "mannequin",
-            stage: 0,
-            name: "mannequin.refine",
-        };
-        logger.stage(&info, Stage::Mannequin(&result)).internal()?;
-    }
-    std::fs::rename(&partial, path)
-        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
-        .internal()?;
-    eprintln!("recording: {}", path.display());
+    save_study(
+        &args.save,
+        ("mannequin", "mannequin.refine"),
+        default_blueprint(),
+        LogOptions::default().with_mannequin_offset_x(-0.3),
+        Stage::Mannequin(&result),
+    )
+    .internal()?;
     Ok(ExitCode::SUCCESS)
 }

@@ -6,12 +6,12 @@ use std::process::ExitCode;
 
 use anyhow::Context as _;
 use drape::nurbs::{Experiment, ExperimentOptions, NurbsSurface, experiment, file::parse, run_experiment};
-use drape::session::{Stage, StageInfo, StageSink};
-use drape::viz::{LogOptions, RerunLogger, nurbs_blueprint, open_file_recording};
+use drape::session::Stage;
+use drape::viz::{LogOptions, nurbs_blueprint};
 
 use crate::args::NurbsExperimentArgs;
 use crate::failure::{Classify, Result};
-use crate::files::{create_parent, partial_path};
+use crate::files::save_study;
 
 fn load(path: Option<&Path>, shipped: &str) -> Result<NurbsSurface> {
     let Some(path) = path else {
@@ -84,24 +84,14 @@ pub(crate) fn experiment(args: &NurbsExperimentArgs) -> Result<ExitCode> {
     } else {
         print_table(&result);
     }
-    let path = &args.save;
-    let partial = partial_path(path);
-    create_parent(path).internal()?;
-    {
-        let rec = open_file_recording(&partial, "nurbs-experiment", nurbs_blueprint()).internal()?;
-        let mut logger = RerunLogger::new(rec, LogOptions::default()).internal()?;
-        let info = StageInfo {
-            step: 1,
-            op: "nurbs-experiment",
-            stage: 0,
-            name: "nurbs.experiment",
-        };
-        logger.stage(&info, Stage::NurbsExperiment(&result)).internal()?;
-    }
-    std::fs::rename(&partial, path)
-        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
-        .internal()?;
-    eprintln!("recording: {}", path.display());
+    save_study(
+        &args.save,
+        ("nurbs-experiment", "nurbs.experiment"),
+        nurbs_blueprint(),
+        LogOptions::default(),
+        Stage::NurbsExperiment(&result),
+    )
+    .internal()?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -98,13 +98,7 @@ pub(super) fn solve_garment(
     cx: &StepContext<'_>,
     mut garment: GarmentState,
 ) -> Result<GarmentState, StepError> {
-    // The body's one index (clearance here, collision after), built once per body.
-    let probe = match probe {
-        Some(p) => p,
-        slot @ None => slot.insert(scope.timed("body.index", || {
-            BodyProbe::from_index(BodyIndex::new(body, &cx.options.collision.slices))
-        })),
-    };
+    let probe = body_probe(scope, body, probe, cx);
     let fw = scope.timed("garment.solve", || {
         build_framework(body, probe, garment.template, &garment.dims, &garment.options)
     })?;
@@ -138,4 +132,19 @@ pub(super) fn solve_garment(
     garment.net = Some(net);
     garment.framework = Some(fw);
     Ok(garment)
+}
+
+/// The body's one index (curve clearance, collision, NURBS parts' inside test), built by the
+/// first step that needs it and kept for the session.
+pub(super) fn body_probe<'p>(
+    scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
+    slot: &'p mut Option<BodyProbe>,
+    cx: &StepContext<'_>,
+) -> &'p BodyProbe {
+    slot.get_or_insert_with(|| {
+        scope.timed("body.index", || {
+            BodyProbe::from_index(BodyIndex::new(body, &cx.options.collision.slices))
+        })
+    })
 }

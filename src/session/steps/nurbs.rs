@@ -13,8 +13,6 @@ use super::super::error::StepError;
 use super::super::stage::{NurbsStage, Stage};
 use super::super::state::SessionState;
 use super::StepContext;
-use crate::collision::BodyIndex;
-use crate::garment::BodyProbe;
 use crate::nurbs::{BodyHulls, Contact, NurbsOptions, NurbsPart, collide_body, collide_parts, file};
 
 /// The figures of a NURBS step.
@@ -45,12 +43,7 @@ fn contacts(
     options: &NurbsOptions,
 ) -> Vec<Contact> {
     let body = &state.body;
-    let probe = match &mut state.probe {
-        Some(p) => p,
-        slot @ None => slot.insert(scope.timed("body.index", || {
-            BodyProbe::from_index(BodyIndex::new(body, &cx.options.collision.slices))
-        })),
-    };
+    let probe = super::garment::body_probe(scope, body, &mut state.probe, cx);
     let hulls = match &mut state.nurbs_body {
         Some(h) => h,
         slot @ None => slot.insert(scope.timed("nurbs.body_hulls", || {
@@ -149,11 +142,7 @@ pub(super) fn move_part(
 ) -> Result<(), StepError> {
     let options = NurbsOptions::default();
     let Some(k) = state.nurbs.iter().position(|p| p.name == name) else {
-        return Err(StepError::NurbsFile {
-            name: name.to_string(),
-            path: Default::default(),
-            message: "no such part".into(),
-        });
+        return Err(StepError::NoNurbsPart(name.to_string()));
     };
     let moved = scope.timed("nurbs.subdivide", || state.nurbs[k].moved(by, turn_deg, options.level));
     let found = contacts(scope, state, cx, &moved, &options);
