@@ -31,6 +31,7 @@ pub mod mannequin;
 pub mod mesh;
 pub mod nurbs;
 pub mod par;
+pub mod sculpt;
 pub mod session;
 pub mod stress;
 pub mod viz;

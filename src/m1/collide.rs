@@ -14,6 +14,7 @@ use crate::collision::quality::quality_where;
 use crate::collision::{
     BodyIndex, CollisionOptions, Hit, Quality, Response, VertexRoles, respond, respond_edges, response_ease,
 };
+use crate::mesh::TriMesh;
 use crate::par::par_map;
 
 /// M1 after its collision.
@@ -38,6 +39,8 @@ pub struct M1Collision {
     pub quality: Quality,
     /// The edges crossing the body after the response.
     pub crossing_after_edges: Vec<[u32; 2]>,
+    /// The vertices inside the body after the response, sorted.
+    pub inside_after: Vec<u32>,
 }
 
 /// What M0's collision left: its vertices inside the body and its edges crossing it (both
@@ -54,6 +57,22 @@ pub struct M0Collided<'a> {
     pub ring_normal: &'a [Option<DVec3>],
 }
 
+/// A refinement of a mesh already collided (M1 over M0, a sculpt over the garment): the
+/// base's vertices first, with the same indices, then the new ones.
+#[derive(Clone, Copy, Debug)]
+pub struct RefinedInput<'a> {
+    /// The refined mesh.
+    pub mesh: &'a TriMesh,
+    /// Its undirected edges, each once.
+    pub edges: &'a [[u32; 2]],
+    /// The base's vertex count: vertices from here on are new.
+    pub base_vertices: usize,
+    /// Base vertices that are not where the base has them (smoothed, dragged).
+    pub moved: &'a [u32],
+    /// A base vertex each vertex descends from (its partition and roles).
+    pub anchor: &'a [u32],
+}
+
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
 /// have move. `garment_ease` is the garment's ease.
 pub fn collide_m1(
@@ -63,22 +82,43 @@ pub fn collide_m1(
     garment_ease: f64,
     options: &CollisionOptions,
 ) -> M1Collision {
+    let input = RefinedInput {
+        mesh: &m1.mesh,
+        edges: m1.edges(),
+        base_vertices: m1.m0_vertices,
+        moved: &m1.smoothed,
+        anchor: &m1.anchor,
+    };
+    collide_refined(index, &input, m0, garment_ease, options)
+}
+
+/// Collides a refinement of a collided mesh: only its new and moved vertices are tested and
+/// may move; the base's other vertices stay where the base's collision put them, and its
+/// other edges cross exactly when the base's check said so.
+pub fn collide_refined(
+    index: &BodyIndex,
+    refined: &RefinedInput<'_>,
+    m0: &M0Collided<'_>,
+    garment_ease: f64,
+    options: &CollisionOptions,
+) -> M1Collision {
     let (partition, ring_normal) = (m0.partition, m0.ring_normal);
     let reach = 0.2 * index.height;
-    let positions = &m1.mesh.positions;
-    let tested = m1.differs_from_m0();
-    let m1_partition: Vec<usize> = m1
+    let positions = &refined.mesh.positions;
+    let mut tested: Vec<u32> = refined.moved.to_vec();
+    tested.extend(refined.base_vertices as u32..positions.len() as u32);
+    let m1_partition: Vec<usize> = refined
         .anchor
         .iter()
         .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
         .collect();
-    let normals = m1.mesh.vertex_normals();
+    let normals = refined.mesh.vertex_normals();
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();
     rings.resize(positions.len(), None);
-    let mut pinned = vec![true; m1.m0_vertices];
+    let mut pinned = vec![true; refined.base_vertices];
     pinned.resize(positions.len(), false);
-    for &v in &m1.smoothed {
+    for &v in refined.moved {
         pinned[v as usize] = false;
     }
     let roles = VertexRoles {
@@ -87,17 +127,17 @@ pub fn collide_m1(
         ring_normal: &rings,
         pinned: &pinned,
     };
-    // M1's edges with an end that differs from M0 are measured; the others are M0's edges
-    // where M0 has them (both ends pinned), crossing exactly when M0's check said so.
-    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = m1
-        .edges()
+    // Edges with an end that differs from the base are measured; the others are the
+    // base's edges (both ends pinned), crossing exactly when the base's check said so.
+    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = refined
+        .edges
         .iter()
         .copied()
         .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
     let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
         m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
     let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
-    let kept_inside = m0.inside.iter().filter(|&&v| pinned[v as usize]).count();
+    let kept_inside: Vec<u32> = m0.inside.iter().copied().filter(|&v| pinned[v as usize]).collect();
     let before = quality_where(index, positions, positions, &tested, &edges, &[]);
     let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     crossing_before_edges.extend(&kept_crossing);
@@ -151,7 +191,10 @@ pub fn collide_m1(
     crossing_after_edges.extend(quality.crossing.iter().map(|&e| touching_edges[e as usize]));
     crossing_after_edges.sort_unstable();
     crossing_after_edges.extend(&kept_crossing);
-    quality.penetrating_vertices += kept_inside;
+    let mut inside_after: Vec<u32> = quality.inside.clone();
+    inside_after.extend(&kept_inside);
+    inside_after.sort_unstable();
+    quality.penetrating_vertices += kept_inside.len();
     quality.crossing_edges = crossing_after_edges.len();
     quality.inside.clear();
     quality.crossing.clear();
@@ -165,5 +208,6 @@ pub fn collide_m1(
         positions: moved,
         quality,
         crossing_after_edges,
+        inside_after,
     }
 }

@@ -13,7 +13,7 @@ pub mod cut;
 pub mod select;
 pub mod sqrt3;
 
-pub use collide::{M0Collided, M1Collision, collide_m1};
+pub use collide::{M0Collided, M1Collision, RefinedInput, collide_m1, collide_refined};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};

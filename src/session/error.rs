@@ -89,7 +89,7 @@ pub enum StepError {
         verb: &'static str,
     },
     /// `undo` with nothing to take back.
-    #[error("nothing to undo: no drag, set or cut step of the current garment ran")]
+    #[error("nothing to undo: no drag, set, cut or sculpt step of the current garment ran")]
     NothingToUndo,
     /// `move` names a part no `nurbs` step added (the parser refuses it; a step made by hand
     /// may not).
@@ -105,6 +105,12 @@ pub enum StepError {
         /// What is wrong.
         message: String,
     },
+    /// A sculpt names a control point the garment does not have.
+    #[error("the garment has no control point '{0}'")]
+    NoControlPoint(String),
+    /// A sculpt that cannot be made (its pick too far from the garment).
+    #[error("sculpt: {0}")]
+    Sculpt(#[from] crate::sculpt::SculptError),
     /// Sinks failed (the recording, the export), at these stages.
     #[error("{}", join(.0))]
     Sinks(Vec<(&'static str, SinkError)>),

@@ -86,4 +86,11 @@ impl StageSink for ObjExporter {
         };
         self.write(info, &format!("{}_m1", stage.m0.template), &mesh)
     }
+
+    fn sculpt(&mut self, info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {
+        match stage.outcome {
+            Some(outcome) if stage.refused.is_none() => self.write(info, "garment_sculpt", &outcome.mesh()),
+            _ => Ok(()),
+        }
+    }
 }

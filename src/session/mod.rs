@@ -20,12 +20,13 @@ mod steps;
 
 pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, StepError};
-pub use format::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units, parse_session};
+pub use format::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
 pub use runner::{LiveSession, RunOptions, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
-    M1Stage, NurbsStage, RingStep, SectionCut, SinkError, Stage, StageInfo, StageSink, StepEnd,
+    M1Stage, NurbsStage, RingStep, SculptOutcome, SculptStage, SectionCut, SinkError, Stage, StageInfo, StageSink,
+    StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

@@ -60,6 +60,10 @@ pub enum Stage<'a> {
     Constraints(ConstraintStage<'a>),
     /// M1, the display mesh: the refined patches, its collision, the cut lines.
     M1(M1Stage<'a>),
+    /// A sculpt of the garment: the drag, the adaptive refinement, its collision.
+    Sculpt(SculptStage<'a>),
+    /// The same drag with no, uniform and adaptive subdivision (`drape sculpt-compare`).
+    SculptCompare(&'a crate::sculpt::Comparison),
     /// The end of a step: done with its metrics, or failed.
     Step(StepEnd<'a>),
 }
@@ -291,6 +295,47 @@ pub struct M1Outcome {
     pub cuts_on_m0: Vec<Vec<(Vec<glam::DVec3>, bool)>>,
 }
 
+/// A sculpt of the garment.
+#[derive(Clone, Copy, Debug)]
+pub struct SculptStage<'a> {
+    /// The sculpt made (or attempted, when refused); `None`: the garment has no sculpt any
+    /// more (an undo took it back).
+    pub outcome: Option<&'a SculptOutcome>,
+    /// Refused: the garment stays as it was, and why.
+    pub refused: Option<&'a str>,
+}
+
+/// A sculpt and what became of it.
+#[derive(Clone, Debug)]
+pub struct SculptOutcome {
+    /// The drag.
+    pub drag: crate::sculpt::Drag,
+    /// The mesh it was made on: `M0`, `M1` or `sculpt` (the last sculpt's result).
+    pub layer: &'static str,
+    /// That mesh (collided).
+    pub base: crate::mesh::TriMesh,
+    /// The drag and the adaptive refinement.
+    pub sculpt: crate::sculpt::Sculpt,
+    /// The refinement's collision with the body (positions after the response).
+    pub collision: M1Collision,
+    /// Partition of each vertex of the result (for the next sculpt's collision).
+    pub partition: Vec<usize>,
+    /// Ring plane normal of each vertex of the result on a garment ring.
+    pub ring_normal: Vec<Option<glam::DVec3>>,
+    /// Sculpts made so far on this garment (this one included).
+    pub count: usize,
+}
+
+impl SculptOutcome {
+    /// The sculpted mesh after its collision.
+    pub fn mesh(&self) -> crate::mesh::TriMesh {
+        crate::mesh::TriMesh {
+            positions: self.collision.positions.clone(),
+            triangles: self.sculpt.refined.mesh.triangles.clone(),
+        }
+    }
+}
+
 /// The constraint-layer stages.
 #[derive(Clone, Copy, Debug)]
 #[non_exhaustive]
@@ -414,6 +459,16 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// A sculpt of the garment.
+    fn sculpt(&mut self, _info: &StageInfo, _stage: SculptStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
+    /// The sculpt comparison.
+    fn sculpt_compare(&mut self, _info: &StageInfo, _cmp: &crate::sculpt::Comparison) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// The end of a step.
     fn step_end(&mut self, _info: &StageInfo, _end: StepEnd<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -440,6 +495,8 @@ impl Stage<'_> {
             Self::Collision(s) => sink.collision(info, s),
             Self::Constraints(s) => sink.constraints(info, s),
             Self::M1(s) => sink.m1(info, s),
+            Self::Sculpt(s) => sink.sculpt(info, s),
+            Self::SculptCompare(c) => sink.sculpt_compare(info, c),
             Self::Step(e) => sink.step_end(info, e),
         }
     }

@@ -6,7 +6,7 @@ use crate::collision::DetectState;
 use crate::constraint::{ConstraintNet, Edit};
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind};
 
-use super::stage::{CollisionOutcome, M1Outcome};
+use super::stage::{CollisionOutcome, M1Outcome, SculptOutcome};
 use crate::m1::StoredCut;
 
 /// The state between steps.
@@ -73,6 +73,10 @@ pub(crate) struct GarmentState {
     pub(crate) m1: Option<M1Outcome>,
     /// The cut lines, stored on M0.
     pub(crate) cuts: Vec<StoredCut>,
+    /// The sculpts made, in order: made again on the new mesh after every rebuild.
+    pub(crate) sculpts: Vec<(super::SculptAt, crate::sculpt::Drag, crate::sculpt::SculptOptions)>,
+    /// The last sculpt's result (the garment's latest mesh), when there are sculpts.
+    pub(crate) sculpted: Option<SculptOutcome>,
 }
 
 impl GarmentState {
@@ -90,6 +94,8 @@ impl GarmentState {
             standard: None,
             m1: None,
             cuts: Vec::new(),
+            sculpts: Vec::new(),
+            sculpted: None,
         }
     }
 
@@ -108,6 +114,8 @@ impl GarmentState {
             standard: self.standard.clone(),
             m1: None,
             cuts: self.cuts.clone(),
+            sculpts: self.sculpts.clone(),
+            sculpted: None,
         }
     }
 }

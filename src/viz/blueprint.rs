@@ -35,6 +35,7 @@ pub fn default_blueprint() -> Blueprint {
                             "+ /nurbs/contacts",
                             "- /garment/clearance",
                             "- /garment/m1/**",
+                            "- /garment/sculpt/**",
                             "- /garment/cut_lines/**",
                             "- /collision/m1/**",
                         ])
@@ -44,6 +45,12 @@ pub fn default_blueprint() -> Blueprint {
                     Spatial3DView::new("Body")
                         .with_origin("/")
                         .with_contents(["+ /body/**", "- /body/mesh", "+ /mannequin/**", "+ /section/**"])
+                        .into(),
+                    // The sculpted garment: the region tinted with its edges, the pick, the
+                    // radius, the displacement field and the active faces per level.
+                    Spatial3DView::new("Sculpt")
+                        .with_origin("/")
+                        .with_contents(["+ /body/mesh", "+ /garment/sculpt/**", "+ /sculpt/**"])
                         .into(),
                     // NURBS parts on the body, with their contacts.
                     Spatial3DView::new("NURBS")
@@ -151,6 +158,32 @@ pub fn nurbs_blueprint() -> Blueprint {
         .with_column_shares([3.0, 1.0]),
     )
     .with_panels_collapsed("level")
+}
+
+/// `drape sculpt-compare`'s layout: the three results side by side (no subdivision,
+/// uniform Loop, adaptive Loop; each labelled with its figures), the adaptive levels' active
+/// faces over the adaptive one; the log below.
+pub fn sculpt_blueprint() -> Blueprint {
+    Blueprint::new(
+        Vertical::new([
+            Spatial3DView::new(
+                "The same drag: no subdivision, uniform Loop, adaptive Loop (region tinted, its edges drawn)",
+            )
+            .with_origin("/sculpt_compare")
+            .with_contents(["+ /sculpt_compare/**", "- /sculpt_compare/adaptive/levels/**"])
+            .into(),
+            Horizontal::new([
+                Spatial3DView::new("Adaptive: active faces per level (red 1, orange 2, green 3, blue 4)")
+                    .with_origin("/sculpt_compare")
+                    .with_contents(["+ /sculpt_compare/adaptive/levels/**", "+ /sculpt_compare/none/drag/**"])
+                    .into(),
+                TextLogView::new("Log").with_origin("/log").into(),
+            ])
+            .into(),
+        ])
+        .with_row_shares([3.0, 1.0]),
+    )
+    .with_panels_collapsed("stage")
 }
 
 /// The time, blueprint and selection panels collapsed, the time panel on `timeline`.

@@ -116,7 +116,7 @@ fn is_final(stage: &Stage<'_>) -> bool {
         Stage::Garment(g) => !matches!(g, GarmentStage::Part(_, part) if *part != crate::session::GarmentPart::Mesh),
         Stage::Collision(c) => c.part == crate::session::CollisionPart::Respond,
         Stage::Constraints(c) => matches!(c, ConstraintStage::Refused { .. }),
-        Stage::M1(_) | Stage::Step(_) | Stage::Nurbs(_) => true,
+        Stage::M1(_) | Stage::Step(_) | Stage::Nurbs(_) | Stage::Sculpt(_) | Stage::SculptCompare(_) => true,
         _ => false,
     }
 }
@@ -329,6 +329,14 @@ impl StageSink for RerunLogger {
 
     fn m1(&mut self, _info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
         self.log_m1(stage)
+    }
+
+    fn sculpt(&mut self, _info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {
+        self.log_sculpt(stage)
+    }
+
+    fn sculpt_compare(&mut self, _info: &StageInfo, cmp: &crate::sculpt::Comparison) -> Result<(), SinkError> {
+        self.log_sculpt_compare(cmp)
     }
 
     fn step_end(&mut self, _info: &StageInfo, end: StepEnd<'_>) -> Result<(), SinkError> {

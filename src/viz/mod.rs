@@ -15,6 +15,9 @@
 //! `constraints/drag/{path,points}`, `metrics/<unit>/...` (scalars, one folder per unit), `log` (text per stage).
 //! `nurbs/{near,crossing}/{leaf,butterfly}/{surface,net}`, `nurbs/<scene>/hulls/<side>` and
 //! `nurbs/near/closest/{control,true}` (the [nurbs] experiment, per `level`).
+//! `garment/sculpt` (+ `/edges`), `sculpt/{pick,radius,direction,displacement}`,
+//! `sculpt/levels/<k>` (active faces per adaptive level) and
+//! `sculpt_compare/{none,uniform,adaptive}` (`drape sculpt-compare`).
 //! Timelines: `step`, `stage`, `iter` (solver iterations over the session) and `level`
 //! (subdivision levels of the [nurbs] experiment).
 
@@ -29,9 +32,10 @@ mod m1;
 mod mannequin;
 mod nurbs;
 pub mod replay;
+mod sculpt;
 pub mod target;
 
-pub use blueprint::{default_blueprint, nurbs_blueprint};
+pub use blueprint::{default_blueprint, nurbs_blueprint, sculpt_blueprint};
 pub use logger::{LogOptions, RerunLogger};
 pub use rerun::RecordingStream;
 pub use rerun::blueprint::Blueprint;

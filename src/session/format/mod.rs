@@ -16,6 +16,10 @@
 //! drag crotch.point to=0,0.70,0.07               # ... or to a position
 //! drag left_knee by=0,0.02,0                     # drag a whole curve by a vector
 //! undo                                           # back to the state before the last step
+//! sculpt at=waist.front radius=0.08 peak=0.03    # push (peak < 0) or pull the surface there:
+//!                                                # at= a control point or x,y,z; optional
+//!                                                # dir=x,y,z falloff=biweight|wendland|smoothstep
+//!                                                # eps=E (m) levels=N weight=W (Loop, 0..1)
 //! ```
 //!
 //! The scene may also say how the constraint solver treats closed chains:
@@ -36,4 +40,4 @@ mod suggest;
 pub mod syntax;
 
 pub use parser::parse_session;
-pub use syntax::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units};
+pub use syntax::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};

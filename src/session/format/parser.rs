@@ -9,7 +9,7 @@ use glam::DVec3;
 use super::args::{Args, integer_in, number, one_argument, vector};
 use super::lexer::{Line, Token, tokenize};
 use super::suggest::did_you_mean;
-use super::syntax::{Change, LogDetail, Op, ParseError, Scene, Session, Step, Units};
+use super::syntax::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Chains, Edit, SolverOptions, Target};
 use crate::garment::{Fit, TemplateKind};
@@ -19,7 +19,7 @@ use crate::mannequin::MannequinOptions;
 mod m1;
 
 const SCENE_KEYWORDS: [&str; 7] = ["drape", "body", "units", "landmark", "solver", "m1", "log"];
-const STEP_KEYWORDS: [&str; 9] = [
+const STEP_KEYWORDS: [&str; 10] = [
     "mannequin",
     "section",
     "garment",
@@ -29,6 +29,7 @@ const STEP_KEYWORDS: [&str; 9] = [
     "cut",
     "nurbs",
     "move",
+    "sculpt",
 ];
 
 /// Parses and validates a session. `name` is used in messages; `base_dir` resolves
@@ -133,6 +134,7 @@ impl Parser<'_> {
             "set" => self.set(line, head, rest)?,
             "nurbs" => self.nurbs(line, head, rest)?,
             "move" => self.move_part(line, head, rest)?,
+            "sculpt" => self.sculpt(line, head, rest)?,
             other => {
                 return Err(line.error(
                     head.column,
@@ -372,7 +374,7 @@ impl Parser<'_> {
         if self.undoable == 0 {
             return Err(line.error(
                 head.column,
-                "nothing to undo: 'undo' takes back a drag, set or cut step of the garment",
+                "nothing to undo: 'undo' takes back a drag, set, cut or sculpt step of the garment",
             ));
         }
         self.undoable -= 1;
@@ -440,6 +442,114 @@ impl Parser<'_> {
             name: which.text.to_string(),
             by: by.unwrap_or(DVec3::ZERO),
             turn_deg: turn.unwrap_or(0.0),
+        })
+    }
+
+    /// `sculpt at=x,y,z radius=R peak=H [dir=x,y,z] [falloff=NAME] [eps=E] [levels=N]
+    /// [weight=W]`: lengths in m.
+    fn sculpt(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        use crate::sculpt::{AdaptiveOptions, Drag, Falloff, SculptOptions};
+        if self.garment.is_none() {
+            return Err(line.error(head.column, "'sculpt' needs a garment: put a 'garment' step before it"));
+        }
+        let a = Args::parse(
+            line,
+            rest,
+            &["at", "radius", "peak", "dir", "falloff", "eps", "levels", "weight"],
+            "sculpt",
+        )?;
+        let required = |key: &str, what: &str| {
+            a.get(key)
+                .ok_or_else(|| line.error(head.column, format!("'sculpt' needs {key}= ({what})")))
+        };
+        let at_token = required(
+            "at",
+            "a control point such as waist.front, or the pick point x,y,z in m",
+        )?;
+        let at = if at_token.text.chars().any(|c| c.is_ascii_alphabetic()) {
+            let names = self
+                .garment
+                .map(|t| crate::garment::template::of(t).point_names())
+                .unwrap_or_default();
+            if !names.iter().any(|n| n == at_token.text) {
+                return Err(line.error(
+                    at_token.column,
+                    format!(
+                        "unknown control point '{}'{}: expected x,y,z or one of {}",
+                        at_token.text,
+                        did_you_mean(at_token.text, names.iter().map(String::as_str)),
+                        names.join(", ")
+                    ),
+                ));
+            }
+            SculptAt::Control(at_token.text.to_string())
+        } else {
+            SculptAt::Point(vector(line, at_token, "at")?)
+        };
+        let positive = |t: Token<'_>, what: &str| {
+            let v = number(line, t, what)?;
+            if v > 0.0 {
+                Ok(v)
+            } else {
+                Err(line.error(
+                    t.column,
+                    format!("{what} must be a positive length in m, found '{}'", t.text),
+                ))
+            }
+        };
+        let radius = positive(required("radius", "the radius in m")?, "the radius")?;
+        let peak = number(line, required("peak", "the peak offset in m")?, "the peak")?;
+        let direction = match a.get("dir") {
+            Some(t) => {
+                let d = vector(line, t, "dir")?;
+                if d.length() == 0.0 {
+                    return Err(line.error(t.column, "dir must not be zero"));
+                }
+                Some(d)
+            }
+            None => None,
+        };
+        let falloff = match a.get("falloff") {
+            Some(t) => Falloff::from_name(t.text).ok_or_else(|| {
+                let names: Vec<&str> = Falloff::ALL.iter().map(|f| f.name()).collect();
+                line.error(
+                    t.column,
+                    format!("unknown falloff '{}': expected one of {}", t.text, names.join(", ")),
+                )
+            })?,
+            None => Falloff::default(),
+        };
+        let epsilon = a.get("eps").map(|t| positive(t, "eps")).transpose()?;
+        let max_levels = a
+            .get("levels")
+            .map(|t| integer_in(line, t, "levels", 0..=8))
+            .transpose()?
+            .unwrap_or(AdaptiveOptions::MAX_LEVELS);
+        let weight = match a.get("weight") {
+            Some(t) => {
+                let w = number(line, t, "the weight")?;
+                if !(0.0..=1.0).contains(&w) {
+                    return Err(line.error(t.column, format!("the weight must be from 0 to 1, found '{}'", t.text)));
+                }
+                w
+            }
+            None => 1.0,
+        };
+        self.undoable += 1;
+        Ok(Op::Sculpt {
+            at,
+            drag: Drag {
+                at: DVec3::ZERO,
+                radius,
+                peak,
+                direction,
+                falloff,
+            },
+            options: SculptOptions {
+                epsilon,
+                max_levels,
+                weight,
+            },
         })
     }
 

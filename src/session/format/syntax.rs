@@ -164,6 +164,26 @@ pub enum Op {
         /// Turn about the vertical through the part's centre, degrees.
         turn_deg: f64,
     },
+    /// Push or pull the garment's surface (its latest mesh: a sculpt, M1 or M0), refine
+    /// where the drag stretched it and collide what changed with the body.
+    Sculpt {
+        /// Where the pick is.
+        at: SculptAt,
+        /// The drag (its `at` is set from [`SculptAt`] when the step runs).
+        drag: crate::sculpt::Drag,
+        /// Refinement settings.
+        options: crate::sculpt::SculptOptions,
+    },
+}
+
+/// Where a sculpt picks the garment.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SculptAt {
+    /// A point in space, m (snapped to the nearest point of the garment).
+    Point(glam::DVec3),
+    /// A control point of the garment (`waist.front`): the sculpt follows it when the
+    /// garment is rebuilt, and the session works on any body.
+    Control(String),
 }
 
 /// A dimension change.
@@ -198,6 +218,7 @@ impl Op {
             Self::Cut { .. } => "cut",
             Self::Nurbs { .. } => "nurbs",
             Self::Move { .. } => "move",
+            Self::Sculpt { .. } => "sculpt",
         }
     }
 }

@@ -205,6 +205,7 @@ fn collide_garment(
     if let Some(m1_options) = m1 {
         super::m1::build_m1(scope, body, index, state, options, m1_options);
     }
+    super::sculpt::remake(scope, state, index, &options.collision);
 }
 
 /// Emits the state's collision (detection, then response), if it has one.
@@ -218,4 +219,5 @@ pub(super) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentS
         }
     }
     super::m1::emit_m1(scope, state);
+    super::sculpt::emit(scope, state);
 }

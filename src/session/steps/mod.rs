@@ -12,6 +12,7 @@ mod m1;
 mod mannequin;
 mod nurbs;
 pub(super) mod scene;
+mod sculpt;
 mod section;
 mod set;
 mod undo;
@@ -51,5 +52,6 @@ pub(super) fn run_step(
         Op::Cut { name, plane } => cut::run(scope, state, name, *plane),
         Op::Nurbs { name, path } => nurbs::add(scope, state, cx, name, path),
         Op::Move { name, by, turn_deg } => nurbs::move_part(scope, state, cx, name, *by, *turn_deg),
+        Op::Sculpt { at, drag, options } => sculpt::run(scope, state, cx, at, drag, options),
     }
 }

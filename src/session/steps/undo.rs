@@ -34,6 +34,10 @@ pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -
     if let Some(probe) = &state.probe {
         emit_kept(scope, &previous, probe.index());
     }
+    let had_sculpt = state.garment.as_ref().is_some_and(|g| g.sculpted.is_some());
+    if had_sculpt && previous.sculpted.is_none() {
+        super::sculpt::emit_cleared(scope);
+    }
     state.garment = Some(previous);
     Ok(())
 }

@@ -1,0 +1,125 @@
+//! The same drag three ways ([sculpt]'s comparison): no subdivision (the dragged mesh as
+//! it is: stretched faces, slivers), uniform Loop subdivision of the whole mesh until the
+//! region's longest edge is at most epsilon, and adaptive Loop subdivision to the same
+//! epsilon. Each is measured by [`measure`] over the faces that descend from the region.
+
+use std::time::Instant;
+
+use super::{
+    AdaptiveOptions, Displacement, Drag, Level, Measures, SculptError, SculptOptions, measure, prepare, refine,
+    uniform_step,
+};
+use crate::mesh::TriMesh;
+
+/// One way of refining the drag.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variant {
+    /// Its figures.
+    pub measures: Measures,
+    /// Subdivision levels run.
+    pub levels: usize,
+    /// Stopped at the level limit above epsilon.
+    pub limited: bool,
+    /// Time for the drag and the refinement, ms (wall clock: printed, never logged).
+    pub time_ms: f64,
+    /// The mesh.
+    pub mesh: TriMesh,
+    /// Per face: descends from the region.
+    pub region: Vec<bool>,
+}
+
+/// The three variants of one drag.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Comparison {
+    /// The drag.
+    pub drag: Drag,
+    /// The drag on the input.
+    pub displacement: Displacement,
+    /// Epsilon, m.
+    pub epsilon: f64,
+    /// No subdivision.
+    pub none: Variant,
+    /// Uniform Loop.
+    pub uniform: Variant,
+    /// Adaptive Loop.
+    pub adaptive: Variant,
+    /// The adaptive levels (active faces per level).
+    pub adaptive_levels: Vec<Level>,
+}
+
+impl Comparison {
+    /// How far apart the three results are drawn: 1.2 times the input's width along x.
+    pub fn spacing(&self) -> f64 {
+        self.none
+            .mesh
+            .bounds()
+            .map_or(1.0, |(lo, hi)| 1.2 * (hi.x - lo.x).max(1e-3))
+    }
+}
+
+fn variant(mesh: TriMesh, region: Vec<bool>, levels: usize, limited: bool, started: Instant) -> Variant {
+    let time_ms = started.elapsed().as_secs_f64() * 1e3;
+    Variant {
+        measures: measure(&mesh, &region),
+        levels,
+        limited,
+        time_ms,
+        mesh,
+        region,
+    }
+}
+
+/// Runs `drag` on `mesh` with no, uniform and adaptive subdivision.
+///
+/// # Errors
+/// As [`super::sculpt`].
+pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<Comparison, SculptError> {
+    let dragged = |d: &Displacement| TriMesh {
+        positions: d.positions.clone(),
+        triangles: mesh.triangles.clone(),
+    };
+    let started = Instant::now();
+    let (displacement, region, epsilon) = prepare(mesh, drag, options)?;
+    let none = variant(dragged(&displacement), region.clone(), 0, false, started);
+
+    let started = Instant::now();
+    let (d, mut flags, _) = prepare(mesh, drag, options)?;
+    let mut current = dragged(&d);
+    let mut levels = 0;
+    while measure(&current, &flags).max_edge_m > epsilon && levels < options.max_levels {
+        let step = uniform_step(&current, options.weight);
+        flags = step.parent.iter().map(|&p| flags[p as usize]).collect();
+        current = step.mesh;
+        levels += 1;
+    }
+    let limited = measure(&current, &flags).max_edge_m > epsilon;
+    let uniform = variant(current, flags, levels, limited, started);
+
+    let started = Instant::now();
+    let (d, flags, _) = prepare(mesh, drag, options)?;
+    let refined = refine(
+        &dragged(&d),
+        &flags,
+        &AdaptiveOptions {
+            epsilon,
+            max_levels: options.max_levels,
+            weight: options.weight,
+        },
+    );
+    let adaptive = variant(
+        refined.mesh,
+        refined.region,
+        refined.levels.len(),
+        refined.limited,
+        started,
+    );
+    Ok(Comparison {
+        drag: *drag,
+        displacement,
+        epsilon,
+        none,
+        uniform,
+        adaptive,
+        adaptive_levels: refined.levels,
+    })
+}

@@ -1,0 +1,366 @@
+//! `sculpt at=x,y,z radius=R peak=H [dir=...]`: a push or pull on the garment's latest
+//! mesh (the last sculpt's result, else M1, else M0), refined adaptively where it
+//! stretched, then collided with the body by M1's machinery (only the new and moved
+//! vertices are tested and may move). A sculpt that would leave the garment in the body
+//! is refused and the garment stays as it was. Undoable.
+//!
+//! The sculpts are stored with the garment and made again, in order, on the new mesh after
+//! every later rebuild (`set`, `drag`): the pick point snaps to the nearest point of the
+//! new surface.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::super::emit::StepScope;
+use super::super::error::StepError;
+use super::super::format::SculptAt;
+use super::super::stage::{SculptOutcome, SculptStage, Stage};
+use super::super::state::{GarmentState, SessionState};
+use super::StepContext;
+use crate::collision::{BodyIndex, CollisionOptions};
+use crate::m1::{M0Collided, RefinedInput, collide_refined, undirected_edges};
+use crate::mesh::TriMesh;
+use crate::sculpt::{Drag, SculptError, SculptOptions, measure};
+
+/// The mesh a sculpt is made on, collided, with what its collision left.
+struct Base {
+    layer: &'static str,
+    mesh: TriMesh,
+    partition: Vec<usize>,
+    ring_normal: Vec<Option<DVec3>>,
+    inside: Vec<u32>,
+    crossing: Vec<[u32; 2]>,
+}
+
+/// The garment's latest mesh: the last sculpt, else M1, else M0 (`None` before a garment
+/// is collided).
+fn base(state: &GarmentState) -> Option<Base> {
+    if let Some(s) = &state.sculpted {
+        return Some(Base {
+            layer: "sculpt",
+            mesh: s.mesh(),
+            partition: s.partition.clone(),
+            ring_normal: s.ring_normal.clone(),
+            inside: s.collision.inside_after.clone(),
+            crossing: s.collision.crossing_after_edges.clone(),
+        });
+    }
+    let m0 = state.collision.as_ref()?;
+    let partition = &m0.collision.detection.partition;
+    if let Some(m1) = &state.m1 {
+        let n = m1.collision.positions.len();
+        let mut ring_normal = m0.garment.ring_normal.clone();
+        ring_normal.resize(n, None);
+        return Some(Base {
+            layer: "M1",
+            mesh: TriMesh {
+                positions: m1.collision.positions.clone(),
+                triangles: m1.m1.mesh.triangles.clone(),
+            },
+            partition: m1
+                .m1
+                .anchor
+                .iter()
+                .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
+                .collect(),
+            ring_normal,
+            inside: m1.collision.inside_after.clone(),
+            crossing: m1.collision.crossing_after_edges.clone(),
+        });
+    }
+    Some(Base {
+        layer: "M0",
+        mesh: m0.collision.mesh.clone(),
+        partition: partition.clone(),
+        ring_normal: m0.garment.ring_normal.clone(),
+        inside: m0.collision.quality.inside.clone(),
+        crossing: m0
+            .collision
+            .quality
+            .crossing
+            .iter()
+            .map(|&e| m0.garment.edges[e as usize])
+            .collect(),
+    })
+}
+
+/// The pick point of `at` on the garment `state` (a control point where it now stands).
+fn resolve(state: &GarmentState, at: &SculptAt) -> Result<DVec3, StepError> {
+    match at {
+        SculptAt::Point(p) => Ok(*p),
+        SculptAt::Control(name) => state
+            .framework
+            .as_ref()
+            .and_then(|fw| fw.control_points().into_iter().find(|(n, _)| n == name))
+            .map(|(_, p)| p)
+            .ok_or_else(|| StepError::NoControlPoint(name.clone())),
+    }
+}
+
+/// Makes one sculpt on `base` and collides it.
+fn apply(
+    scope: &mut StepScope<'_, '_, '_>,
+    base: Base,
+    (drag, options): (&Drag, &SculptOptions),
+    index: &BodyIndex,
+    ease: f64,
+    collision: &CollisionOptions,
+    count: usize,
+) -> Result<SculptOutcome, SculptError> {
+    let sculpt = scope.timed("sculpt.refine", || crate::sculpt::sculpt(&base.mesh, drag, options))?;
+    let refined = &sculpt.refined;
+    let mut moved: Vec<u32> = sculpt.displacement.offsets.iter().map(|&(v, _)| v).collect();
+    moved.extend(&refined.smoothed);
+    moved.sort_unstable();
+    moved.dedup();
+    let edges = undirected_edges(&refined.mesh);
+    let collided = scope.timed("sculpt.collide", || {
+        let input = RefinedInput {
+            mesh: &refined.mesh,
+            edges: &edges,
+            base_vertices: refined.base_vertices,
+            moved: &moved,
+            anchor: &refined.anchor,
+        };
+        let left = M0Collided {
+            inside: &base.inside,
+            crossing: &base.crossing,
+            partition: &base.partition,
+            ring_normal: &base.ring_normal,
+        };
+        collide_refined(index, &input, &left, ease, collision)
+    });
+    let partition = refined
+        .anchor
+        .iter()
+        .map(|&a| base.partition.get(a as usize).copied().unwrap_or(0))
+        .collect();
+    let mut ring_normal = base.ring_normal.clone();
+    ring_normal.resize(refined.mesh.positions.len(), None);
+    Ok(SculptOutcome {
+        drag: *drag,
+        layer: base.layer,
+        base: base.mesh,
+        sculpt,
+        collision: collided,
+        partition,
+        ring_normal,
+        count,
+    })
+}
+
+/// The figures of a sculpt.
+#[derive(Serialize)]
+struct SculptFigures<'a> {
+    /// The mesh it was made on: M0, M1 or sculpt.
+    sculpt_layer: &'a str,
+    /// The pick, snapped to the mesh, m, and how far the given point was from it.
+    sculpt_pick_m: [f64; 3],
+    sculpt_pick_distance_m: f64,
+    /// Vertices the drag moved and faces with a moved corner (the region).
+    sculpt_moved_vertices: usize,
+    sculpt_region_faces: usize,
+    /// Refinement threshold, m.
+    sculpt_epsilon_m: f64,
+    /// Active faces at the start of each level.
+    sculpt_active_by_level: Vec<usize>,
+    /// Stopped at the level limit above epsilon.
+    sculpt_level_limit_reached: bool,
+    /// Faces before and after.
+    sculpt_faces_before: usize,
+    sculpt_faces: usize,
+    sculpt_vertices: usize,
+    /// Over the region after refinement and collision: longest edge (m), smallest angle
+    /// (degrees), mean normal turn between adjacent faces (degrees).
+    sculpt_max_edge_m: f64,
+    sculpt_min_angle_deg: f64,
+    sculpt_smoothness_deg: f64,
+    /// Vertices the collision tested (new and moved), those inside before the response,
+    /// the moves it made, and what is left inside and crossing after it.
+    sculpt_tested: usize,
+    sculpt_hits: usize,
+    sculpt_crossing_before: usize,
+    sculpt_responses: usize,
+    sculpt_penetrating_vertices: usize,
+    sculpt_crossing_edges: usize,
+    /// With `--verify`: the sculpted mesh by brute force (winding number for every vertex,
+    /// every edge against every body triangle).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    sculpt_verify: Option<SculptVerify>,
+}
+
+#[derive(Serialize)]
+struct SculptVerify {
+    inside: usize,
+    crossing: usize,
+}
+
+fn record(scope: &mut StepScope<'_, '_, '_>, outcome: &SculptOutcome, verify: Option<SculptVerify>) {
+    let s = &outcome.sculpt;
+    let c = &outcome.collision;
+    let mesh = outcome.mesh();
+    let m = measure(&mesh, &s.refined.region);
+    scope.record(&SculptFigures {
+        sculpt_layer: outcome.layer,
+        sculpt_pick_m: s.displacement.pick.point.to_array(),
+        sculpt_pick_distance_m: s.displacement.pick.distance,
+        sculpt_moved_vertices: s.displacement.offsets.len(),
+        sculpt_region_faces: s.displacement.region.len(),
+        sculpt_epsilon_m: s.epsilon,
+        sculpt_active_by_level: s.refined.levels.iter().map(|l| l.active.len()).collect(),
+        sculpt_level_limit_reached: s.refined.limited,
+        sculpt_faces_before: outcome.base.triangles.len(),
+        sculpt_faces: mesh.triangles.len(),
+        sculpt_vertices: mesh.positions.len(),
+        sculpt_max_edge_m: m.max_edge_m,
+        sculpt_min_angle_deg: m.min_angle_deg,
+        sculpt_smoothness_deg: m.smoothness,
+        sculpt_tested: c.tested,
+        sculpt_hits: c.hits,
+        sculpt_crossing_before: c.crossing_before,
+        sculpt_responses: c.responses.len(),
+        sculpt_penetrating_vertices: c.quality.penetrating_vertices,
+        sculpt_crossing_edges: c.quality.crossing_edges,
+        sculpt_verify: verify,
+    });
+}
+
+/// The `sculpt` step.
+pub(super) fn run(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    cx: &StepContext<'_>,
+    at: &SculptAt,
+    drag: &Drag,
+    options: &SculptOptions,
+) -> Result<(), StepError> {
+    let (Some(current), Some(probe)) = (state.garment.as_ref(), state.probe.as_ref()) else {
+        return Err(StepError::NoGarment { verb: "sculpt" });
+    };
+    let drag = &Drag {
+        at: resolve(current, at)?,
+        ..*drag
+    };
+    let (Some(fw), Some(base)) = (current.framework.as_ref(), base(current)) else {
+        return Err(StepError::NoGarment { verb: "sculpt" });
+    };
+    let index = probe.index();
+    let (before_inside, before_crossing) = (base.inside.len(), base.crossing.len());
+    let outcome = apply(
+        scope,
+        base,
+        (drag, options),
+        index,
+        fw.ease(),
+        &cx.options.collision,
+        current.sculpts.len() + 1,
+    )
+    .map_err(StepError::Sculpt)?;
+    let verify = cx.options.verify.then(|| {
+        scope.timed("sculpt.verify", || {
+            let mesh = outcome.mesh();
+            let truth =
+                crate::collision::ground_truth(&state.body.mesh.mesh, &mesh.positions, &undirected_edges(&mesh));
+            SculptVerify {
+                inside: truth.inside_count(),
+                crossing: truth.crossing_count(),
+            }
+        })
+    });
+    record(scope, &outcome, verify);
+    let q = &outcome.collision.quality;
+    if q.penetrating_vertices > before_inside || q.crossing_edges > before_crossing {
+        let message = format!(
+            "the garment cannot be kept clear of the body after this sculpt: {} vertices inside and {} edges \
+             crossing it after the response",
+            q.penetrating_vertices, q.crossing_edges
+        );
+        scope.refuse(
+            &message,
+            "garment.sculpt",
+            Stage::Sculpt(SculptStage {
+                outcome: Some(&outcome),
+                refused: Some(&message),
+            }),
+        );
+        state.history.push(current.clone());
+        return Ok(());
+    }
+    let mut next = current.clone();
+    next.sculpts.push((at.clone(), *drag, *options));
+    next.sculpted = Some(outcome);
+    emit(scope, &next);
+    state.advance(next);
+    Ok(())
+}
+
+/// Makes the garment's sculpts again on its new mesh (after a rebuild), in order. A
+/// sculpt that can no longer be made (its pick now too far from the garment) is left out
+/// and named in the figures.
+pub(super) fn remake(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut GarmentState,
+    index: &BodyIndex,
+    collision: &CollisionOptions,
+) {
+    state.sculpted = None;
+    if state.sculpts.is_empty() {
+        return;
+    }
+    let Some(ease) = state.framework.as_ref().map(|fw| fw.ease()) else {
+        return;
+    };
+    let mut left_out = Vec::new();
+    let sculpts = state.sculpts.clone();
+    for (k, (at, drag, options)) in sculpts.iter().enumerate() {
+        let Some(base) = base(state) else {
+            return;
+        };
+        let made = resolve(state, at).map_err(|e| e.to_string()).and_then(|at| {
+            let drag = Drag { at, ..*drag };
+            apply(scope, base, (&drag, options), index, ease, collision, k + 1).map_err(|e| e.to_string())
+        });
+        match made {
+            Ok(outcome) => state.sculpted = Some(outcome),
+            Err(e) => left_out.push(format!("sculpt {}: {e}", k + 1)),
+        }
+    }
+    if let Some(outcome) = &state.sculpted {
+        record(scope, outcome, None);
+    }
+    /// Sculpts made again after the rebuild.
+    #[derive(Serialize)]
+    struct Remade {
+        sculpts_remade: usize,
+        #[serde(skip_serializing_if = "Vec::is_empty")]
+        sculpts_left_out: Vec<String>,
+    }
+    scope.record(&Remade {
+        sculpts_remade: sculpts.len() - left_out.len(),
+        sculpts_left_out: left_out,
+    });
+}
+
+/// Emits the state's sculpt, if it has one.
+pub(super) fn emit(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState) {
+    if let Some(outcome) = &state.sculpted {
+        scope.emit(
+            "garment.sculpt",
+            Stage::Sculpt(SculptStage {
+                outcome: Some(outcome),
+                refused: None,
+            }),
+        );
+    }
+}
+
+/// After an undo that takes a sculpt away: the viewer's sculpt is cleared.
+pub(super) fn emit_cleared(scope: &mut StepScope<'_, '_, '_>) {
+    scope.emit(
+        "garment.sculpt",
+        Stage::Sculpt(SculptStage {
+            outcome: None,
+            refused: None,
+        }),
+    );
+}
