@@ -27,7 +27,7 @@ pub enum Stop {
 }
 
 /// The loops that report, with the unit of their residual.
-pub const LOOPS: [(&str, &str); 16] = [
+pub const LOOPS: [(&str, &str); 17] = [
     ("bridge.bisection", "m, bracket width along the bridging direction"),
     (
         "constraint.passes",
@@ -50,6 +50,7 @@ pub const LOOPS: [(&str, &str); 16] = [
     ("mannequin.gauss_newton", "parameter units, length of the last step"),
     ("nurbs.distance.newton", "parameter units, length of the last step"),
     ("nurbs.pose.bisection", "m, bracket width of the lift"),
+    ("sculpt.stop.bisection", "m, bracket width along the offset"),
 ];
 
 /// What one loop's stops added up to.

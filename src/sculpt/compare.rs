@@ -1,7 +1,7 @@
 //! The same drag three ways ([sculpt]'s comparison): no subdivision (the dragged mesh as
 //! it is: stretched faces, slivers), uniform Loop subdivision of the whole mesh until the
 //! region's longest edge is at most epsilon, and adaptive Loop subdivision to the same
-//! epsilon. Each is measured by [`measure`] over the faces that descend from the region.
+//! epsilon (and once more to the longest edge uniform Loop reached). Each is measured by [`measure`] over the faces that descend from the region.
 
 use std::time::Instant;
 
@@ -43,6 +43,10 @@ pub struct Comparison {
     pub uniform: Variant,
     /// Adaptive Loop.
     pub adaptive: Variant,
+    /// Adaptive Loop with epsilon set to the longest edge uniform Loop reached (uniform
+    /// refines in halvings, so it usually ends well below epsilon): the two at the same
+    /// longest edge.
+    pub adaptive_matched: Variant,
     /// The adaptive levels (active faces per level).
     pub adaptive_levels: Vec<Level>,
 }
@@ -79,11 +83,11 @@ pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<C
         triangles: mesh.triangles.clone(),
     };
     let started = Instant::now();
-    let (displacement, region, epsilon) = prepare(mesh, drag, options)?;
+    let (displacement, region, epsilon) = prepare(mesh, drag, options, None)?;
     let none = variant(dragged(&displacement), region.clone(), 0, false, started);
 
     let started = Instant::now();
-    let (d, mut flags, _) = prepare(mesh, drag, options)?;
+    let (d, mut flags, _) = prepare(mesh, drag, options, None)?;
     let mut current = dragged(&d);
     let mut levels = 0;
     while measure(&current, &flags).max_edge_m > epsilon && levels < options.max_levels {
@@ -95,24 +99,26 @@ pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<C
     let limited = measure(&current, &flags).max_edge_m > epsilon;
     let uniform = variant(current, flags, levels, limited, started);
 
-    let started = Instant::now();
-    let (d, flags, _) = prepare(mesh, drag, options)?;
-    let refined = refine(
-        &dragged(&d),
-        &flags,
-        &AdaptiveOptions {
-            epsilon,
-            max_levels: options.max_levels,
-            weight: options.weight,
-        },
-    );
-    let adaptive = variant(
-        refined.mesh,
-        refined.region,
-        refined.levels.len(),
-        refined.limited,
-        started,
-    );
+    let adaptive_to = |epsilon: f64| -> Result<(Variant, Vec<Level>), SculptError> {
+        let started = Instant::now();
+        let (d, flags, _) = prepare(mesh, drag, options, None)?;
+        let refined = refine(
+            &dragged(&d),
+            &flags,
+            &AdaptiveOptions {
+                epsilon,
+                max_levels: options.max_levels,
+                weight: options.weight,
+            },
+        );
+        let levels = refined.levels.len();
+        Ok((
+            variant(refined.mesh, refined.region, levels, refined.limited, started),
+            refined.levels,
+        ))
+    };
+    let (adaptive, adaptive_levels) = adaptive_to(epsilon)?;
+    let (adaptive_matched, _) = adaptive_to(uniform.measures.max_edge_m)?;
     Ok(Comparison {
         drag: *drag,
         displacement,
@@ -120,6 +126,7 @@ pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<C
         none,
         uniform,
         adaptive,
-        adaptive_levels: refined.levels,
+        adaptive_matched,
+        adaptive_levels,
     })
 }

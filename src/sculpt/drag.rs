@@ -10,6 +10,13 @@
 //! is the exact Euclidean one, so the falloff's smoothness carries over to the surface
 //! unchanged (a geodesic along edges would make the bump polygonal on a structured mesh).
 //!
+//! **Stopping at an obstacle.** [`displace_clear_of`] takes a test for the places a
+//! vertex must not go (in a session: inside the body or nearer to it than the garment's
+//! ease). A vertex whose offset would end there moves along its offset only as far as the
+//! test allows, found by bisection (`sculpt.stop.bisection`, to 0.01 mm): a push into the
+//! body flattens against it smoothly, vertex by vertex, instead of going in and being
+//! thrown back out by the collision response.
+//!
 //! **Direction.** By default the surface normal at the pick (the picked face's vertex
 //! normals, interpolated at the pick's barycentric coordinates). A positive peak pulls
 //! outward, a negative one pushes in.
@@ -74,7 +81,12 @@ pub struct Displacement {
     pub positions: Vec<DVec3>,
     /// Faces with a moved corner, sorted: the region the refinement works on.
     pub region: Vec<u32>,
+    /// Vertices whose offset was shortened at the obstacle.
+    pub stopped: usize,
 }
+
+/// How close to the obstacle a stopped vertex ends, m (the bisection's bracket).
+pub const STOP_TOLERANCE_M: f64 = 1e-5;
 
 /// The point of `mesh` nearest to `at`, with its face and the interpolated normal.
 ///
@@ -127,6 +139,20 @@ pub(crate) fn barycentric(p: DVec3, [a, b, c]: [DVec3; 3]) -> [f64; 3] {
 /// A radius that is not a positive finite length, a zero direction, a pick farther from
 /// the mesh than the radius, or an empty mesh.
 pub fn displace(mesh: &TriMesh, normals: &[DVec3], drag: &Drag) -> Result<Displacement, SculptError> {
+    displace_clear_of(mesh, normals, drag, None)
+}
+
+/// [`displace`], each offset shortened where it would end in `keep_out` (true where a
+/// vertex must not go).
+///
+/// # Errors
+/// As [`displace`].
+pub fn displace_clear_of(
+    mesh: &TriMesh,
+    normals: &[DVec3],
+    drag: &Drag,
+    keep_out: Option<&(dyn Fn(DVec3) -> bool + Sync)>,
+) -> Result<Displacement, SculptError> {
     if !(drag.radius.is_finite() && drag.radius > 0.0) {
         return Err(SculptError::Radius(drag.radius));
     }
@@ -180,9 +206,28 @@ pub fn displace(mesh: &TriMesh, normals: &[DVec3], drag: &Drag) -> Result<Displa
     }
     let mut positions = mesh.positions.clone();
     let mut offsets = Vec::new();
+    let mut stopped = 0;
+    let search = crate::convergence::Bisection {
+        name: "sculpt.stop.bisection",
+        steps: 64,
+        tolerance: STOP_TOLERANCE_M,
+        stop_at_tolerance: true,
+    };
     for v in (0..n as u32).filter(|&v| reached[v as usize]) {
-        let d = mesh.positions[v as usize].distance(pick.point);
-        let offset = direction * (drag.peak * drag.falloff.value(d / drag.radius));
+        let p = mesh.positions[v as usize];
+        let d = p.distance(pick.point);
+        let mut offset = direction * (drag.peak * drag.falloff.value(d / drag.radius));
+        if let Some(out) = keep_out
+            && offset != DVec3::ZERO
+            && out(p + offset)
+        {
+            stopped += 1;
+            offset = if out(p) {
+                DVec3::ZERO
+            } else {
+                search.run(p, p + offset, |q| !out(q)).0 - p
+            };
+        }
         if offset != DVec3::ZERO {
             positions[v as usize] += offset;
             offsets.push((v, offset));
@@ -201,5 +246,6 @@ pub fn displace(mesh: &TriMesh, normals: &[DVec3], drag: &Drag) -> Result<Displa
         offsets,
         positions,
         region,
+        stopped,
     })
 }

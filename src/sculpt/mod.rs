@@ -20,7 +20,7 @@ pub mod measure;
 
 pub use adaptive::{AdaptiveOptions, Level, Refined, refine};
 pub use compare::{Comparison, Variant, compare};
-pub use drag::{Displacement, Drag, Pick, displace, pick};
+pub use drag::{Displacement, Drag, Pick, STOP_TOLERANCE_M, displace, displace_clear_of, pick};
 pub use falloff::Falloff;
 pub use loop_rules::{UniformStep, boundary_vertex, edge_point, interior_vertex, loop_beta, uniform_step};
 pub use measure::{Measures, measure};
@@ -132,9 +132,10 @@ fn prepare(
     mesh: &TriMesh,
     drag: &Drag,
     options: &SculptOptions,
+    keep_out: Option<&(dyn Fn(DVec3) -> bool + Sync)>,
 ) -> Result<(Displacement, Vec<bool>, f64), SculptError> {
     options.check()?;
-    let displacement = displace(mesh, &mesh.vertex_normals(), drag)?;
+    let displacement = displace_clear_of(mesh, &mesh.vertex_normals(), drag, keep_out)?;
     let mut region = vec![false; mesh.triangles.len()];
     for &t in &displacement.region {
         region[t as usize] = true;
@@ -151,7 +152,21 @@ fn prepare(
 /// # Errors
 /// Bad drag values or options, or a pick farther from the mesh than the radius.
 pub fn sculpt(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<Sculpt, SculptError> {
-    let (displacement, region, epsilon) = prepare(mesh, drag, options)?;
+    sculpt_clear_of(mesh, drag, options, None)
+}
+
+/// [`sculpt`] with the drag stopped where it would end in `keep_out` (see
+/// [`displace_clear_of`]).
+///
+/// # Errors
+/// As [`sculpt`].
+pub fn sculpt_clear_of(
+    mesh: &TriMesh,
+    drag: &Drag,
+    options: &SculptOptions,
+    keep_out: Option<&(dyn Fn(DVec3) -> bool + Sync)>,
+) -> Result<Sculpt, SculptError> {
+    let (displacement, region, epsilon) = prepare(mesh, drag, options, keep_out)?;
     let dragged = TriMesh {
         positions: displacement.positions.clone(),
         triangles: mesh.triangles.clone(),

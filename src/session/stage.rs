@@ -327,6 +327,39 @@ pub struct SculptOutcome {
 }
 
 impl SculptOutcome {
+    /// One line for the log and the progress: what the drag moved, how the refinement
+    /// went, and what the collision found and left.
+    pub fn summary(&self) -> String {
+        let s = &self.sculpt;
+        let c = &self.collision;
+        let d = &s.displacement;
+        format!(
+            "sculpt {} on {}: {} vertices moved ({} stopped at the body), {} region faces; epsilon {:.4} m, {} \
+             level(s), active faces {:?}{}; {} -> {} faces; {} tested, {} inside before, {} moves; after: {} \
+             inside, {} crossing edges",
+            self.count,
+            self.layer,
+            d.offsets.len(),
+            d.stopped,
+            d.region.len(),
+            s.epsilon,
+            s.refined.levels.len(),
+            s.refined.levels.iter().map(|l| l.active.len()).collect::<Vec<_>>(),
+            if s.refined.limited {
+                " (stopped at the level limit)"
+            } else {
+                ""
+            },
+            self.base.triangles.len(),
+            s.refined.mesh.triangles.len(),
+            c.tested,
+            c.hits,
+            c.responses.len(),
+            c.quality.penetrating_vertices,
+            c.quality.crossing_edges,
+        )
+    }
+
     /// The sculpted mesh after its collision.
     pub fn mesh(&self) -> crate::mesh::TriMesh {
         crate::mesh::TriMesh {

@@ -50,7 +50,17 @@ pub fn default_blueprint() -> Blueprint {
                     // radius, the displacement field and the active faces per level.
                     Spatial3DView::new("Sculpt")
                         .with_origin("/")
-                        .with_contents(["+ /body/mesh", "+ /garment/sculpt/**", "+ /sculpt/**"])
+                        .with_contents([
+                            "+ /body/mesh",
+                            "+ /garment/sculpt/**",
+                            "+ /sculpt/**",
+                            "- /sculpt/levels/**",
+                        ])
+                        .into(),
+                    // The last sculpt's adaptive levels: the faces active at each.
+                    Spatial3DView::new("Sculpt levels")
+                        .with_origin("/")
+                        .with_contents(["+ /sculpt/levels/**", "+ /sculpt/pick", "+ /sculpt/radius"])
                         .into(),
                     // NURBS parts on the body, with their contacts.
                     Spatial3DView::new("NURBS")
@@ -160,22 +170,33 @@ pub fn nurbs_blueprint() -> Blueprint {
     .with_panels_collapsed("level")
 }
 
-/// `drape sculpt-compare`'s layout: the three results side by side (no subdivision,
-/// uniform Loop, adaptive Loop; each labelled with its figures), the adaptive levels' active
-/// faces over the adaptive one; the log below.
+/// `drape sculpt-compare`'s layout: the results side by side (no subdivision, uniform
+/// Loop, adaptive Loop, adaptive to uniform's longest edge; each labelled with its
+/// figures); below, the regions' edges close up, the adaptive levels' active faces, and
+/// the log.
 pub fn sculpt_blueprint() -> Blueprint {
     Blueprint::new(
         Vertical::new([
             Spatial3DView::new(
-                "The same drag: no subdivision, uniform Loop, adaptive Loop (region tinted, its edges drawn)",
+                "The same drag: no subdivision, uniform Loop, adaptive Loop, adaptive to uniform's longest edge (region tinted, its edges drawn)",
             )
             .with_origin("/sculpt_compare")
             .with_contents(["+ /sculpt_compare/**", "- /sculpt_compare/adaptive/levels/**"])
             .into(),
             Horizontal::new([
+                Spatial3DView::new("The regions close up: their edges, the pick and radius")
+                    .with_origin("/sculpt_compare")
+                    .with_contents([
+                        "+ /sculpt_compare/none/edges",
+                        "+ /sculpt_compare/uniform/edges",
+                        "+ /sculpt_compare/adaptive/edges",
+                        "+ /sculpt_compare/adaptive_matched/edges",
+                        "+ /sculpt_compare/none/drag/**",
+                    ])
+                    .into(),
                 Spatial3DView::new("Adaptive: active faces per level (red 1, orange 2, green 3, blue 4)")
                     .with_origin("/sculpt_compare")
-                    .with_contents(["+ /sculpt_compare/adaptive/levels/**", "+ /sculpt_compare/none/drag/**"])
+                    .with_contents(["+ /sculpt_compare/adaptive/levels/**"])
                     .into(),
                 TextLogView::new("Log").with_origin("/log").into(),
             ])

@@ -3,7 +3,8 @@
 //! circle in the tangent plane, `sculpt/direction`), the displacement field
 //! (`sculpt/displacement`, an arrow per moved vertex coloured by its length), the active
 //! faces of each adaptive level (`sculpt/levels/<k>`), and for `drape sculpt-compare` the
-//! three results side by side (`sculpt_compare/{none,uniform,adaptive}`).
+//! results side by side (`sculpt_compare/{none,uniform,adaptive,adaptive_matched}`, the
+//! last refined adaptively to the longest edge uniform Loop reached).
 
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel};
@@ -108,23 +109,21 @@ impl RerunLogger {
         .map_err(to_sink)
     }
 
-    /// The active faces of each level, under `path/<k>`.
+    /// The active faces of each level, under `path/<k>` (their outlines, thinner each level).
     fn log_levels(&self, path: &str, levels: &[Level], shift: DVec3) -> Result<(), SinkError> {
         let rec = self.recording();
         rec.log(path, &Clear::recursive()).map_err(to_sink)?;
         for (k, level) in levels.iter().enumerate() {
-            let positions: Vec<DVec3> = level.active.iter().flatten().map(|p| *p + shift).collect();
-            let triangles: Vec<[u32; 3]> = (0..level.active.len() as u32)
-                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+            let outlines: Vec<Vec<[f32; 3]>> = level
+                .active
+                .iter()
+                .map(|[a, b, c]| f32s(&[*a + shift, *b + shift, *c + shift, *a + shift]))
                 .collect();
-            let color = LEVELS[k % LEVELS.len()];
             rec.log(
                 format!("{path}/{k}"),
-                &Mesh3D::new(f32s(&positions))
-                    .with_triangle_indices(triangles)
-                    .with_albedo_factor(rerun::components::AlbedoFactor::from([
-                        color[0], color[1], color[2], 255,
-                    ])),
+                &LineStrips3D::new(outlines)
+                    .with_radii([Radius::new_ui_points(1.5 - 0.3 * k.min(3) as f32)])
+                    .with_colors([LEVELS[k % LEVELS.len()]]),
             )
             .map_err(to_sink)?;
         }
@@ -140,30 +139,8 @@ impl RerunLogger {
             return self.text(TextLogLevel::INFO, "sculpt: none (taken back)".into());
         };
         let s = &outcome.sculpt;
-        let c = &outcome.collision;
-        let q = &c.quality;
-        let line = format!(
-            "sculpt {} on {}: {} vertices moved, {} region faces; epsilon {:.4} m, {} level(s) (active {:?}){}; {} -> {} faces; {} tested, {} inside before, {} moves; {} inside and {} crossing after",
-            outcome.count,
-            outcome.layer,
-            s.displacement.offsets.len(),
-            s.displacement.region.len(),
-            s.epsilon,
-            s.refined.levels.len(),
-            s.refined.levels.iter().map(|l| l.active.len()).collect::<Vec<_>>(),
-            if s.refined.limited {
-                ", stopped at the level limit"
-            } else {
-                ""
-            },
-            outcome.base.triangles.len(),
-            s.refined.mesh.triangles.len(),
-            c.tested,
-            c.hits,
-            c.responses.len(),
-            q.penetrating_vertices,
-            q.crossing_edges,
-        );
+        let q = &outcome.collision.quality;
+        let line = outcome.summary();
         if let Some(why) = stage.refused {
             return self.text(TextLogLevel::WARN, format!("REFUSED {line}: {why}"));
         }
@@ -200,11 +177,13 @@ impl RerunLogger {
 
     fn log_sculpt_compare_at(&self, cmp: &Comparison, spacing: f64) -> Result<(), SinkError> {
         let rec = self.recording();
-        let variants: [(&str, &Variant); 3] = [
+        let variants: [(&str, &Variant); 4] = [
             ("none", &cmp.none),
             ("uniform", &cmp.uniform),
             ("adaptive", &cmp.adaptive),
+            ("adaptive_matched", &cmp.adaptive_matched),
         ];
+        let low = cmp.none.mesh.bounds().map_or(0.0, |(lo, _)| lo.y);
         for (k, (name, v)) in variants.iter().enumerate() {
             let shift = DVec3::X * spacing * k as f64;
             let path = format!("sculpt_compare/{name}");
@@ -220,16 +199,20 @@ impl RerunLogger {
             let m = &v.measures;
             rec.log(
                 format!("{path}/label"),
-                &Points3D::new(f32s(&[cmp.displacement.pick.point + shift + DVec3::Y * 0.25]))
-                    .with_radii([Radius::new_ui_points(0.1)])
-                    .with_labels([format!(
-                        "{name}: {} faces, max edge {:.1} mm, min angle {:.1} deg, smoothness {:.2} deg",
-                        m.faces,
-                        m.max_edge_m * 1e3,
-                        m.min_angle_deg,
-                        m.smoothness
-                    )])
-                    .with_show_labels(true),
+                &Points3D::new(f32s(&[DVec3::new(
+                    cmp.displacement.pick.point.x + shift.x,
+                    low - 0.06,
+                    cmp.displacement.pick.point.z,
+                )]))
+                .with_radii([Radius::new_ui_points(0.1)])
+                .with_labels([format!(
+                    "{name}: {} faces\nmax edge {:.1} mm\nmin angle {:.1} deg\nsmoothness {:.2} deg",
+                    m.faces,
+                    m.max_edge_m * 1e3,
+                    m.min_angle_deg,
+                    m.smoothness
+                )])
+                .with_show_labels(true),
             )
             .map_err(to_sink)?;
         }

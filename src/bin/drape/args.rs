@@ -66,6 +66,12 @@ pub(crate) enum Command {
     /// level; and the level and threshold recommended for --accuracy.
     #[command(name = "nurbs-experiment", after_help = EXIT_CODES)]
     NurbsExperiment(NurbsExperimentArgs),
+    /// The [sculpt] comparison: one drag on the garment's collided M0 (or any OBJ mesh)
+    /// with no subdivision, uniform Loop subdivision to the same longest edge, and adaptive
+    /// Loop subdivision; prints faces, longest edge, smallest angle, smoothness and time
+    /// for each, and logs the three side by side.
+    #[command(name = "sculpt-compare", after_help = EXIT_CODES)]
+    SculptCompare(SculptCompareArgs),
     /// Random edit sessions on every body (gentle to hostile numbers: dimensions beyond
     /// their ranges, drags from 0.1 mm to 1 m, undos, the ease down to 0), each judged:
     /// steps accepted, refused (by reason) and failed, panics, NaN or infinite outputs,
@@ -287,6 +293,53 @@ pub(crate) struct NurbsExperimentArgs {
     pub(crate) json: bool,
     /// Log both surfaces, the leaf hulls per level and the closest points to this recording.
     #[arg(long, value_name = "PATH", default_value = "recordings/nurbs-experiment.rrd")]
+    pub(crate) save: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct SculptCompareArgs {
+    /// The body the garment is built on (OBJ, metres, y up, facing +z); default: the
+    /// built-in body.
+    #[arg(long, value_name = "OBJ")]
+    pub(crate) body: Option<PathBuf>,
+    /// Sculpt this mesh (OBJ, metres) instead of the garment; --at must then be x,y,z.
+    #[arg(long, value_name = "OBJ", conflicts_with = "body")]
+    pub(crate) mesh: Option<PathBuf>,
+    /// Segments per anchor arc of the garment's M0.
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u16).range(2..=48))]
+    pub(crate) resolution: u16,
+    /// The pick: a control point of the jumpsuit (waist.front) or a point x,y,z (m).
+    #[arg(
+        long,
+        value_name = "POINT",
+        default_value = "waist.front",
+        allow_hyphen_values = true
+    )]
+    pub(crate) at: String,
+    /// Radius of the moved region, m.
+    #[arg(long, value_name = "M", default_value_t = 0.08)]
+    pub(crate) radius: f64,
+    /// Offset of the pick along the surface normal, m (negative pushes in).
+    #[arg(long, value_name = "M", default_value_t = 0.04, allow_negative_numbers = true)]
+    pub(crate) peak: f64,
+    /// Falloff: biweight, wendland or smoothstep.
+    #[arg(long, default_value = "biweight")]
+    pub(crate) falloff: String,
+    /// Refine while a region face's longest edge exceeds this, m [default: the smaller of
+    /// radius/4 and the region's longest edge before the drag].
+    #[arg(long, value_name = "M")]
+    pub(crate) eps: Option<f64>,
+    /// Level limit of both subdivisions.
+    #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u8).range(0..=8))]
+    pub(crate) levels: u8,
+    /// Loop's vertex-rule weight, 0 (interpolating) to 1 (Loop).
+    #[arg(long, default_value_t = 1.0)]
+    pub(crate) weight: f64,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Log the three results side by side to this recording.
+    #[arg(long, value_name = "PATH", default_value = "recordings/sculpt-compare.rrd")]
     pub(crate) save: PathBuf,
 }
 

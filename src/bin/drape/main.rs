@@ -13,6 +13,7 @@ mod nurbs;
 mod progress;
 mod replay;
 mod run;
+mod sculpt;
 mod stress;
 
 use std::path::Path;
@@ -38,6 +39,7 @@ fn main() -> ExitCode {
         Some(Command::Constraints { session }) => network::constraints(session.as_deref()),
         Some(Command::Mannequin(args)) => mannequin::mannequin(&args),
         Some(Command::NurbsExperiment(args)) => nurbs::experiment(&args),
+        Some(Command::SculptCompare(args)) => sculpt::compare_command(&args),
         Some(Command::Replay(args)) => replay::replay(&args),
         Some(Command::Stress(args)) => stress::stress(&args),
         Some(Command::Edit(args)) => edit::edit(&args),

@@ -52,6 +52,15 @@ impl StageSink for Progress {
         Ok(())
     }
 
+    fn sculpt(&mut self, info: &StageInfo, stage: drape::session::SculptStage<'_>) -> Result<(), SinkError> {
+        match (stage.outcome, stage.refused) {
+            (Some(outcome), None) => eprintln!("  step {} {}", info.step, outcome.summary()),
+            (Some(_), Some(why)) => eprintln!("  step {} sculpt REFUSED: {why}", info.step),
+            (None, _) => eprintln!("  step {} sculpt taken back", info.step),
+        }
+        Ok(())
+    }
+
     fn garment(&mut self, info: &StageInfo, stage: GarmentStage<'_>) -> Result<(), SinkError> {
         if let GarmentStage::Refused { name, message, .. } = stage {
             eprintln!("  step {} set {name} REFUSED: {message}", info.step);

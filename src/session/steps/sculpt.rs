@@ -17,7 +17,7 @@ use super::super::format::SculptAt;
 use super::super::stage::{SculptOutcome, SculptStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
-use crate::collision::{BodyIndex, CollisionOptions};
+use crate::collision::{BodyIndex, CollisionOptions, response_ease};
 use crate::m1::{M0Collided, RefinedInput, collide_refined, undirected_edges};
 use crate::mesh::TriMesh;
 use crate::sculpt::{Drag, SculptError, SculptOptions, measure};
@@ -107,7 +107,13 @@ fn apply(
     collision: &CollisionOptions,
     count: usize,
 ) -> Result<SculptOutcome, SculptError> {
-    let sculpt = scope.timed("sculpt.refine", || crate::sculpt::sculpt(&base.mesh, drag, options))?;
+    // A vertex must not end inside the body or nearer to it than the response's ease.
+    let stand_off = response_ease(index, ease, &collision.response);
+    let reach = 0.2 * index.height;
+    let keep_out = |p: DVec3| index.nearest(p, reach).is_some_and(|n| n.signed(p) < stand_off);
+    let sculpt = scope.timed("sculpt.refine", || {
+        crate::sculpt::sculpt_clear_of(&base.mesh, drag, options, Some(&keep_out))
+    })?;
     let refined = &sculpt.refined;
     let mut moved: Vec<u32> = sculpt.displacement.offsets.iter().map(|&(v, _)| v).collect();
     moved.extend(&refined.smoothed);
@@ -157,8 +163,10 @@ struct SculptFigures<'a> {
     /// The pick, snapped to the mesh, m, and how far the given point was from it.
     sculpt_pick_m: [f64; 3],
     sculpt_pick_distance_m: f64,
-    /// Vertices the drag moved and faces with a moved corner (the region).
+    /// Vertices the drag moved, those of them stopped at the body (their offset shortened
+    /// to end at the ease), and faces with a moved corner (the region).
     sculpt_moved_vertices: usize,
+    sculpt_stopped_at_body: usize,
     sculpt_region_faces: usize,
     /// Refinement threshold, m.
     sculpt_epsilon_m: f64,
@@ -205,6 +213,7 @@ fn record(scope: &mut StepScope<'_, '_, '_>, outcome: &SculptOutcome, verify: Op
         sculpt_pick_m: s.displacement.pick.point.to_array(),
         sculpt_pick_distance_m: s.displacement.pick.distance,
         sculpt_moved_vertices: s.displacement.offsets.len(),
+        sculpt_stopped_at_body: s.displacement.stopped,
         sculpt_region_faces: s.displacement.region.len(),
         sculpt_epsilon_m: s.epsilon,
         sculpt_active_by_level: s.refined.levels.iter().map(|l| l.active.len()).collect(),
