@@ -2,21 +2,22 @@
 //! and Razdan, "Adaptive subdivision schemes for triangle meshes", 2003).
 //!
 //! A face of the region is **active** while its longest edge exceeds `epsilon`. Each
-//! level:
+//! level works on a conforming mesh and leaves one:
 //!
-//! 1. **Green faces go back to their parent.** A face bisected to close a T-junction at
-//!    the last level is temporary: its pair is replaced by the triangle it came from, so
-//!    that repeated bisection never thins a triangle level after level.
-//! 2. **Red faces** are the active ones. Closure: a face with two or three of its edges
-//!    split (by red neighbours, or carrying a point from an earlier level) turns red too,
-//!    until none is left with more than one.
-//! 3. **Edge points** by Loop's edge mask on the current mesh (an edge split at an earlier
-//!    level keeps its point).
-//! 4. **Old vertices** whose every face is red and every edge newly split move by Loop's
-//!    vertex rule with the tunable weight; the others stay, so the refined region meets
-//!    the rest of the mesh where it was.
-//! 5. **Split**: red faces 1 -> 4, faces with exactly one split edge 1 -> 2 (green, from
-//!    the split point to the opposite corner). The result is conforming: no T-junctions.
+//! 1. **Red faces** are the active ones. Closure: a face with two or three of its edges
+//!    split by red neighbours turns red too, until none is left with more than one.
+//! 2. **Edge points** on every split edge by Loop's edge mask on the current mesh.
+//! 3. **Old vertices** whose every face is red move by Loop's vertex rule with the tunable
+//!    weight; the others stay, so the refined region meets the rest of the mesh where it
+//!    was.
+//! 4. **Split**: red faces 1 -> 4, faces with exactly one split edge 1 -> 2 (green, from
+//!    the split point to the opposite corner). Every split edge is split on both its
+//!    sides, so the result is conforming: no T-junctions.
+//!
+//! Green faces stay as they are at the next level (a split into a green pair is final).
+//! Taking them back to their parent before refining further (Bank's rule, which keeps
+//! angles from thinning) needs the refinement kept one level apart across every hanging
+//! edge; it is left out, and the smallest angle is measured and reported instead.
 //!
 //! It stops when no face is active, or at the level limit (then [`Refined::limited`]).
 //! Children inherit the region flag, so refinement stays where the drag stretched the
@@ -101,8 +102,6 @@ impl Refined {
 struct Face {
     v: [u32; 3],
     region: bool,
-    /// Index of the parent of a green pair.
-    green_of: Option<usize>,
 }
 
 fn longest_edge(p: &[DVec3], [a, b, c]: [u32; 3]) -> f64 {
@@ -123,76 +122,65 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
         .triangles
         .iter()
         .zip(region)
-        .map(|(&v, &region)| Face {
-            v,
-            region,
-            green_of: None,
-        })
+        .map(|(&v, &region)| Face { v, region })
         .collect();
-    let mut parents: Vec<Face> = Vec::new();
-    // Split points of edges, kept across levels.
-    let mut midpoints: BTreeMap<(u32, u32), u32> = BTreeMap::new();
     let mut smoothed: BTreeSet<u32> = BTreeSet::new();
     let mut levels = Vec::new();
     let mut limited = false;
     loop {
-        // 1. Green pairs back to their parents.
-        let mut restored = vec![false; parents.len()];
-        let mut current: Vec<Face> = Vec::with_capacity(faces.len());
-        for f in &faces {
-            match f.green_of {
-                Some(p) if !restored[p] => {
-                    restored[p] = true;
-                    current.push(parents[p]);
-                }
-                Some(_) => {}
-                None => current.push(*f),
-            }
-        }
-        // 2. Active faces, then the closure. When none is left (or at the limit) the mesh
-        // stays as it is, green pairs and all.
+        let current = faces;
+        // Active faces, then the closure. When none is left (or at the limit) the mesh stays
+        // as it is.
         let active: Vec<bool> = current
             .iter()
             .map(|f| f.region && longest_edge(&positions, f.v) > options.epsilon)
             .collect();
         if !active.contains(&true) {
+            faces = current;
             break;
         }
         if levels.len() == options.max_levels {
             limited = true;
+            faces = current;
             break;
         }
-        parents.clear();
         let mut red = active.clone();
         let mut split: BTreeSet<(u32, u32)> = BTreeSet::new();
-        for (f, _) in current.iter().zip(&red).filter(|(_, r)| **r) {
-            split.extend(edges_of(f.v));
+        let mut on_edge: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
+        for (i, f) in current.iter().enumerate() {
+            for e in edges_of(f.v) {
+                on_edge.entry(e).or_default().push(i);
+            }
         }
-        let mut changed = true;
-        while changed {
-            changed = false;
-            for (f, r) in current.iter().zip(red.iter_mut()).filter(|(_, r)| !**r) {
-                let count = edges_of(f.v)
-                    .iter()
-                    .filter(|e| split.contains(e) || midpoints.contains_key(e))
-                    .count();
-                if count >= 2 {
-                    *r = true;
-                    split.extend(edges_of(f.v));
-                    changed = true;
+        let count = |i: usize, split: &BTreeSet<(u32, u32)>| {
+            edges_of(current[i].v).iter().filter(|e| split.contains(e)).count()
+        };
+        let mut queue: Vec<usize> = (0..current.len()).filter(|&i| red[i]).collect();
+        while let Some(i) = queue.pop() {
+            for e in edges_of(current[i].v) {
+                if !split.insert(e) {
+                    continue;
+                }
+                let mut turn_red: Vec<usize> = on_edge[&e].iter().copied().filter(|&j| !red[j]).collect();
+                turn_red.retain(|&j| count(j, &split) >= 2);
+                for j in turn_red {
+                    if !red[j] {
+                        red[j] = true;
+                        queue.push(j);
+                    }
                 }
             }
         }
-        // 3. Edge points on the current mesh.
+        // Edge points on the current mesh.
         let table = EdgeTable::new(current.iter().map(|f| &f.v));
-        let fresh: BTreeSet<(u32, u32)> = split.iter().filter(|e| !midpoints.contains_key(e)).copied().collect();
         let old_positions = positions.clone();
-        for &(a, b) in &fresh {
+        let mut midpoints: BTreeMap<(u32, u32), u32> = BTreeMap::new();
+        for &(a, b) in &split {
             midpoints.insert((a, b), positions.len() as u32);
             positions.push(table.edge_point(&old_positions, a, b));
             anchor.push(anchor[a as usize]);
         }
-        // 4. Old vertices with every face red and every edge newly split.
+        // Old vertices with every face red.
         let n_old = old_positions.len();
         let mut eligible = vec![false; n_old];
         let mut barred = vec![false; n_old];
@@ -206,7 +194,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
             }
         }
         for &(a, b) in table.opposite.keys() {
-            if !fresh.contains(&(a, b)) {
+            if !split.contains(&(a, b)) {
                 barred[a as usize] = true;
                 barred[b as usize] = true;
             }
@@ -223,7 +211,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
                 }
             }
         }
-        // 5. Split.
+        // Split.
         let mut level = Level {
             active: current
                 .iter()
@@ -242,11 +230,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
                 let (Some(ab), Some(bc), Some(ca)) = (mid(a, b), mid(b, c), mid(c, a)) else {
                     unreachable!("a red face has all three edges split");
                 };
-                next.extend(quarter(f.v, [ab, bc, ca]).map(|v| Face {
-                    v,
-                    region: f.region,
-                    green_of: None,
-                }));
+                next.extend(quarter(f.v, [ab, bc, ca]).map(|v| Face { v, region: f.region }));
                 continue;
             }
             let splits: Vec<(usize, u32)> = (0..3)
@@ -256,14 +240,8 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
                 [(k, m)] => {
                     level.green += 1;
                     let (p, q, o) = (f.v[*k], f.v[(k + 1) % 3], f.v[(k + 2) % 3]);
-                    let parent = parents.len();
-                    parents.push(*f);
                     for v in [[p, *m, o], [*m, q, o]] {
-                        next.push(Face {
-                            v,
-                            region: f.region,
-                            green_of: Some(parent),
-                        });
+                        next.push(Face { v, region: f.region });
                     }
                 }
                 _ => next.push(*f),

@@ -20,6 +20,7 @@ mod refusals;
 mod remote;
 mod replay;
 mod resample;
+mod sculpt;
 mod sections;
 mod session_errors;
 mod shell;
