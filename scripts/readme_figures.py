@@ -139,6 +139,47 @@ def nurbs_experiment():
     return "\n".join(rows)
 
 
+def sculpt_compare_json(body=None):
+    with tempfile.TemporaryDirectory() as tmp:
+        cmd = ["cargo", "run", "--release", "--quiet", "--", "sculpt-compare", "--json",
+               "--save", os.path.join(tmp, "s.rrd")]
+        if body:
+            cmd += ["--body", body]
+        run = subprocess.run(cmd, cwd=ROOT, check=True, capture_output=True, text=True)
+    return json.loads(run.stdout)
+
+
+def sculpt_rows(out):
+    variants = [("none", out["none"]), ("uniform", out["uniform"]), ("adaptive", out["adaptive"]),
+                ("adaptive at uniform's max edge", out["adaptive"]["at_uniform_max_edge"])]
+    return variants
+
+
+def sculpt_compare():
+    """`drape sculpt-compare --json` on every shipped body (times left out: --bench)."""
+    rows = ["| body | | faces | region faces | max edge mm | min angle deg | smoothness deg | max turn deg | levels |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+    paths = [os.path.join(ROOT, "assets", "bodies", f) for f in sorted(os.listdir(os.path.join(ROOT, "assets", "bodies")))
+             if f.endswith(".obj")]
+    for path in paths:
+        out = sculpt_compare_json(path)
+        name = os.path.basename(path)[:-4]
+        for label, v in sculpt_rows(out):
+            rows.append(f"| {name} | {label} | {v['faces']} | {v['region_faces']} | {v['max_edge_m'] * 1e3:.2f} | "
+                        f"{v['min_angle_deg']:.1f} | {v['smoothness']:.2f} | {v['max_turn_deg']:.1f} | {v['levels']} |")
+            name = ""
+    return "\n".join(rows)
+
+
+def sculpt_times():
+    """`drape sculpt-compare --json` on the built-in body: the median times."""
+    out = sculpt_compare_json()
+    rows = ["| | faces | time ms |", "|---|---:|---:|"]
+    for label, v in sculpt_rows(out):
+        rows.append(f"| {label} | {v['faces']} | {v['time_ms']:.2f} |")
+    return "\n".join(rows)
+
+
 def logging_budget():
     """The demo at each log detail: compute and logging time summed over its steps, and the
     recording's size (times vary run to run: written with --bench only)."""
@@ -199,6 +240,7 @@ def sections(steps):
         "demo-busiest": busiest_step(steps),
         "landmarks": landmarks(steps),
         "bodies": bodies_tables(),
+        "sculpt-compare": sculpt_compare(),
     }
 
 
@@ -218,6 +260,7 @@ def main():
         generated["m1-bench"] = m1_bench()
         generated["logging"] = logging_budget()
         generated["nurbs-experiment"] = nurbs_experiment()
+        generated["sculpt-times"] = sculpt_times()
     for name, body in generated.items():
         pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
         if not pattern.search(new):
