@@ -225,3 +225,21 @@ pub fn soup_girth(mesh: &TriMesh, y: f64) -> f64 {
     }
     soup
 }
+
+/// The regular octahedron with unit vertices on the axes, outward-facing (valence 4
+/// everywhere: subdivision rules are easy to work out by hand on it).
+pub fn octahedron() -> TriMesh {
+    let positions = vec![DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
+    // One face per octant, counter-clockwise seen from outside.
+    let triangles = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    TriMesh { positions, triangles }
+}

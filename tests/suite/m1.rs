@@ -75,18 +75,7 @@ fn kobbelt_smoothing_on_an_octahedron_matches_the_hand_computed_positions() {
         (kobbelt_alpha(6) / 6.0 - 1.0 / 18.0).abs() < 1e-15,
         "beta = 1/18 at valence 6"
     );
-    let positions = vec![DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
-    let triangles = vec![
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
-    let mesh = TriMesh { positions, triangles };
+    let mesh = super::common::octahedron();
     assert!(mesh.signed_volume() > 0.0);
     let step = sqrt3_step(&mesh, &[0; 8], &[true], Smoothing::Kobbelt);
     for v in 0..6 {

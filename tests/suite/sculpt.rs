@@ -11,23 +11,16 @@ use drape::sculpt::{
 };
 use glam::DVec3;
 
-use super::common::{closed_grid, inside_by_parity, real_body, real_jumpsuit};
+use super::common::{closed_grid, inside_by_parity, octahedron, real_body, real_jumpsuit};
 
-/// The regular octahedron, outward-facing.
-fn octahedron() -> TriMesh {
-    let positions = vec![DVec3::X, DVec3::NEG_X, DVec3::Y, DVec3::NEG_Y, DVec3::Z, DVec3::NEG_Z];
-    // (x, y, z) octant faces, counter-clockwise seen from outside.
-    let triangles = vec![
-        [0, 2, 4],
-        [2, 1, 4],
-        [1, 3, 4],
-        [3, 0, 4],
-        [2, 0, 5],
-        [1, 2, 5],
-        [3, 1, 5],
-        [0, 3, 5],
-    ];
-    TriMesh { positions, triangles }
+/// A control point of the shipped jumpsuit.
+fn control(name: &str) -> DVec3 {
+    real_jumpsuit()
+        .control_points()
+        .into_iter()
+        .find(|(n, _)| n == name)
+        .unwrap_or_else(|| panic!("no control point {name}"))
+        .1
 }
 
 fn sphere() -> TriMesh {
@@ -196,12 +189,7 @@ fn adaptive_refinement_ends_below_epsilon_without_t_junctions() {
     // The same on the open garment with the interpolating weight: the opening stays where
     // it was (every edge without a twin lies on an edge of the input's openings).
     let m0 = &real_jumpsuit().m0.mesh;
-    let at = real_jumpsuit()
-        .control_points()
-        .into_iter()
-        .find(|(n, _)| n == "waist.front")
-        .expect("waist.front")
-        .1;
+    let at = control("waist.front");
     let moved = displace(m0, &m0.vertex_normals(), &Drag::new(at, 0.08, 0.04)).expect("drag");
     let region: Vec<bool> = (0..m0.triangles.len() as u32)
         .map(|t| moved.region.binary_search(&t).is_ok())
@@ -278,12 +266,7 @@ fn the_falloff_is_continuous_with_zero_slope_at_the_radius_and_nothing_beyond_mo
     // The drag on the garment: within the radius every vertex moves by exactly
     // peak * (1 - (d/r)^2)^2 along the pick's normal; beyond it none moves.
     let m0 = &real_jumpsuit().m0.mesh;
-    let at = real_jumpsuit()
-        .control_points()
-        .into_iter()
-        .find(|(n, _)| n == "bust.front")
-        .expect("bust.front")
-        .1;
+    let at = control("bust.front");
     let (radius, peak) = (0.07, 0.02);
     let moved = displace(m0, &m0.vertex_normals(), &Drag::new(at, radius, peak)).expect("drag");
     let pick = moved.pick.point;
@@ -306,12 +289,7 @@ fn the_falloff_is_continuous_with_zero_slope_at_the_radius_and_nothing_beyond_mo
 #[test]
 fn adaptive_reaches_uniform_loops_longest_edge_with_fewer_faces() {
     let m0 = &real_jumpsuit().m0.mesh;
-    let at = real_jumpsuit()
-        .control_points()
-        .into_iter()
-        .find(|(n, _)| n == "waist.front")
-        .expect("waist.front")
-        .1;
+    let at = control("waist.front");
     let cmp = compare(m0, &Drag::new(at, 0.08, 0.04), &SculptOptions::default()).expect("compare");
     assert_eq!(cmp.none.mesh.triangles.len(), m0.triangles.len());
     assert_eq!(
@@ -339,9 +317,12 @@ fn adaptive_reaches_uniform_loops_longest_edge_with_fewer_faces() {
     assert!(2 * cmp.adaptive_matched.mesh.triangles.len() < cmp.uniform.mesh.triangles.len());
 }
 
-/// The sculpt stages of a session: (step, mesh after, refused).
+/// A sculpt stage seen: its base, its mesh after, and the vertices stopped at the body.
+type SculptSeen = (TriMesh, TriMesh, usize);
+
+/// The sculpt stages of a session: (step, what it made, refused).
 #[derive(Default)]
-struct Sculpts(Vec<(usize, Option<(TriMesh, TriMesh, usize)>, bool)>);
+struct Sculpts(Vec<(usize, Option<SculptSeen>, bool)>);
 
 impl drape::session::StageSink for Sculpts {
     fn sculpt(
@@ -382,12 +363,7 @@ fn a_sculpt_pushed_into_the_body_ends_with_no_garment_vertex_inside_it() {
         } else {
             ("hip.back", 0.08, -0.06)
         };
-        let pick = real_jumpsuit()
-            .control_points()
-            .into_iter()
-            .find(|(n, _)| n == at)
-            .expect("point")
-            .1;
+        let pick = control(at);
         let free = displace(base, &normals, &Drag::new(pick, r, h)).expect("drag");
         let would = free
             .offsets
