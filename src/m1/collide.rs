@@ -73,6 +73,23 @@ pub struct RefinedInput<'a> {
     pub anchor: &'a [u32],
 }
 
+impl RefinedInput<'_> {
+    /// The vertices that differ from the base (moved, then new): what the collision tests.
+    pub fn tested(&self) -> Vec<u32> {
+        let mut out = self.moved.to_vec();
+        out.extend(self.base_vertices as u32..self.mesh.positions.len() as u32);
+        out
+    }
+}
+
+/// The partition of each refined vertex: its anchor's in the base (`0` past the base's).
+pub fn partition_through(anchor: &[u32], partition: &[usize]) -> Vec<usize> {
+    anchor
+        .iter()
+        .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
+        .collect()
+}
+
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
 /// have move. `garment_ease` is the garment's ease.
 pub fn collide_m1(
@@ -105,13 +122,8 @@ pub fn collide_refined(
     let (partition, ring_normal) = (m0.partition, m0.ring_normal);
     let reach = 0.2 * index.height;
     let positions = &refined.mesh.positions;
-    let mut tested: Vec<u32> = refined.moved.to_vec();
-    tested.extend(refined.base_vertices as u32..positions.len() as u32);
-    let m1_partition: Vec<usize> = refined
-        .anchor
-        .iter()
-        .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
-        .collect();
+    let tested = refined.tested();
+    let m1_partition = partition_through(refined.anchor, partition);
     let normals = refined.mesh.vertex_normals();
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();

@@ -13,7 +13,7 @@ pub mod cut;
 pub mod select;
 pub mod sqrt3;
 
-pub use collide::{M0Collided, M1Collision, RefinedInput, collide_m1, collide_refined};
+pub use collide::{M0Collided, M1Collision, RefinedInput, collide_m1, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
@@ -70,14 +70,6 @@ pub struct M1 {
 }
 
 impl M1 {
-    /// Vertices M0 does not have, or has elsewhere (new, and smoothed old): what M1's
-    /// collision tests.
-    pub fn differs_from_m0(&self) -> Vec<u32> {
-        let mut out: Vec<u32> = self.smoothed.clone();
-        out.extend(self.m0_vertices as u32..self.mesh.positions.len() as u32);
-        out
-    }
-
     /// Undirected edges of M1, sorted.
     pub fn edges(&self) -> &[[u32; 2]] {
         &self.edges

@@ -65,8 +65,6 @@ pub struct Level {
     pub red: usize,
     /// Faces bisected to close T-junctions.
     pub green: usize,
-    /// Faces after the level.
-    pub faces: usize,
 }
 
 /// A refined mesh.
@@ -88,15 +86,6 @@ pub struct Refined {
     pub limited: bool,
 }
 
-impl Refined {
-    /// Vertices that differ from the input: the new ones and the input's that moved.
-    pub fn changed(&self) -> Vec<u32> {
-        let mut out = self.smoothed.clone();
-        out.extend(self.base_vertices as u32..self.mesh.positions.len() as u32);
-        out
-    }
-}
-
 /// A face of the working mesh.
 #[derive(Clone, Copy, Debug)]
 struct Face {
@@ -104,7 +93,8 @@ struct Face {
     region: bool,
 }
 
-fn longest_edge(p: &[DVec3], [a, b, c]: [u32; 3]) -> f64 {
+/// The longest edge of triangle `[a, b, c]` at positions `p`.
+pub(crate) fn face_longest_edge(p: &[DVec3], [a, b, c]: [u32; 3]) -> f64 {
     let (a, b, c) = (p[a as usize], p[b as usize], p[c as usize]);
     a.distance(b).max(b.distance(c)).max(c.distance(a))
 }
@@ -133,7 +123,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
         // as it is.
         let active: Vec<bool> = current
             .iter()
-            .map(|f| f.region && longest_edge(&positions, f.v) > options.epsilon)
+            .map(|f| f.region && face_longest_edge(&positions, f.v) > options.epsilon)
             .collect();
         if !active.contains(&true) {
             faces = current;
@@ -247,7 +237,6 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
                 _ => next.push(*f),
             }
         }
-        level.faces = next.len();
         levels.push(level);
         faces = next;
     }

@@ -5,8 +5,9 @@
 
 use std::time::Instant;
 
+use super::Displacement;
 use super::{
-    AdaptiveOptions, Displacement, Drag, Level, Measures, SculptError, SculptOptions, measure, prepare, refine,
+    AdaptiveOptions, Drag, Level, Measures, SculptError, SculptOptions, longest_edge, measure, prepare, refine,
     uniform_step,
 };
 use crate::mesh::TriMesh;
@@ -61,8 +62,7 @@ impl Comparison {
     }
 }
 
-fn variant(mesh: TriMesh, region: Vec<bool>, levels: usize, limited: bool, started: Instant) -> Variant {
-    let time_ms = started.elapsed().as_secs_f64() * 1e3;
+fn variant(mesh: TriMesh, region: Vec<bool>, levels: usize, limited: bool, time_ms: f64) -> Variant {
     Variant {
         measures: measure(&mesh, &region),
         levels,
@@ -73,52 +73,58 @@ fn variant(mesh: TriMesh, region: Vec<bool>, levels: usize, limited: bool, start
     }
 }
 
-/// Runs `drag` on `mesh` with no, uniform and adaptive subdivision.
+fn ms_since(started: Instant) -> f64 {
+    started.elapsed().as_secs_f64() * 1e3
+}
+
+/// Runs `drag` on `mesh` with no, uniform and adaptive subdivision. The drag is made once;
+/// its time is part of every variant's.
 ///
 /// # Errors
 /// As [`super::sculpt`].
 pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<Comparison, SculptError> {
-    let dragged = |d: &Displacement| TriMesh {
-        positions: d.positions.clone(),
-        triangles: mesh.triangles.clone(),
-    };
     let started = Instant::now();
     let (displacement, region, epsilon) = prepare(mesh, drag, options, None)?;
-    let none = variant(dragged(&displacement), region.clone(), 0, false, started);
+    let dragged = TriMesh {
+        positions: displacement.positions.clone(),
+        triangles: mesh.triangles.clone(),
+    };
+    let drag_ms = ms_since(started);
+    let none = variant(dragged.clone(), region.clone(), 0, false, drag_ms);
 
     let started = Instant::now();
-    let (d, mut flags, _) = prepare(mesh, drag, options, None)?;
-    let mut current = dragged(&d);
+    let region_longest = |m: &TriMesh, flags: &[bool]| longest_edge(m, (0..flags.len()).filter(|&t| flags[t]));
+    let (mut current, mut flags) = (dragged.clone(), region.clone());
     let mut levels = 0;
-    while measure(&current, &flags).max_edge_m > epsilon && levels < options.max_levels {
+    while region_longest(&current, &flags) > epsilon && levels < options.max_levels {
         let step = uniform_step(&current, options.weight);
         flags = step.parent.iter().map(|&p| flags[p as usize]).collect();
         current = step.mesh;
         levels += 1;
     }
-    let limited = measure(&current, &flags).max_edge_m > epsilon;
-    let uniform = variant(current, flags, levels, limited, started);
+    let limited = region_longest(&current, &flags) > epsilon;
+    let uniform = variant(current, flags, levels, limited, drag_ms + ms_since(started));
 
-    let adaptive_to = |epsilon: f64| -> Result<(Variant, Vec<Level>), SculptError> {
+    let adaptive_to = |epsilon: f64| -> (Variant, Vec<Level>) {
         let started = Instant::now();
-        let (d, flags, _) = prepare(mesh, drag, options, None)?;
         let refined = refine(
-            &dragged(&d),
-            &flags,
+            &dragged,
+            &region,
             &AdaptiveOptions {
                 epsilon,
                 max_levels: options.max_levels,
                 weight: options.weight,
             },
         );
+        let time_ms = drag_ms + ms_since(started);
         let levels = refined.levels.len();
-        Ok((
-            variant(refined.mesh, refined.region, levels, refined.limited, started),
+        (
+            variant(refined.mesh, refined.region, levels, refined.limited, time_ms),
             refined.levels,
-        ))
+        )
     };
-    let (adaptive, adaptive_levels) = adaptive_to(epsilon)?;
-    let (adaptive_matched, _) = adaptive_to(uniform.measures.max_edge_m)?;
+    let (adaptive, adaptive_levels) = adaptive_to(epsilon);
+    let (adaptive_matched, _) = adaptive_to(uniform.measures.max_edge_m);
     Ok(Comparison {
         drag: *drag,
         displacement,

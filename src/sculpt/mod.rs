@@ -116,14 +116,11 @@ pub struct Sculpt {
     pub refined: Refined,
 }
 
-/// The longest edge of the faces `region` lists, in `mesh` (0 for none).
-pub fn longest_edge(mesh: &TriMesh, region: &[u32]) -> f64 {
-    region
-        .iter()
-        .flat_map(|&t| {
-            let p = mesh.corners(t as usize);
-            [p[0].distance(p[1]), p[1].distance(p[2]), p[2].distance(p[0])]
-        })
+/// The longest edge of the faces `faces` of `mesh` (0 for none).
+pub fn longest_edge(mesh: &TriMesh, faces: impl IntoIterator<Item = usize>) -> f64 {
+    faces
+        .into_iter()
+        .map(|t| adaptive::face_longest_edge(&mesh.positions, mesh.triangles[t]))
         .fold(0.0, f64::max)
 }
 
@@ -141,7 +138,7 @@ fn prepare(
         region[t as usize] = true;
     }
     let epsilon = options.epsilon.unwrap_or_else(|| {
-        let before = longest_edge(mesh, &displacement.region);
+        let before = longest_edge(mesh, displacement.region.iter().map(|&t| t as usize));
         (drag.radius / 4.0).min(before)
     });
     Ok((displacement, region, epsilon))

@@ -18,7 +18,7 @@ use super::super::stage::{SculptOutcome, SculptStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
 use crate::collision::{BodyIndex, CollisionOptions, response_ease};
-use crate::m1::{M0Collided, RefinedInput, collide_refined, undirected_edges};
+use crate::m1::{M0Collided, RefinedInput, collide_refined, partition_through, undirected_edges};
 use crate::mesh::TriMesh;
 use crate::sculpt::{Drag, SculptError, SculptOptions, measure};
 
@@ -57,12 +57,7 @@ fn base(state: &GarmentState) -> Option<Base> {
                 positions: m1.collision.positions.clone(),
                 triangles: m1.m1.mesh.triangles.clone(),
             },
-            partition: m1
-                .m1
-                .anchor
-                .iter()
-                .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
-                .collect(),
+            partition: partition_through(&m1.m1.anchor, partition),
             ring_normal,
             inside: m1.collision.inside_after.clone(),
             crossing: m1.collision.crossing_after_edges.clone(),
@@ -136,11 +131,7 @@ fn apply(
         };
         collide_refined(index, &input, &left, ease, collision)
     });
-    let partition = refined
-        .anchor
-        .iter()
-        .map(|&a| base.partition.get(a as usize).copied().unwrap_or(0))
-        .collect();
+    let partition = partition_through(&refined.anchor, &base.partition);
     let mut ring_normal = base.ring_normal.clone();
     ring_normal.resize(refined.mesh.positions.len(), None);
     Ok(SculptOutcome {
@@ -170,8 +161,10 @@ struct SculptFigures<'a> {
     sculpt_region_faces: usize,
     /// Refinement threshold, m.
     sculpt_epsilon_m: f64,
-    /// Active faces at the start of each level.
+    /// Active faces at the start of each level, and per level the faces split 1 -> 4
+    /// (red) and bisected (green).
     sculpt_active_by_level: Vec<usize>,
+    sculpt_red_green_by_level: Vec<[usize; 2]>,
     /// Stopped at the level limit above epsilon.
     sculpt_level_limit_reached: bool,
     /// Faces before and after.
@@ -217,6 +210,7 @@ fn record(scope: &mut StepScope<'_, '_, '_>, outcome: &SculptOutcome, verify: Op
         sculpt_region_faces: s.displacement.region.len(),
         sculpt_epsilon_m: s.epsilon,
         sculpt_active_by_level: s.refined.levels.iter().map(|l| l.active.len()).collect(),
+        sculpt_red_green_by_level: s.refined.levels.iter().map(|l| [l.red, l.green]).collect(),
         sculpt_level_limit_reached: s.refined.limited,
         sculpt_faces_before: outcome.base.triangles.len(),
         sculpt_faces: mesh.triangles.len(),
