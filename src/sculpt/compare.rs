@@ -6,10 +6,7 @@
 use std::time::Instant;
 
 use super::Displacement;
-use super::{
-    AdaptiveOptions, Drag, Level, Measures, SculptError, SculptOptions, longest_edge, measure, prepare, refine,
-    uniform_step,
-};
+use super::{Drag, Level, Measures, SculptError, SculptOptions, longest_edge, measure, prepare, refine, uniform_step};
 use crate::mesh::TriMesh;
 
 /// One way of refining the drag.
@@ -107,15 +104,7 @@ pub fn compare(mesh: &TriMesh, drag: &Drag, options: &SculptOptions) -> Result<C
 
     let adaptive_to = |epsilon: f64| -> (Variant, Vec<Level>) {
         let started = Instant::now();
-        let refined = refine(
-            &dragged,
-            &region,
-            &AdaptiveOptions {
-                epsilon,
-                max_levels: options.max_levels,
-                weight: options.weight,
-            },
-        );
+        let refined = refine(&dragged, &region, &options.adaptive(epsilon));
         let time_ms = drag_ms + ms_since(started);
         let levels = refined.levels.len();
         (

@@ -92,6 +92,15 @@ impl Default for SculptOptions {
 }
 
 impl SculptOptions {
+    /// The adaptive refinement these settings ask for, to `epsilon`.
+    pub fn adaptive(&self, epsilon: f64) -> AdaptiveOptions {
+        AdaptiveOptions {
+            epsilon,
+            max_levels: self.max_levels,
+            weight: self.weight,
+        }
+    }
+
     fn check(&self) -> Result<(), SculptError> {
         if let Some(e) = self.epsilon
             && !(e.is_finite() && e > 0.0)
@@ -168,15 +177,7 @@ pub fn sculpt_clear_of(
         positions: displacement.positions.clone(),
         triangles: mesh.triangles.clone(),
     };
-    let refined = refine(
-        &dragged,
-        &region,
-        &AdaptiveOptions {
-            epsilon,
-            max_levels: options.max_levels,
-            weight: options.weight,
-        },
-    );
+    let refined = refine(&dragged, &region, &options.adaptive(epsilon));
     Ok(Sculpt {
         displacement,
         epsilon,
