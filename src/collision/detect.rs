@@ -22,6 +22,7 @@ use super::point_face::{Reach, Search, point_face};
 use crate::body::DetectionMethod;
 use crate::body::index::BodyIndex;
 use crate::garment::CurveRef;
+use crate::par::par_map;
 
 /// Which triangles each vertex is tested against.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -337,6 +338,9 @@ pub fn detect(
         by_method: [0, 0],
     };
     let fresh = state.memo.is_empty();
+    // Which vertices to test (cheap, in order), then their tests on the worker threads, then
+    // the results in vertex order: the same whatever the number of threads.
+    let mut to_test = Vec::new();
     for v in 0..n {
         let p = garment.positions[v];
         let partition = index.partition_at(p.y).unwrap_or(0);
@@ -372,12 +376,28 @@ pub fn detect(
                 continue;
             }
         }
+        out.skip.push(Skip::Tested);
+        out.methods.push(None);
+        to_test.push(v);
+    }
+    let tests = par_map(to_test.len(), |k| {
+        let v = to_test[k];
         let normal = garment.normals.get(v).copied().unwrap_or(DVec3::ZERO);
-        let (hit, memo) = test_vertex(index, options, &reach, v, p, normal, partition);
+        test_vertex(
+            index,
+            options,
+            &reach,
+            v,
+            garment.positions[v],
+            normal,
+            out.partition[v],
+        )
+    });
+    // Fresh: every vertex was tested, in order.
+    for (&v, (hit, memo)) in to_test.iter().zip(tests) {
         out.by_method[usize::from(memo.method == DetectionMethod::LineLine)] += 1;
         out.tested += 1;
-        out.skip.push(Skip::Tested);
-        out.methods.push(Some(memo.method));
+        out.methods[v] = Some(memo.method);
         out.hits.extend(hit);
         if fresh {
             state.memo.push(memo);

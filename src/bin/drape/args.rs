@@ -25,6 +25,10 @@ pub(crate) struct Cli {
     /// regular file (a folder, a device, a pipe), are refused before reading.
     #[arg(long, global = true, value_name = "MB", default_value_t = 256, value_parser = clap::value_parser!(u64).range(1..=1_048_576))]
     pub(crate) max_input_mb: u64,
+    /// Worker threads for the parallel parts (vertex and edge checks, patches, the ground
+    /// truth) [default: one per core]. Results are the same, bit for bit, for any number.
+    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=16))]
+    pub(crate) threads: Option<u16>,
 }
 
 /// The subcommands.

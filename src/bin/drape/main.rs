@@ -32,6 +32,9 @@ fn main() -> ExitCode {
         cli.max_input_mb.saturating_mul(1024 * 1024),
         std::sync::atomic::Ordering::Relaxed,
     );
+    if let Some(n) = cli.threads {
+        drape::par::set_threads(usize::from(n));
+    }
     let result = match cli.command {
         None => run::run(RunArgs::default()),
         Some(Command::Run(args)) => run::run(args),

@@ -1,0 +1,286 @@
+//! Speed benchmark: the collision queries on one thread, their scaling, and the points for
+//! the peer libraries, measured in one run.
+//!
+//! `cargo bench --bench speed` prints, every figure on one worker thread (`--threads N` for
+//! more), medians of repeated runs timed here:
+//!
+//! 1. the body index build (pseudo-normals, the BVHs, the shell, the slices);
+//! 2. for the demo's tight jumpsuit (waist +4 cm, ease 4 mm) at resolutions 3, 6, 12 and 24
+//!    and for its M1 (every patch refined once): cold detection (a fresh state, every
+//!    vertex tested by its partition's test), the exact signed distance of every vertex
+//!    over the whole body (the query the peers answer), the full quality check, and
+//!    parry3d's own `project_point` on the same points (its BVH, pseudo-normal sign) with
+//!    how many of its inside verdicts differ from drape's exact ones;
+//! 3. the same exact query against the body split flat into 4x and 16x the triangles (the
+//!    same surface, so the same answers).
+//!
+//! `-- --export DIR` also writes, for the resolutions 6 and 24, the points, the body and
+//! drape's answers (signed distance, inside) as little-endian binaries for
+//! `scripts/speed.py`, which times FCPW and libigl on exactly those points. `-- --json PATH`
+//! writes the figures as JSON.
+
+use std::hint::black_box;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use drape::body::{Body, BodyMesh, LandmarkOptions, PartitionOptions};
+use drape::collision::{
+    BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, collide, detect, quality,
+};
+use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
+use drape::m1::{self, M1Options, Selection};
+use drape::mesh::TriMesh;
+use glam::DVec3;
+use parry3d::query::PointQuery;
+use parry3d::shape::{TriMesh as ParryMesh, TriMeshFlags};
+use serde_json::json;
+
+#[path = "timing.rs"]
+mod timing;
+use timing::median_ms;
+
+/// The demo's tight jumpsuit at `resolution` (waist +4 cm, ease 4 mm) as detection sees it.
+fn jumpsuit(body: &Body, probe: &BodyProbe, resolution: usize) -> (GarmentMesh, f64) {
+    let mut dims = Dimensions::default();
+    dims.values.insert("waist_girth".into(), 0.8096);
+    dims.values.insert("ease".into(), 0.004);
+    let options = FrameworkOptions::default().with_resolution(resolution);
+    let fw = build_framework(body, probe, TemplateKind::Jumpsuit, &dims, &options).expect("the jumpsuit builds");
+    (GarmentMesh::from_framework(&fw, probe.index().height), fw.ease())
+}
+
+/// The mesh with every triangle split into four at its edge midpoints (the same surface).
+fn split_flat(mesh: &TriMesh) -> TriMesh {
+    let mut positions = mesh.positions.clone();
+    let mut mid = std::collections::BTreeMap::new();
+    let mut at = |a: u32, b: u32, positions: &mut Vec<DVec3>| {
+        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            positions.push(0.5 * (positions[a as usize] + positions[b as usize]));
+            (positions.len() - 1) as u32
+        })
+    };
+    let mut triangles = Vec::with_capacity(4 * mesh.triangles.len());
+    for &[a, b, c] in &mesh.triangles {
+        let (ab, bc, ca) = (
+            at(a, b, &mut positions),
+            at(b, c, &mut positions),
+            at(c, a, &mut positions),
+        );
+        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+    }
+    TriMesh { positions, triangles }
+}
+
+/// Exact signed distance of every point over the whole body (on the worker threads).
+fn signed(index: &BodyIndex, points: &[DVec3]) -> Vec<f64> {
+    let reach = f64::INFINITY;
+    drape::par::par_map(points.len(), |k| {
+        let p = points[k];
+        index.nearest(p, reach).map_or(f64::INFINITY, |n| n.signed(p))
+    })
+}
+
+/// parry3d's own query: `project_point` on its oriented `TriMesh` (f32), inside by
+/// pseudo-normals.
+fn parry_mesh(body: &TriMesh) -> ParryMesh {
+    let vertices = body.positions.iter().map(|p| p.as_vec3()).collect();
+    ParryMesh::with_flags(vertices, body.triangles.clone(), TriMeshFlags::ORIENTED).expect("parry builds the body")
+}
+
+fn parry_inside(mesh: &ParryMesh, points: &[DVec3]) -> Vec<bool> {
+    points
+        .iter()
+        .map(|p| mesh.project_local_point(p.as_vec3(), true).is_inside)
+        .collect()
+}
+
+fn write_f64(path: &Path, values: impl Iterator<Item = f64>) {
+    let bytes: Vec<u8> = values.flat_map(f64::to_le_bytes).collect();
+    std::fs::write(path, bytes).expect("writes the export");
+}
+
+fn export(dir: &Path, name: &str, body: &TriMesh, points: &[DVec3], signed: &[f64], inside: &[bool]) {
+    std::fs::create_dir_all(dir).expect("creates the export folder");
+    write_f64(
+        &dir.join("body.vertices.f64"),
+        body.positions.iter().flat_map(|p| p.to_array()),
+    );
+    let tris: Vec<u8> = body.triangles.iter().flatten().flat_map(|i| i.to_le_bytes()).collect();
+    std::fs::write(dir.join("body.triangles.u32"), tris).expect("writes the export");
+    write_f64(
+        &dir.join(format!("{name}.points.f64")),
+        points.iter().flat_map(|p| p.to_array()),
+    );
+    write_f64(&dir.join(format!("{name}.signed.f64")), signed.iter().copied());
+    write_f64(
+        &dir.join(format!("{name}.detected.f64")),
+        inside.iter().map(|&i| f64::from(u8::from(i))),
+    );
+}
+
+struct Args {
+    export: Option<PathBuf>,
+    json: Option<PathBuf>,
+    threads: usize,
+    runs: usize,
+}
+
+fn args() -> Args {
+    let mut out = Args {
+        export: None,
+        json: None,
+        threads: 1,
+        runs: 7,
+    };
+    let mut it = std::env::args().skip(1);
+    while let Some(a) = it.next() {
+        match a.as_str() {
+            "--export" => out.export = it.next().map(PathBuf::from),
+            "--json" => out.json = it.next().map(PathBuf::from),
+            "--threads" => out.threads = it.next().and_then(|t| t.parse().ok()).unwrap_or(1),
+            "--runs" => out.runs = it.next().and_then(|t| t.parse().ok()).unwrap_or(7),
+            _ => {} // cargo bench passes --bench
+        }
+    }
+    out
+}
+
+fn main() {
+    let args = args();
+    drape::par::set_threads(args.threads);
+    let runs = args.runs;
+    let mesh = BodyMesh::from_obj_text(drape::body::BUILTIN_BODY_OBJ, "builtin", 1.0).expect("builtin body");
+    let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");
+    let mut index_build = None;
+    let index_ms = median_ms(runs.min(5), || {
+        index_build = Some(BodyIndex::new(&body, &drape::collision::SliceOptions::default()));
+    });
+    let probe = BodyProbe::from_index(index_build.expect("built"));
+    let index = probe.index();
+    let body_mesh = &body.mesh.mesh;
+    println!(
+        "# drape speed, {} thread(s): body {} triangles, index build {index_ms:.1} ms\n",
+        drape::par::threads(),
+        body_mesh.triangles.len()
+    );
+    println!(
+        "| garment | vertices | cold detect us/vertex | exact signed us/vertex | full quality ms | parry3d us/vertex | parry inside verdicts differing |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    let parry = parry_mesh(body_mesh);
+    let mut rows = Vec::new();
+    let mut garments = Vec::new();
+    for resolution in [3, 6, 12, 24] {
+        let (g, ease) = jumpsuit(&body, &probe, resolution);
+        garments.push((
+            format!("M0 resolution {resolution}"),
+            g.mesh.positions.clone(),
+            g.edges.clone(),
+            Some((g, ease)),
+        ));
+    }
+    // M1 over every patch of the collided resolution-6 M0.
+    {
+        let (g, ease) = jumpsuit(&body, &probe, 6);
+        let c = collide(
+            index,
+            &g,
+            ease,
+            &CollisionOptions::default(),
+            &mut DetectState::default(),
+        );
+        let mut options = M1Options::default();
+        options.all_patches = true;
+        let built = m1::build(&c.mesh, &g.face_patch, Selection::all(g.patch_curves.len()), &options);
+        let edges = built.edges().to_vec();
+        garments.push((
+            "M1 (resolution 6, all patches)".into(),
+            built.mesh.positions,
+            edges,
+            None,
+        ));
+    }
+    for (name, points, edges, garment) in &garments {
+        let n = points.len();
+        let detect_us = garment.as_ref().map(|(g, _)| {
+            let input = g.input();
+            let options = DetectOptions::default();
+            let mut hits = 0;
+            let ms = median_ms(runs, || {
+                let d = detect(index, &input, &options, &mut DetectState::default());
+                hits = d.hits.len();
+            });
+            black_box(hits);
+            ms * 1e3 / n as f64
+        });
+        let mut exact = Vec::new();
+        let exact_us = median_ms(runs, || exact = signed(index, points)) * 1e3 / n as f64;
+        let quality_ms = median_ms(runs.min(5), || {
+            black_box(quality(index, points, points, edges, &[]));
+        });
+        let mut parry_in = Vec::new();
+        let parry_us = median_ms(runs, || parry_in = parry_inside(&parry, points)) * 1e3 / n as f64;
+        let differ = parry_in.iter().zip(&exact).filter(|(p, s)| **p != (**s < 0.0)).count();
+        println!(
+            "| {name} | {n} | {} | {exact_us:.3} | {quality_ms:.2} | {parry_us:.3} | {differ} |",
+            detect_us.map_or("-".into(), |u| format!("{u:.3}")),
+        );
+        rows.push(json!({
+            "garment": name, "vertices": n, "cold_detect_us": detect_us, "exact_signed_us": exact_us,
+            "quality_ms": quality_ms, "parry_us": parry_us, "parry_differing": differ,
+        }));
+        if let (Some(dir), Some((g, _))) = (&args.export, garment)
+            && (name.ends_with(" 6") || name.ends_with(" 24"))
+        {
+            let d = detect(
+                index,
+                &g.input(),
+                &DetectOptions::default(),
+                &mut DetectState::default(),
+            );
+            let mut inside = vec![false; n];
+            for h in &d.hits {
+                inside[h.vertex as usize] = true;
+            }
+            let tag = name.rsplit(' ').next().unwrap_or("x");
+            export(dir, &format!("res{tag}"), body_mesh, points, &exact, &inside);
+        }
+    }
+    // Scaling in body triangles: the same surface split flat, one partition (point-face).
+    println!(
+        "\n| body triangles | index build ms | exact signed us/vertex (resolution 24) | answers differing from 1x |"
+    );
+    println!("|---:|---:|---:|---:|");
+    let points = &garments[3].1;
+    let mut scaled = body_mesh.clone();
+    let mut base: Option<Vec<f64>> = None;
+    let mut scaling = Vec::new();
+    for factor in [1, 4, 16] {
+        if factor > 1 {
+            scaled = split_flat(&scaled);
+        }
+        let mut built = None;
+        let start = Instant::now();
+        built = built.or_else(|| BodyIndex::from_mesh(&scaled).ok());
+        let build_ms = start.elapsed().as_secs_f64() * 1e3;
+        let flat = built.expect("the split body is manifold");
+        let mut answers = Vec::new();
+        let us = median_ms(runs, || answers = signed(&flat, points)) * 1e3 / points.len() as f64;
+        let differ = base.as_ref().map_or(0, |b| {
+            b.iter()
+                .zip(&answers)
+                .filter(|(a, b)| (**a < 0.0) != (**b < 0.0) || (**a - **b).abs() > 1e-9)
+                .count()
+        });
+        base.get_or_insert(answers);
+        println!("| {} | {build_ms:.1} | {us:.3} | {differ} |", scaled.triangles.len());
+        scaling.push(json!({"triangles": scaled.triangles.len(), "build_ms": build_ms, "exact_signed_us": us, "differing": differ}));
+    }
+    if let Some(path) = &args.json {
+        let out = json!({
+            "threads": drape::par::threads(), "body_triangles": body_mesh.triangles.len(),
+            "index_build_ms": index_ms, "garments": rows, "body_scaling": scaling,
+        });
+        std::fs::write(path, serde_json::to_string_pretty(&out).expect("json")).expect("writes the json");
+    }
+}
