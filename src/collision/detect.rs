@@ -175,6 +175,8 @@ struct Memo {
 pub struct DetectState {
     memo: Vec<Memo>,
     controls: BTreeMap<String, Vec<DVec3>>,
+    /// What the edge rounds and the quality check measured (see [`super::reuse`]).
+    pub(super) reuse: super::reuse::Reuse,
 }
 
 /// One step's detection.

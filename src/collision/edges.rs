@@ -27,6 +27,7 @@ use glam::DVec3;
 
 use super::detect::Hit;
 use super::response::{AppliedRule, EASE_TOLERANCE, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
+use super::reuse::{Reuse, Reused};
 use crate::body::index::BodyIndex;
 use crate::par::par_map;
 
@@ -119,16 +120,42 @@ pub fn respond_edges(
     ease: f64,
     options: &ResponseOptions,
 ) -> (Vec<Response>, Vec<usize>, Vec<[u32; 2]>) {
+    respond_edges_reusing(index, positions, edges, partition, roles, ease, options, None)
+}
+
+/// [`respond_edges`], the first round skipping the edges `reuse` knows were clear of the
+/// body at the same ends (and remembering this round's verdicts): the same lifts.
+#[allow(clippy::too_many_arguments)]
+pub fn respond_edges_reusing(
+    index: &BodyIndex,
+    positions: &mut [DVec3],
+    edges: &[[u32; 2]],
+    partition: &[usize],
+    roles: &VertexRoles<'_>,
+    ease: f64,
+    options: &ResponseOptions,
+    mut reuse: Option<(&mut Reuse, &mut Reused)>,
+) -> (Vec<Response>, Vec<usize>, Vec<[u32; 2]>) {
     let reach = 0.2 * index.height;
     let mut all = Vec::new();
     let mut first = Vec::new();
     let mut found = Vec::new();
-    // Edges to check: all at first, then those with an end moved in the round before (the
-    // others kept their ends, and none of them crossed).
-    let mut check: Vec<usize> = (0..edges.len()).collect();
+    let ends_at = |positions: &[DVec3], e: usize| edges[e].map(|v| positions[v as usize]);
+    // Edges to check: all at first (but those known clear at the same ends), then those
+    // with an end moved in the round before (the others kept their ends, and none of them
+    // crossed).
+    let mut check: Vec<usize> = match &reuse {
+        Some((r, _)) => (0..edges.len())
+            .filter(|&e| !r.clear_in_round(e, ends_at(positions, e)))
+            .collect(),
+        None => (0..edges.len()).collect(),
+    };
+    if let Some((_, counts)) = &mut reuse {
+        counts.round_edges = edges.len() - check.len();
+    }
     for round in 1..=options.edge_rounds {
         let positions_now = &*positions;
-        let crossings: Vec<(Crossing, [Option<Way>; 2])> = par_map(check.len(), |k| {
+        let tested: Vec<Option<(Crossing, [Option<Way>; 2])>> = par_map(check.len(), |k| {
             let ends = edges[check[k]];
             let [pa, pb] = ends.map(|v| positions_now[v as usize]);
             let c = crossing(index, ends, pa, pb)?;
@@ -138,10 +165,15 @@ pub fn respond_edges(
                     .flatten()
             });
             Some((c, ways))
-        })
-        .into_iter()
-        .flatten()
-        .collect();
+        });
+        if round == 1
+            && let Some((r, _)) = &mut reuse
+        {
+            for (&e, t) in check.iter().zip(&tested) {
+                r.set_round(edges.len(), e, ends_at(positions_now, e), t.is_none());
+            }
+        }
+        let crossings: Vec<(Crossing, [Option<Way>; 2])> = tested.into_iter().flatten().collect();
         found.push(crossings.len());
         if round == 1 {
             first = crossings.iter().map(|(c, _)| c.ends).collect();

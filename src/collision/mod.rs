@@ -16,6 +16,7 @@ pub mod point_face;
 mod push;
 pub mod quality;
 pub mod response;
+pub mod reuse;
 pub mod verify;
 
 use std::collections::BTreeMap;
@@ -25,10 +26,11 @@ use glam::DVec3;
 pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
-pub use edges::respond_edges;
+pub use edges::{respond_edges, respond_edges_reusing};
 pub use point_face::{PointFace, Reach, Search, point_face};
-pub use quality::{Quality, quality};
+pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
+pub use reuse::{Reuse, Reused};
 pub use verify::{GroundTruth, VerifyReport, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};
@@ -44,6 +46,11 @@ pub struct CollisionOptions {
     pub response: ResponseOptions,
     /// Body slices.
     pub slices: SliceOptions,
+    /// Measure the quality of every vertex and edge, and test every edge in the first edge
+    /// round, each step (`--verify`, `--quality full`). Default value: false: only the
+    /// vertices and edges whose positions changed since they were last measured (see
+    /// [`reuse`]); the figures are the same.
+    pub full_quality: bool,
 }
 
 /// M0 with what detection and response need to know about each vertex.
@@ -192,6 +199,8 @@ pub struct Collision {
     pub quality: Quality,
     /// Compute time per phase.
     pub timings: CollisionTimings,
+    /// What the edge rounds and the quality check took from the last steps.
+    pub reused: Reused,
 }
 
 fn timed<T>(slot: &mut f64, f: impl FnOnce() -> T) -> T {
@@ -225,8 +234,13 @@ pub fn collide(
             &options.response,
         )
     });
+    let mut reused = Reused::default();
+    if options.full_quality {
+        state.reuse.clear();
+    }
+    let partial = !options.full_quality;
     let (edge_responses, edge_rounds, first_round) = timed(&mut timings.respond_edges, || {
-        respond_edges(
+        respond_edges_reusing(
             index,
             &mut positions,
             &garment.edges,
@@ -234,11 +248,24 @@ pub fn collide(
             &roles,
             ease,
             &options.response,
+            partial.then_some((&mut state.reuse, &mut reused)),
         )
     });
     responses.extend(edge_responses);
     let quality = timed(&mut timings.quality, || {
-        quality(index, &garment.mesh.positions, &positions, &garment.edges, &responses)
+        if partial {
+            quality_reusing(
+                index,
+                &garment.mesh.positions,
+                &positions,
+                &garment.edges,
+                &responses,
+                &mut state.reuse,
+                &mut reused,
+            )
+        } else {
+            quality(index, &garment.mesh.positions, &positions, &garment.edges, &responses)
+        }
     });
     Collision {
         detection,
@@ -252,5 +279,6 @@ pub fn collide(
         },
         quality,
         timings,
+        reused,
     }
 }

@@ -5,6 +5,7 @@
 use glam::DVec3;
 
 use super::response::Response;
+use super::reuse::{Reuse, Reused};
 use crate::body::index::BodyIndex;
 use crate::par::par_map;
 
@@ -65,6 +66,34 @@ pub fn quality_where(
     edges: &[[u32; 2]],
     responses: &[Response],
 ) -> Quality {
+    measure(index, before, positions, vertices, edges, responses, None)
+}
+
+/// [`quality`] measuring only what `reuse` does not know (vertices and edges at other
+/// positions than when it was last measured), and remembering what it measured: the same
+/// figures as the full check, bit for bit.
+pub fn quality_reusing(
+    index: &BodyIndex,
+    before: &[DVec3],
+    positions: &[DVec3],
+    edges: &[[u32; 2]],
+    responses: &[Response],
+    reuse: &mut Reuse,
+    counts: &mut Reused,
+) -> Quality {
+    let all: Vec<u32> = (0..positions.len() as u32).collect();
+    measure(index, before, positions, &all, edges, responses, Some((reuse, counts)))
+}
+
+fn measure(
+    index: &BodyIndex,
+    before: &[DVec3],
+    positions: &[DVec3],
+    vertices: &[u32],
+    edges: &[[u32; 2]],
+    responses: &[Response],
+    mut reuse: Option<(&mut Reuse, &mut Reused)>,
+) -> Quality {
     let reach = 0.2 * index.height;
     let surface = 1e-12 * index.height;
     let mut q = Quality::default();
@@ -75,14 +104,29 @@ pub fn quality_where(
     for &v in vertices.iter().chain(edges.iter().flatten()) {
         needed[v as usize] = true;
     }
-    let list: Vec<u32> = (0..positions.len() as u32).filter(|&v| needed[v as usize]).collect();
+    let mut signed = vec![reach; positions.len()];
+    let mut list: Vec<u32> = Vec::new();
+    for v in 0..positions.len() {
+        if !needed[v] {
+            continue;
+        }
+        match reuse.as_ref().and_then(|(r, _)| r.signed(v, positions[v])) {
+            Some(s) => signed[v] = s,
+            None => list.push(v as u32),
+        }
+    }
     let found = par_map(list.len(), |k| {
         let p = positions[list[k] as usize];
         index.nearest(p, reach).map_or(reach, |n| n.signed(p))
     });
-    let mut signed = vec![reach; positions.len()];
     for (&v, s) in list.iter().zip(found) {
         signed[v as usize] = s;
+        if let Some((r, _)) = &mut reuse {
+            r.set_signed(positions.len(), v as usize, positions[v as usize], s);
+        }
+    }
+    if let Some((_, counts)) = &mut reuse {
+        counts.vertices = needed.iter().filter(|n| **n).count() - list.len();
     }
     q.clearance = (0..positions.len())
         .map(|v| if needed[v] { signed[v] } else { f64::INFINITY })
@@ -104,11 +148,26 @@ pub fn quality_where(
     }
     // An edge can meet the surface only if the balls free of it around its ends do not
     // cover it: |d(a)| + |d(b)| <= |ab|.
+    let ends_at = |e: usize| edges[e].map(|v| positions[v as usize]);
+    let known: Vec<Option<bool>> = match &reuse {
+        Some((r, _)) => (0..edges.len()).map(|e| r.crossing(e, ends_at(e))).collect(),
+        None => vec![None; edges.len()],
+    };
     let hits = par_map(edges.len(), |e| {
-        let [a, b] = edges[e];
-        let (pa, pb) = (positions[a as usize], positions[b as usize]);
-        signed[a as usize].abs() + signed[b as usize].abs() <= pa.distance(pb) && index.segment_hits(pa, pb)
+        known[e].unwrap_or_else(|| {
+            let [a, b] = edges[e];
+            let [pa, pb] = ends_at(e);
+            signed[a as usize].abs() + signed[b as usize].abs() <= pa.distance(pb) && index.segment_hits(pa, pb)
+        })
     });
+    if let Some((r, counts)) = &mut reuse {
+        counts.quality_edges = known.iter().filter(|k| k.is_some()).count();
+        for (e, hit) in hits.iter().enumerate() {
+            if known[e].is_none() {
+                r.set_crossing(edges.len(), e, ends_at(e), *hit);
+            }
+        }
+    }
     for (e, hit) in hits.into_iter().enumerate() {
         if hit {
             q.crossing_edges += 1;

@@ -25,6 +25,7 @@ mod sections;
 mod session_errors;
 mod shell;
 mod snapshot;
+mod speed;
 mod spline_properties;
 mod splines;
 mod stress;

@@ -281,11 +281,12 @@ fn demo_chunks() -> Vec<Chunk> {
 /// Two runs write the same chunks in the same order (what plain `rerun rrd compare`
 /// checks): chunk by chunk, the same entity, timelines, components and values (Rerun's own
 /// `Chunk::ensure_similar`, which ignores only chunk and row ids). Then two runs of the
-/// binary, one pinned to one core (`taskset -c 0`: one thread) and one on every core, write
-/// files with the same data in the same order; with the `rerun` command installed, they
-/// also pass plain `rerun rrd compare`.
+/// binary, one on one thread pinned to one core (`taskset -c 0 drape --threads 1`) and one
+/// on two worker threads (`--threads 2`, whatever the machine's cores), write files with
+/// the same data in the same order; with the `rerun` command installed, they also pass
+/// plain `rerun rrd compare`.
 #[test]
-fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_more() {
+fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_two() {
     let (a, b) = (demo_chunks(), demo_chunks());
     assert_eq!(a.len(), b.len(), "chunk counts");
     for (k, (x, y)) in a.iter().zip(&b).enumerate() {
@@ -297,7 +298,15 @@ fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_more() {
     std::fs::create_dir_all(&dir).unwrap();
     let files: Vec<std::path::PathBuf> = (0..2).map(|i| dir.join(format!("run{i}.rrd"))).collect();
     let one_core = std::process::Command::new("taskset")
-        .args(["-c", "0", env!("CARGO_BIN_EXE_drape"), "run", "--save"])
+        .args([
+            "-c",
+            "0",
+            env!("CARGO_BIN_EXE_drape"),
+            "--threads",
+            "1",
+            "run",
+            "--save",
+        ])
         .arg(&files[0])
         .output()
         .expect("taskset runs (util-linux)");
@@ -306,7 +315,7 @@ fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_more() {
         "{}",
         String::from_utf8_lossy(&one_core.stderr)
     );
-    let (code, stderr) = super::session_errors::drape(&["run", "--save", files[1].to_str().unwrap()]);
+    let (code, stderr) = super::session_errors::drape(&["--threads", "2", "run", "--save", files[1].to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     let data = |f: &std::path::Path| drape::viz::replay::read_rrd(f).expect("decodes");
     let (x, y) = (data(&files[0]), data(&files[1]));

@@ -253,6 +253,11 @@ pub(crate) struct RunArgs {
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
     #[arg(long)]
     pub(crate) no_skipping: bool,
+    /// The quality check after each collision: `partial` measures only the vertices and
+    /// edges whose positions changed since they were last measured (the same figures),
+    /// `full` measures everything every step (implied by --verify).
+    #[arg(long, value_name = "CHECK", default_value = "partial", value_parser = ["partial", "full"])]
+    pub(crate) quality: String,
     /// Exit 1 when a step leaves the garment inside the body or crossing it after its
     /// collision, or refuses an edit (the run goes on and reports every one).
     #[arg(long)]

@@ -1,0 +1,167 @@
+//! The speed shortcuts change no result: the partial quality check against the full one
+//! over whole sessions, and the warm-started, capped nearest-point queries against a brute
+//! force over perturbed garments on every shipped body. (1 and 2 threads: see
+//! `snapshot::two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_two`.)
+
+use drape::body::index::BodyIndex;
+use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
+use drape::collision::{Quality, SliceOptions};
+use drape::mesh::TriMesh;
+use drape::session::{
+    CollisionPart, CollisionStage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session,
+};
+use glam::DVec3;
+
+use super::common::{Lcg, brute_distance, inside_by_parity, real_jumpsuit, shipped_bodies};
+
+/// Each collision's quality and what it reused.
+#[derive(Default)]
+struct Qualities(Vec<(usize, Quality, usize)>);
+
+impl StageSink for Qualities {
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            let c = &stage.outcome.collision;
+            self.0
+                .push((info.step, c.quality.clone(), c.reused.vertices + c.reused.quality_edges));
+        }
+        Ok(())
+    }
+}
+
+fn qualities(text: &str, full: bool) -> Vec<(usize, Quality, usize)> {
+    let session = parse_session(text, "quality.drape", std::path::Path::new(".")).expect("parses");
+    let mut options = RunOptions::default();
+    options.collision.full_quality = full;
+    let mut sink = Qualities::default();
+    let report = run_session(&session, &options, &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    sink.0
+}
+
+/// A session of random drags (some refused), a dimension change and an undo.
+fn random_drags(seed: u64) -> String {
+    const POINTS: [&str; 8] = [
+        "waist.front_left",
+        "waist.front",
+        "chest.front_left",
+        "left_knee",
+        "crotch.point",
+        "left_hem.outer",
+        "right_thigh.inner",
+        "hip.back",
+    ];
+    let mut rng = Lcg(seed);
+    let mut text = String::from("drape 1\nbody builtin\ngarment jumpsuit fit=tight resolution=6\nset ease 0.006\n");
+    for k in 0..6 {
+        let point = POINTS[(rng.next() * POINTS.len() as f64) as usize % POINTS.len()];
+        let by: Vec<String> = (0..3).map(|_| format!("{:.4}", 0.05 * (rng.next() - 0.5))).collect();
+        text += &format!("drag {point} by={}\n", by.join(","));
+        if k == 2 {
+            text += "set hip_girth +0.02\n";
+        }
+        if k == 4 {
+            text += "undo\n";
+        }
+    }
+    text
+}
+
+/// The partial check (only vertices and edges at new positions measured) gives the full
+/// check's figures, bit for bit (counts, depths, the sets of inside vertices and crossing
+/// edges, every vertex's clearance), on every step of the demo and of random drag sessions,
+/// and it did skip work.
+#[test]
+fn partial_quality_equals_the_full_check_on_every_step() {
+    let demo = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/sessions/demo.drape"))
+        .expect("the demo session");
+    let mut sessions = vec![demo];
+    sessions.extend([11, 23, 47].map(random_drags));
+    for text in &sessions {
+        let (partial, full) = (qualities(text, false), qualities(text, true));
+        assert_eq!(partial.len(), full.len(), "{text}");
+        assert!(partial.len() >= 4, "{} collisions", partial.len());
+        for ((step, a, _), (_, b, reused)) in partial.iter().zip(&full) {
+            assert_eq!(*reused, 0, "the full check reuses nothing");
+            assert_eq!(a.penetrating_vertices, b.penetrating_vertices, "step {step}");
+            assert_eq!(a.crossing_edges, b.crossing_edges, "step {step}");
+            assert_eq!(a.inside, b.inside, "step {step}: inside vertices");
+            assert_eq!(a.crossing, b.crossing, "step {step}: crossing edges");
+            assert_eq!(a, b, "step {step}: every figure");
+        }
+        let reused: usize = partial.iter().map(|p| p.2).sum();
+        assert!(reused > 0, "the partial check measured everything again:\n{text}");
+    }
+}
+
+/// The body of `path`, analysed.
+fn body(path: &std::path::Path) -> Body {
+    let mesh = BodyMesh::load(&BodySource::File(path.to_path_buf()), 1.0).expect("the body loads");
+    Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("the body analyses")
+}
+
+/// On every shipped body, the jumpsuit's M0 perturbed at random (up to 3 cm each way): the
+/// nearest-point query, warm-started from the last triangle found (in garment order), from
+/// a random triangle, or capped at 1 cm, agrees with a brute force over every triangle
+/// written in the test (distance to 1e-12 m, inside by ray parity away from the surface,
+/// and the cap: an answer exactly when the brute distance is within it).
+#[test]
+fn warm_started_and_capped_queries_agree_with_a_brute_force_on_every_body() {
+    let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
+    let bodies = shipped_bodies();
+    assert_eq!(bodies.len(), 5);
+    let mut rng = Lcg(5);
+    for path in &bodies {
+        let body = body(path);
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let mesh = &body.mesh.mesh;
+        // The surface the queries see: the body's outer shell (on a body that crosses
+        // itself, the triangles buried inside another part are left out).
+        let shell = TriMesh {
+            positions: mesh.positions.clone(),
+            triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
+        };
+        // The garment moved onto this body (its bounding box centre), every 9th vertex.
+        let (lo, hi) = mesh.bounds().expect("a body");
+        let centre = 0.5 * (lo + hi);
+        let (glo, ghi) = real_jumpsuit().m0.mesh.bounds().expect("a garment");
+        let shift = centre - 0.5 * (glo + ghi);
+        let points: Vec<DVec3> = garment
+            .iter()
+            .step_by(9)
+            .map(|p| *p + shift + 0.06 * DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5))
+            .collect();
+        let triangles = index.triangles.len() as f64;
+        let mut inside = 0;
+        for &p in &points {
+            let truth = brute_distance(&shell, p);
+            let warm = index.nearest(p, f64::INFINITY).expect("a nearest point");
+            let hint = (rng.next() * triangles) as u32;
+            let random = index
+                .nearest_from(p, f64::INFINITY, Some(hint))
+                .expect("a nearest point");
+            assert!(
+                (warm.distance - truth).abs() < 1e-12,
+                "{p}: {} vs {truth}",
+                warm.distance
+            );
+            assert_eq!(warm, random, "{p}: the hint changed the answer");
+            let capped = index.nearest(p, 0.01);
+            assert_eq!(capped.is_some(), truth <= 0.01, "{p}: cap, brute {truth}");
+            if let Some(c) = capped {
+                assert_eq!(c, warm, "{p}: the cap changed the answer");
+            }
+            if truth > 1e-6 {
+                let parity = inside_by_parity(mesh, p);
+                assert_eq!(warm.signed(p) < 0.0, parity, "{p}: side");
+                inside += usize::from(parity);
+            }
+        }
+        assert!(
+            inside > 20 && inside < points.len() - 20,
+            "{}: {inside} of {} inside, both sides must be tested",
+            path.display(),
+            points.len()
+        );
+    }
+}
