@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """drape's speed table, measured in one run, with the closest-point peers beside it.
 
-    python3 scripts/speed.py [--json OUT] [--skip-sessions]
+    python3 scripts/speed.py [--json OUT] [--skip-sessions] [--readme]
 
 What it does, in order (every drape figure on one worker thread and pinned to one core
 with `taskset -c 0`, unless the row says 2 threads):
@@ -17,12 +17,14 @@ with `taskset -c 0`, unless the row says 2 threads):
 4. Runs the demo session (resolution 6) and the same session at resolution 24 with
    `drape run --threads 1 --metrics`, and once more with 2 threads, and reads the per-step
    compute and logging times.
-5. Prints one table: each figure beside its goal and the peer ratios.
+5. Prints one table: each figure beside its goal and the peer ratios (with --readme, also
+   writes everything it printed into README.md between `<!-- figures:speed -->` and
+   `<!-- /figures:speed -->`).
 """
 
 import argparse
 import json
-import os
+import re
 import shutil
 import statistics
 import subprocess
@@ -35,6 +37,15 @@ ROOT = Path(__file__).resolve().parent.parent
 VENV = Path.home() / ".cache" / "drape-tools" / "peers"
 PEERS = ["numpy==2.4.6", "fcpw==1.2.0", "libigl==2.6.3"]
 ONE_CORE = ["taskset", "-c", "0"]
+
+
+LINES = []
+
+
+def emit(line=""):
+    """Prints a line of the report (and keeps it for the README)."""
+    print(line, flush=True)
+    LINES.append(line)
 
 
 def venv_python() -> Path:
@@ -148,6 +159,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--json", type=Path, help="also write every figure here as JSON")
     ap.add_argument("--skip-sessions", action="store_true", help="only the query tables")
+    ap.add_argument("--readme", action="store_true", help="write the report into README.md (figures:speed)")
     a = ap.parse_args()
     if shutil.which("taskset") is None:
         sys.exit("speed.py needs taskset (util-linux) to pin runs to one core")
@@ -155,8 +167,11 @@ def main():
     folder = Path(tempfile.mkdtemp(prefix="drape-speed-"))
     run(["cargo", "build", "--release", "-q"])
     binary = ROOT / "target" / "release" / "drape"
-    print("## drape's queries (cargo bench --bench speed, one thread, one core)\n", flush=True)
-    run([*ONE_CORE, "cargo", "bench", "-q", "--bench", "speed", "--", "--export", str(folder), "--json", str(folder / "drape1.json")])
+    emit("#### drape's queries (`cargo bench --bench speed`, one thread, one core)")
+    emit()
+    bench = run([*ONE_CORE, "cargo", "bench", "-q", "--bench", "speed", "--", "--export", str(folder), "--json", str(folder / "drape1.json")], capture_output=True, text=True)
+    for line in bench.stdout.splitlines():
+        emit(line.replace("# drape speed, ", "drape speed, "))
     run(["cargo", "bench", "-q", "--bench", "speed", "--", "--threads", "2", "--json", str(folder / "drape2.json")], capture_output=True)
     d1 = json.loads((folder / "drape1.json").read_text())
     d2 = json.loads((folder / "drape2.json").read_text())
@@ -170,13 +185,15 @@ def main():
     def row2(res):
         return next(g for g in d2["garments"] if g["garment"] == f"M0 resolution {res}")
 
-    print("\n## Peers on the same points and body (closest point and inside)\n")
-    print("| points | cores | drape exact signed us | drape cold detect us | parry3d us | FCPW closest us | FCPW contains us | libigl signed us | drape / FCPW | inside verdicts differing (FCPW, libigl, parry3d) | max distance diff FCPW, libigl (um) |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|")
+    emit()
+    emit("#### Peers on the same points and body (closest point and inside)")
+    emit()
+    emit("| points | cores | drape exact signed us | drape cold detect us | parry3d us | FCPW closest us | FCPW contains us | libigl signed us | drape / FCPW | inside verdicts differing (FCPW, libigl, parry3d) | max distance diff FCPW, libigl (um) |")
+    emit("|---|---|---:|---:|---:|---:|---:|---:|---:|---|---|")
     for res in (6, 24):
         name = f"res{res}"
         for cores, d, p in (("1", row(res), p1[name]), ("2", row2(res), p2[name])):
-            print(
+            emit(
                 f"| M0 resolution {res} ({p['points']}) | {cores} | {d['exact_signed_us']:.3f} | {d['cold_detect_us']:.3f} | {d['parry_us']:.3f} | "
                 f"{p['fcpw_closest_us']:.3f} | {p['fcpw_contains_us']:.3f} | {p['igl_signed_us']:.3f} | "
                 f"{d['exact_signed_us'] / p['fcpw_closest_us']:.2f}x | {p['fcpw_inside_differ']}, {p['igl_inside_differ']}, {d['parry_differing']} | "
@@ -194,22 +211,33 @@ def main():
         figures["sessions"] = runs
 
         def drags(tag):
-            return [s for s in runs[tag] if s["op"] == "drag" and s["compute"]]
+            return [s for s in runs[tag] if s["op"] == "drag" and "garment.assemble" in s["compute"]]
 
-        print("\n## The table (demo session; drags: its 4 accepted drags)\n")
-        print("| what | 1 thread | 2 threads | goal |")
-        print("|---|---:|---:|---|")
+        emit()
+        emit("#### The table (the demo session and the same at resolution 24; drag steps: its 4 accepted drags)")
+        emit()
+        emit("| what | 1 thread, one core | 2 threads | goal |")
+        emit("|---|---:|---:|---|")
         for res, goal in ((6, "<= 5 ms on one core"), (24, "<= 40 ms")):
             one, two = drags(f"demo{res}.1"), drags(f"demo{res}.2")
-            print(f"| drag step, resolution {res}: garment (solve, assemble, M0 collision), median ms | {med([garment_ms(s) for s in one]):.1f} | {med([garment_ms(s) for s in two]):.1f} | {goal} |")
-            print(f"| drag step, resolution {res}: M1 (select, subdivide, collide), median ms | {med([m1_ms(s) for s in one]):.1f} | {med([m1_ms(s) for s in two]):.1f} | |")
-            print(f"| drag step, resolution {res}: logging, median ms | {med([s['log'] for s in one]):.1f} | {med([s['log'] for s in two]):.1f} | <= compute |")
+            emit(f"| drag step, resolution {res}: garment (solve, assemble, M0 collision), median ms | {med([garment_ms(s) for s in one]):.1f} | {med([garment_ms(s) for s in two]):.1f} | {goal} |")
+            emit(f"| drag step, resolution {res}: M1 (select, subdivide, collide), median ms | {med([m1_ms(s) for s in one]):.1f} | {med([m1_ms(s) for s in two]):.1f} | |")
+            emit(f"| drag step, resolution {res}: logging, median ms | {med([s['log'] for s in one]):.1f} | {med([s['log'] for s in two]):.1f} | <= compute |")
         r24 = row(24)
-        print(f"| cold detection per vertex, resolution 24 (us) | {r24['cold_detect_us']:.3f} | {row2(24)['cold_detect_us']:.3f} | <= 0.5 us and <= 0.4x FCPW |")
-        print(f"| the same, over FCPW's closest point on the same cores | {r24['cold_detect_us'] / p1['res24']['fcpw_closest_us']:.2f}x | {row2(24)['cold_detect_us'] / p2['res24']['fcpw_closest_us']:.2f}x | <= 0.4x |")
-        print(f"| body index build, ms | {d1['index_build_ms']:.1f} | {d2['index_build_ms']:.1f} | <= 20 ms or cached |")
+        emit(f"| cold detection per vertex, resolution 24 (us) | {r24['cold_detect_us']:.3f} | {row2(24)['cold_detect_us']:.3f} | <= 0.5 us and <= 0.4x FCPW |")
+        emit(f"| the same, over FCPW's closest point on the same cores | {r24['cold_detect_us'] / p1['res24']['fcpw_closest_us']:.2f}x | {row2(24)['cold_detect_us'] / p2['res24']['fcpw_closest_us']:.2f}x | <= 0.4x |")
+        emit(f"| body index build, ms | {d1['index_build_ms']:.1f} | {d2['index_build_ms']:.1f} | <= 20 ms or cached |")
     if a.json:
         a.json.write_text(json.dumps(figures, indent=1))
+    if a.readme:
+        readme = ROOT / "README.md"
+        text = readme.read_text()
+        pattern = re.compile(r"(<!-- figures:speed -->\n)(?:.*?\n)?(<!-- /figures:speed -->)", re.S)
+        if not pattern.search(text):
+            sys.exit("README.md has no section figures:speed")
+        body = "\n".join(LINES).strip("\n")
+        readme.write_text(pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text))
+        print("README.md: figures:speed rewritten")
     shutil.rmtree(folder, ignore_errors=True)
 
 
