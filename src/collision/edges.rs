@@ -111,22 +111,10 @@ fn slide(index: &BodyIndex, p: DVec3, way: &Way, towards: DVec3, want: f64, ease
 
 /// Edge rounds on `positions` (updated): returns the lifts made, as responses, the number
 /// of crossing edges each round found, and the edges the first round found (their ends).
-pub fn respond_edges(
-    index: &BodyIndex,
-    positions: &mut [DVec3],
-    edges: &[[u32; 2]],
-    partition: &[usize],
-    roles: &VertexRoles<'_>,
-    ease: f64,
-    options: &ResponseOptions,
-) -> (Vec<Response>, Vec<usize>, Vec<[u32; 2]>) {
-    respond_edges_reusing(index, positions, edges, partition, roles, ease, options, None)
-}
-
-/// [`respond_edges`], the first round skipping the edges `reuse` knows were clear of the
-/// body at the same ends (and remembering this round's verdicts): the same lifts.
+/// With `reuse`, the first round skips the edges it knows were clear of the body at the
+/// same ends (and remembers this round's verdicts): the same lifts.
 #[allow(clippy::too_many_arguments)]
-pub fn respond_edges_reusing(
+pub fn respond_edges(
     index: &BodyIndex,
     positions: &mut [DVec3],
     edges: &[[u32; 2]],

@@ -26,7 +26,7 @@ use glam::DVec3;
 pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
-pub use edges::{respond_edges, respond_edges_reusing};
+pub use edges::respond_edges;
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
@@ -240,7 +240,7 @@ pub fn collide(
     }
     let partial = !options.full_quality;
     let (edge_responses, edge_rounds, first_round) = timed(&mut timings.respond_edges, || {
-        respond_edges_reusing(
+        respond_edges(
             index,
             &mut positions,
             &garment.edges,

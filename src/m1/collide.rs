@@ -181,6 +181,7 @@ pub fn collide_refined(
         &roles,
         ease,
         &options.response,
+        None,
     );
     responses.extend(edge_responses);
     // After the response only what moved (and what was inside) is measured again, with the
