@@ -259,11 +259,9 @@ fn main() {
         if factor > 1 {
             scaled = split_flat(&scaled);
         }
-        let mut built = None;
         let start = Instant::now();
-        built = built.or_else(|| BodyIndex::from_mesh(&scaled).ok());
+        let flat = BodyIndex::from_mesh(&scaled).expect("the split body is manifold");
         let build_ms = start.elapsed().as_secs_f64() * 1e3;
-        let flat = built.expect("the split body is manifold");
         let mut answers = Vec::new();
         let us = median_ms(runs, || answers = signed(&flat, points)) * 1e3 / points.len() as f64;
         let differ = base.as_ref().map_or(0, |b| {

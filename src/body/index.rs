@@ -479,13 +479,9 @@ impl BodyIndex {
         )
     }
 
-    /// The nearest point of partition `k`'s triangles within `reach`.
+    /// The nearest point of partition `k`'s triangles within `reach` (warm-started as
+    /// [`Self::nearest`]).
     pub fn nearest_in_partition(&self, k: usize, p: DVec3, reach: f64) -> Option<Nearest> {
-        self.nearest_in_partition_from(k, p, reach, self.last_found())
-    }
-
-    /// [`Self::nearest_in_partition`] warm-started from triangle `hint`.
-    pub fn nearest_in_partition_from(&self, k: usize, p: DVec3, reach: f64, hint: Option<u32>) -> Option<Nearest> {
         let part = &self.partitions[k];
         self.nearest_in(
             &part.bvh,
@@ -493,7 +489,7 @@ impl BodyIndex {
             |t| part.triangles.binary_search(&t).is_ok(),
             p,
             reach,
-            hint,
+            self.last_found(),
         )
     }
 

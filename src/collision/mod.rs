@@ -234,11 +234,12 @@ pub fn collide(
             &options.response,
         )
     });
+    // The full check forgets what earlier steps measured, so it measures everything (and
+    // remembers it for the next step).
     let mut reused = Reused::default();
     if options.full_quality {
         state.reuse.clear();
     }
-    let partial = !options.full_quality;
     let (edge_responses, edge_rounds, first_round) = timed(&mut timings.respond_edges, || {
         respond_edges(
             index,
@@ -248,24 +249,20 @@ pub fn collide(
             &roles,
             ease,
             &options.response,
-            partial.then_some((&mut state.reuse, &mut reused)),
+            Some((&mut state.reuse, &mut reused)),
         )
     });
     responses.extend(edge_responses);
     let quality = timed(&mut timings.quality, || {
-        if partial {
-            quality_reusing(
-                index,
-                &garment.mesh.positions,
-                &positions,
-                &garment.edges,
-                &responses,
-                &mut state.reuse,
-                &mut reused,
-            )
-        } else {
-            quality(index, &garment.mesh.positions, &positions, &garment.edges, &responses)
-        }
+        quality_reusing(
+            index,
+            &garment.mesh.positions,
+            &positions,
+            &garment.edges,
+            &responses,
+            &mut state.reuse,
+            &mut reused,
+        )
     });
     Collision {
         detection,

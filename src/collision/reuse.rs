@@ -34,7 +34,7 @@ pub struct Reused {
 }
 
 impl Reuse {
-    /// Forgets everything (a new garment topology).
+    /// Forgets everything (the full check: everything is measured again).
     pub fn clear(&mut self) {
         *self = Self::default();
     }
