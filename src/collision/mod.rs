@@ -47,7 +47,7 @@ pub struct CollisionOptions {
     /// Body slices.
     pub slices: SliceOptions,
     /// Measure the quality of every vertex and edge, and test every edge in the first edge
-    /// round, each step (`--verify`, `--quality full`). Default value: false: only the
+    /// round, each step (`--quality full`). Default value: false: only the
     /// vertices and edges whose positions changed since they were last measured (see
     /// [`reuse`]); the figures are the same.
     pub full_quality: bool,

@@ -77,6 +77,11 @@ pub struct VerifyReport {
     pub crossing_after: usize,
     /// The quality figures after response equal the truth's.
     pub quality_agrees: bool,
+    /// The step's quality check (partial unless the full one was asked for) gave exactly
+    /// what a full check of every vertex and edge gives: every figure, every inside vertex
+    /// and crossing edge, every clearance (the session runner sets it; [`compare`] leaves
+    /// it false).
+    pub full_check_agrees: bool,
 }
 
 /// Compares detection (on the mesh of `before`) and quality (on the mesh of `after`) with

@@ -15,8 +15,8 @@ pub mod watch;
 use std::path::{Path, PathBuf};
 
 pub use generate::{GenerateOptions, session_text};
-pub use outcome::{SessionOutcome, reason_of, run_one};
-pub use report::{Record, Report, Totals};
+pub use outcome::{SessionOutcome, Verified, reason_of, run_one};
+pub use report::{Record, Report, Totals, VerifiedTotals};
 pub use rng::Rng;
 
 /// A stress sweep.
@@ -31,6 +31,9 @@ pub struct StressOptions {
     /// This run's share: shard `i` of `n` runs the sessions whose index is `i` modulo `n`.
     /// Default `(0, 1)`: every session.
     pub shard: (u64, u64),
+    /// Check every collision against the brute-force truth and a full quality check (slow:
+    /// seconds a step). Default false.
+    pub verify: bool,
 }
 
 impl Default for StressOptions {
@@ -40,6 +43,7 @@ impl Default for StressOptions {
             seed: 1,
             generate: GenerateOptions::default(),
             shard: (0, 1),
+            verify: false,
         }
     }
 }
@@ -72,7 +76,7 @@ pub fn run(
     for body in bodies {
         let name = body_name(body.as_deref());
         for (k, text) in &sessions {
-            let outcome = run_one(text, body.as_deref());
+            let outcome = run_one(text, body.as_deref(), options.verify);
             progress(&name, *k, &outcome);
             let saved = if outcome.is_bug() {
                 save(body.as_deref(), *k, text, &outcome)
@@ -111,6 +115,8 @@ fn bug_kind(o: &SessionOutcome) -> Option<&'static str> {
         Some("non-finite")
     } else if !o.guarantee_failures.is_empty() {
         Some("guarantee")
+    } else if !o.verified.wrong_quality.is_empty() || !o.verified.partial_differs.is_empty() {
+        Some("quality check")
     } else {
         None
     }
@@ -118,9 +124,10 @@ fn bug_kind(o: &SessionOutcome) -> Option<&'static str> {
 
 /// Cuts session `text` down to the fewest steps that still show the bug it shows on `body`
 /// (greedy: drop one step at a time, last first, keep the drop when the bug stays; repeat
-/// until no step can go). Returns the text unchanged when it shows no bug.
-pub fn shrink(text: &str, body: Option<&Path>) -> String {
-    let Some(kind) = bug_kind(&run_one(text, body)) else {
+/// until no step can go; with `verify`, each run checked as `drape stress --verify` checks
+/// it). Returns the text unchanged when it shows no bug.
+pub fn shrink(text: &str, body: Option<&Path>, verify: bool) -> String {
+    let Some(kind) = bug_kind(&run_one(text, body, verify)) else {
         return text.to_string();
     };
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
@@ -136,7 +143,7 @@ pub fn shrink(text: &str, body: Option<&Path>) -> String {
             let mut candidate = lines.clone();
             candidate.remove(k);
             let joined = candidate.join("\n") + "\n";
-            if bug_kind(&run_one(&joined, body)) == Some(kind) {
+            if bug_kind(&run_one(&joined, body, verify)) == Some(kind) {
                 lines = candidate;
                 changed = true;
             }

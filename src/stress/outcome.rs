@@ -34,6 +34,50 @@ pub struct SessionOutcome {
     /// Why the iterative loops stopped, by loop (see [`crate::convergence`]).
     #[serde(default)]
     pub loops: Tallies,
+    /// With `--verify`: each collision against the brute-force truth and a full check.
+    #[serde(default)]
+    pub verified: Verified,
+}
+
+/// The collisions of a session checked (`drape stress --verify`): detection and the quality
+/// check against the brute-force ground truth, and the step's quality check (partial: only
+/// what moved) against a full one of every vertex and edge, with the time of each.
+#[derive(Clone, Debug, Default, Serialize, Deserialize, PartialEq)]
+pub struct Verified {
+    /// Collisions checked.
+    pub collisions: usize,
+    /// Garment vertices and edges checked, summed over them.
+    pub vertices: usize,
+    /// Garment edges checked, summed.
+    pub edges: usize,
+    /// Vertices inside before the response that detection did not report.
+    pub missed: usize,
+    /// Vertices detection reported that were not inside.
+    pub false_hits: usize,
+    /// Steps whose quality check did not find exactly the truth's inside vertices and
+    /// crossing edges.
+    pub wrong_quality: Vec<usize>,
+    /// Steps whose quality check differed in anything from a full one.
+    pub partial_differs: Vec<usize>,
+    /// The step's quality check, ms, per collision.
+    pub quality_ms: Vec<f64>,
+    /// The full check of the same positions, ms, per collision.
+    pub full_quality_ms: Vec<f64>,
+}
+
+impl Verified {
+    /// Adds the collisions of `other`.
+    pub fn absorb(&mut self, other: Verified) {
+        self.collisions += other.collisions;
+        self.vertices += other.vertices;
+        self.edges += other.edges;
+        self.missed += other.missed;
+        self.false_hits += other.false_hits;
+        self.wrong_quality.extend(other.wrong_quality);
+        self.partial_differs.extend(other.partial_differs);
+        self.quality_ms.extend(other.quality_ms);
+        self.full_quality_ms.extend(other.full_quality_ms);
+    }
 }
 
 impl SessionOutcome {
@@ -44,6 +88,8 @@ impl SessionOutcome {
             || !self.non_finite.is_empty()
             || !self.guarantee_failures.is_empty()
             || self.parse_error.is_some()
+            || !self.verified.wrong_quality.is_empty()
+            || !self.verified.partial_differs.is_empty()
     }
 }
 
@@ -87,7 +133,7 @@ pub fn reason_of(message: &str) -> String {
 /// Runs session `text` on `body` (its own body, the built-in one, when `None`) and judges
 /// it. A panic anywhere in the run is caught and reported (the caller may silence the
 /// default panic message with a hook).
-pub fn run_one(text: &str, body: Option<&Path>) -> SessionOutcome {
+pub fn run_one(text: &str, body: Option<&Path>, verify: bool) -> SessionOutcome {
     let session = match parse_session(text, "stress.drape", Path::new(".")) {
         Ok(s) => s,
         Err(e) => {
@@ -99,6 +145,7 @@ pub fn run_one(text: &str, body: Option<&Path>) -> SessionOutcome {
     };
     let options = RunOptions {
         body_override: body.map(Path::to_path_buf),
+        verify,
         ..RunOptions::default()
     };
     let mut watch = Watch::default();
@@ -143,6 +190,7 @@ pub fn run_one(text: &str, body: Option<&Path>) -> SessionOutcome {
         .map(|s| (s.converged, s.passes, s.max_residual))
         .collect();
     out.step_ms = watch.step_ms;
+    out.verified = watch.verified;
     out
 }
 

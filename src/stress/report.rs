@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::outcome::SessionOutcome;
+use super::outcome::{SessionOutcome, Verified};
 use crate::convergence::{LOOPS, Tallies, merge_into};
 
 /// One session's record.
@@ -69,6 +69,56 @@ pub struct Totals {
     /// Why the iterative loops stopped, by loop: converged, at the iteration limit or
     /// stalled, with the largest residuals (see [`crate::convergence::LOOPS`] for units).
     pub loops: Tallies,
+    /// The collisions verified (`--verify`), summed.
+    pub verified: VerifiedTotals,
+}
+
+/// [`super::outcome::Verified`] summed over sessions.
+#[derive(Clone, Debug, Default, Serialize, PartialEq)]
+pub struct VerifiedTotals {
+    /// Collisions checked.
+    pub collisions: usize,
+    /// Vertices checked.
+    pub vertices: usize,
+    /// Edges checked.
+    pub edges: usize,
+    /// Detection's misses against the truth.
+    pub missed: usize,
+    /// Detection's false hits.
+    pub false_hits: usize,
+    /// Steps whose quality check disagreed with the truth.
+    pub wrong_quality: usize,
+    /// Steps whose quality check differed from a full one.
+    pub partial_differs: usize,
+    /// The steps' quality checks, ms.
+    pub quality_ms: Percentiles,
+    /// Full checks of the same positions, ms.
+    pub full_quality_ms: Percentiles,
+    /// Sum of the steps' quality checks over the sum of the full ones.
+    pub time_ratio: f64,
+}
+
+impl VerifiedTotals {
+    /// The counts and times of `v`.
+    pub fn of(v: &Verified) -> Self {
+        let full: f64 = v.full_quality_ms.iter().sum();
+        Self {
+            collisions: v.collisions,
+            vertices: v.vertices,
+            edges: v.edges,
+            missed: v.missed,
+            false_hits: v.false_hits,
+            wrong_quality: v.wrong_quality.len(),
+            partial_differs: v.partial_differs.len(),
+            quality_ms: Percentiles::of(&v.quality_ms),
+            full_quality_ms: Percentiles::of(&v.full_quality_ms),
+            time_ratio: if full > 0.0 {
+                v.quality_ms.iter().sum::<f64>() / full
+            } else {
+                0.0
+            },
+        }
+    }
 }
 
 /// Median, 99th percentile and maximum.
@@ -104,6 +154,7 @@ impl Totals {
     pub fn of<'a>(records: impl IntoIterator<Item = &'a Record>) -> Self {
         let mut t = Self::default();
         let mut times = Vec::new();
+        let mut verified = Verified::default();
         for r in records {
             let o = &r.outcome;
             t.sessions += 1;
@@ -128,16 +179,24 @@ impl Totals {
                 }
             }
             times.extend_from_slice(&o.step_ms);
+            verified.absorb(o.verified.clone());
             merge_into(&mut t.loops, &o.loops);
         }
         t.step_ms = Percentiles::of(&times);
+        t.verified = VerifiedTotals::of(&verified);
         t
     }
 
     /// Whether these totals hold a bug (a panic, a non-finite value, a guarantee failure, a
     /// session that did not parse).
     pub fn has_bugs(&self) -> bool {
-        self.panics + self.non_finite + self.guarantee_failures + self.parse_errors > 0
+        self.panics
+            + self.non_finite
+            + self.guarantee_failures
+            + self.parse_errors
+            + self.verified.wrong_quality
+            + self.verified.partial_differs
+            > 0
     }
 }
 
@@ -239,6 +298,26 @@ impl Report {
         }
         let all = self.overall();
         line("overall", &all);
+        let v = &all.verified;
+        if v.collisions > 0 {
+            s.push_str(&format!(
+                "verified: {} collisions ({} vertices, {} edges) against the brute-force truth: detection missed {}, \
+                 false hits {}; the quality check wrong on {} steps, the partial check unlike a full one on {} steps; \
+                 quality check ms median {:.2} (full {:.2}), max {:.2} (full {:.2}), {:.2}x the full check's time in all\n",
+                v.collisions,
+                v.vertices,
+                v.edges,
+                v.missed,
+                v.false_hits,
+                v.wrong_quality,
+                v.partial_differs,
+                v.quality_ms.median,
+                v.full_quality_ms.median,
+                v.quality_ms.max,
+                v.full_quality_ms.max,
+                v.time_ratio
+            ));
+        }
         if !all.refused.is_empty() {
             s.push_str("refused, by reason:\n");
             for (reason, n) in &all.refused {
@@ -310,6 +389,18 @@ pub fn bug_summary(o: &SessionOutcome) -> String {
         parts.push(format!(
             "garment left in the body after step(s) {:?}",
             o.guarantee_failures
+        ));
+    }
+    if !o.verified.wrong_quality.is_empty() {
+        parts.push(format!(
+            "the quality check disagreed with the brute-force truth after step(s) {:?}",
+            o.verified.wrong_quality
+        ));
+    }
+    if !o.verified.partial_differs.is_empty() {
+        parts.push(format!(
+            "the partial quality check differed from a full one after step(s) {:?}",
+            o.verified.partial_differs
         ));
     }
     parts.join("; ")

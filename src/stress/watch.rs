@@ -2,10 +2,14 @@
 //! sinks checked for NaN and infinite values, each constraint solve's outcome and residual,
 //! and each step's compute time.
 
+use super::outcome::Verified;
 use crate::session::{
     CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Stage, SinkError, StageInfo,
     StageSink, StepEnd,
 };
+
+/// The timings of `--verify`'s checks: not the step's own work, left out of its time.
+const VERIFICATION: [&str; 3] = ["collision.verify", "collision.quality_full", "m1.verify"];
 
 /// A non-finite value seen in a step's output.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -36,8 +40,13 @@ pub struct Watch {
     pub non_finite: Vec<NonFinite>,
     /// Every solve.
     pub solves: Vec<SolveOutcome>,
-    /// Compute milliseconds of every finished step after the scene (logging excluded).
+    /// Compute milliseconds of every finished step after the scene (logging and `--verify`'s
+    /// checks excluded).
     pub step_ms: Vec<f64>,
+    /// The collisions checked against the truth (runs with `verify`).
+    pub verified: Verified,
+    /// The verification of the collision the current step showed.
+    pending: Option<Verified>,
 }
 
 fn check<'a>(out: &mut Vec<NonFinite>, step: usize, place: &str, values: impl IntoIterator<Item = &'a glam::DVec3>) {
@@ -93,6 +102,19 @@ impl StageSink for Watch {
                     "collision output positions",
                     &c.mesh.positions,
                 );
+                // Counted at the step's end, if the step made it (an undo shows the
+                // collision of an earlier step again).
+                self.pending = stage.outcome.verify.as_ref().map(|v| Verified {
+                    collisions: 1,
+                    vertices: c.mesh.positions.len(),
+                    edges: stage.outcome.garment.edges.len(),
+                    missed: v.missed,
+                    false_hits: v.false_hits,
+                    wrong_quality: if v.quality_agrees { vec![] } else { vec![info.step] },
+                    partial_differs: if v.full_check_agrees { vec![] } else { vec![info.step] },
+                    quality_ms: Vec::new(),
+                    full_quality_ms: Vec::new(),
+                });
                 let q = &c.quality;
                 if !(q.max_depth_m.is_finite() && q.max_move_m.is_finite() && q.max_stretch.is_finite()) {
                     self.non_finite.push(NonFinite {
@@ -135,16 +157,26 @@ impl StageSink for Watch {
     }
 
     fn step_end(&mut self, info: &StageInfo, end: StepEnd<'_>) -> Result<(), SinkError> {
+        let pending = self.pending.take();
         if let StepEnd::Done(m) = end
             && info.step > 0
         {
             let ms: f64 = m
                 .timings_ms
                 .iter()
-                .filter(|(k, _)| !k.starts_with("log."))
+                .filter(|(k, _)| !k.starts_with("log.") && !VERIFICATION.contains(&k.as_str()))
                 .map(|(_, v)| v)
                 .sum();
             self.step_ms.push(ms);
+            if let (Some(mut p), Some(step), Some(full)) = (
+                pending,
+                m.timings_ms.get("collision.quality"),
+                m.timings_ms.get("collision.quality_full"),
+            ) {
+                p.quality_ms.push(*step);
+                p.full_quality_ms.push(*full);
+                self.verified.absorb(p);
+            }
         }
         Ok(())
     }

@@ -193,7 +193,7 @@ impl RerunLogger {
         self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
             format!(
-                "; verified by brute force: {} inside before ({} missed, {} false hits; line-line {} and {}), {} inside and {} crossing after, quality agrees: {}",
+                "; verified by brute force: {} inside before ({} missed, {} false hits; line-line {} and {}), {} inside and {} crossing after, quality agrees: {}, equals a full check: {}",
                 v.inside_before,
                 v.missed,
                 v.false_hits,
@@ -201,7 +201,8 @@ impl RerunLogger {
                 v.false_line_line,
                 v.inside_after,
                 v.crossing_after,
-                v.quality_agrees
+                v.quality_agrees,
+                v.full_check_agrees
             )
         });
         // The guarantee: nothing inside, nothing crossing. Said loudly when it is not met.

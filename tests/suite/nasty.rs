@@ -373,7 +373,7 @@ fn coincident_and_nearly_coincident_control_points_are_refused_or_kept_clear() {
     for off in [0.0, 1e-12, 1e-9] {
         let to = onto + DVec3::new(off, 0.0, 0.0);
         let text = format!("{head}drag {moved} to={},{},{}\n", to.x, to.y, to.z);
-        let outcome = drape::stress::run_one(&text, None);
+        let outcome = drape::stress::run_one(&text, None, false);
         assert!(
             outcome.panic.is_none() && outcome.non_finite.is_empty(),
             "{off}: {outcome:?}"

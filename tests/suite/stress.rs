@@ -147,8 +147,9 @@ fn three_shards_merged_equal_the_whole_sweep() {
 }
 
 /// Every session a stress run found a bug with (shrunk, in tests/fixtures/stress/) runs
-/// clean now: no panic, no non-finite output, no garment left in the body; and its last
-/// garment passes the brute-force truth.
+/// clean now: no panic, no non-finite output, no garment left in the body, every collision
+/// verified (its quality check against the brute-force truth and a full check); and its
+/// last garment passes the brute-force truth.
 #[test]
 fn every_stress_regression_session_runs_clean() {
     let mut files: Vec<PathBuf> = std::fs::read_dir("tests/fixtures/stress")
@@ -161,8 +162,9 @@ fn every_stress_regression_session_runs_clean() {
     let body = super::common::real_body();
     for file in files {
         let text = std::fs::read_to_string(&file).expect("reads");
-        let outcome = run_one(&text, None);
+        let outcome = run_one(&text, None, true);
         assert!(!outcome.is_bug(), "{}: {outcome:?}", file.display());
+        assert!(outcome.verified.collisions > 0, "{}: {outcome:?}", file.display());
         assert!(outcome.failed.is_none(), "{}: {outcome:?}", file.display());
         let session = parse_session(&text, "fixture.drape", Path::new(".")).expect("parses");
         let mut last = LastGarment::default();
@@ -171,5 +173,37 @@ fn every_stress_regression_session_runs_clean() {
         let truth = ground_truth(&body.mesh.mesh, &positions, &edges);
         assert_eq!(truth.inside_count(), 0, "{}", file.display());
         assert!(truth.crossing.iter().all(|c| !c), "{}", file.display());
+    }
+}
+
+/// `drape stress --verify` on every shipped body: each collision of a random session is
+/// checked against the brute-force truth (winding number for every vertex, every edge
+/// against every body triangle) and its partial quality check against a full one; none
+/// disagrees, on any body, and the check did run (collisions, vertices and edges counted).
+#[test]
+fn verified_stress_sessions_on_every_shipped_body_agree_with_the_truth() {
+    let options = StressOptions {
+        sessions: 1,
+        seed: 3,
+        generate: drape::stress::GenerateOptions {
+            steps: 4,
+            ..Default::default()
+        },
+        ..StressOptions::default()
+    };
+    let (_, text) = sessions_of(&options).remove(0);
+    for body in super::common::shipped_bodies() {
+        let outcome = run_one(&text, Some(&body), true);
+        let v = &outcome.verified;
+        assert!(!outcome.is_bug(), "{}: {outcome:?}", body.display());
+        assert!(v.collisions >= 2, "{}: {v:?}", body.display());
+        assert!(v.vertices > 100 * v.collisions && v.edges > v.vertices, "{v:?}");
+        assert_eq!(
+            (&v.wrong_quality, &v.partial_differs),
+            (&vec![], &vec![]),
+            "{}",
+            body.display()
+        );
+        assert_eq!(v.quality_ms.len(), v.collisions);
     }
 }

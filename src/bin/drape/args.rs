@@ -124,6 +124,11 @@ pub(crate) struct StressArgs {
     /// Print the text of session K (under --seed and --steps) and run nothing.
     #[arg(long, value_name = "K")]
     pub(crate) show: Option<u64>,
+    /// Check every collision as `drape run --verify` does: detection and the quality check
+    /// against the brute-force truth, the step's quality check (partial) against a full
+    /// one, and the time of both (seconds a step). A quality check that disagrees is a bug.
+    #[arg(long)]
+    pub(crate) verify: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -242,8 +247,9 @@ pub(crate) struct RunArgs {
     #[arg(long, value_name = "DETAIL", value_parser = ["all", "final", "metrics"])]
     pub(crate) log_detail: Option<String>,
     /// Check every collision against the brute-force ground truth (every garment vertex
-    /// and edge against every body triangle; a few seconds per step). The figures go to
-    /// the log, the metrics and the progress lines.
+    /// and edge against every body triangle; a few seconds per step), and the step's quality
+    /// check (partial by default) against a full one. The figures go to the log, the metrics
+    /// and the progress lines.
     #[arg(long)]
     pub(crate) verify: bool,
     /// Test every vertex point-face against every body triangle (no partitions, no BVH, no
@@ -255,7 +261,8 @@ pub(crate) struct RunArgs {
     pub(crate) no_skipping: bool,
     /// The quality check after each collision: `partial` measures only the vertices and
     /// edges whose positions changed since they were last measured (the same figures),
-    /// `full` measures everything every step (implied by --verify).
+    /// `full` measures everything every step. --verify runs a full check beside the
+    /// step's own and says whether they agree.
     #[arg(long, value_name = "CHECK", default_value = "partial", value_parser = ["partial", "full"])]
     pub(crate) quality: String,
     /// Exit 1 when a step leaves the garment inside the body or crossing it after its

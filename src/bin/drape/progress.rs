@@ -94,7 +94,7 @@ impl StageSink for Progress {
         }
         if let Some(v) = &outcome.verify {
             eprintln!(
-                "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}",
+                "  step {} verify: truth {} inside before, detection missed {} (line-line {}), false hits {} (line-line {}); after: {} inside, {} crossing; quality agrees: {}, equals a full check: {}",
                 info.step,
                 v.inside_before,
                 v.missed,
@@ -103,7 +103,8 @@ impl StageSink for Progress {
                 v.false_line_line,
                 v.inside_after,
                 v.crossing_after,
-                v.quality_agrees
+                v.quality_agrees,
+                v.full_check_agrees
             );
         }
         Ok(())

@@ -58,7 +58,6 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         options.collision.detect.acceleration = drape::collision::Acceleration::BruteForce;
         options.collision.detect.method_override = Some(drape::body::DetectionMethod::PointFace);
     }
-    // (--verify implies it: the session runner measures everything when it verifies.)
     options.collision.full_quality = args.quality == "full";
     if args.no_skipping {
         options.collision.detect.inert = false;

@@ -33,6 +33,7 @@ pub(crate) fn stress(args: &StressArgs) -> Result<ExitCode> {
         seed: args.seed,
         generate,
         shard: (i, n),
+        verify: args.verify,
     };
     // Panics are caught and reported per session; the default hook's message would only
     // interleave with the progress lines.
@@ -40,11 +41,16 @@ pub(crate) fn stress(args: &StressArgs) -> Result<ExitCode> {
     let total = bodies.len() as u64 * (options.sessions / n + u64::from(options.sessions % n > i));
     let mut done = 0u64;
     eprintln!(
-        "stress: {} session(s) of {} step(s) on {} body(ies), seed {}, shard {i}/{n}",
+        "stress: {} session(s) of {} step(s) on {} body(ies), seed {}, shard {i}/{n}{}",
         total,
         options.generate.steps,
         bodies.len(),
-        options.seed
+        options.seed,
+        if options.verify {
+            ", every collision verified"
+        } else {
+            ""
+        }
     );
     let out_dir = args.out.clone();
     let report = drape::stress::run(
@@ -64,7 +70,7 @@ pub(crate) fn stress(args: &StressArgs) -> Result<ExitCode> {
                 }
             );
         },
-        |body, k, text, _| save_case(&out_dir, body, options.seed, k, text, args.no_shrink).ok(),
+        |body, k, text, _| save_case(&out_dir, body, options.seed, k, text, args.no_shrink, args.verify).ok(),
     );
     let _ = std::panic::take_hook();
     print_report(&report, args.json, args.report.as_deref())
@@ -130,11 +136,12 @@ fn save_case(
     k: u64,
     text: &str,
     no_shrink: bool,
+    verify: bool,
 ) -> anyhow::Result<String> {
     let text = if no_shrink {
         text.to_string()
     } else {
-        shrink(text, body)
+        shrink(text, body, verify)
     };
     let stem = body_name(body);
     let stem = stem.trim_end_matches(".obj");
