@@ -11,7 +11,7 @@ use std::cmp::Ordering;
 
 use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
-use parry3d::partitioning::{Bvh, BvhBuildStrategy};
+use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
 
 use super::shell::{Shell, find_shell};
 use super::slices::{SliceOptions, SliceStack};
@@ -247,13 +247,13 @@ impl BodyIndex {
             all: None,
             slack: 1e-5 * height,
         };
-        index.shell = find_shell(
-            mesh,
-            neighbours,
-            height,
-            |o, d, a, b| index.cast_ray(o, d, a, b),
-            |p| index.winding(p),
-        );
+        let mut overlapping = Vec::new();
+        index
+            .whole
+            .traverse_bvtt_single_tree::<false>(&mut BvhWorkspace::default(), &mut |a, b| {
+                overlapping.push((a, b));
+            });
+        index.shell = find_shell(mesh, neighbours, height, &overlapping, |p| index.winding(p));
         if index.shell.crossing > 0 {
             let mut near_crossing = vec![false; index.positions.len()];
             for (t, tri) in index.triangles.iter().enumerate() {

@@ -8,9 +8,10 @@
 //! deep inside the pelvis "outside". The body index therefore answers nearest-point and ray
 //! queries over the shell alone: every triangle that is not buried.
 //!
-//! Method. Every mesh edge is cast against the triangles that do not share a vertex with
-//! it; an edge that meets one marks that triangle and the edge's two triangles as
-//! **crossing**. Without crossings the surface bounds one volume and nothing is buried.
+//! Method. Every mesh edge is tested against the triangles that do not share a vertex
+//! with it and whose bounding boxes meet its own triangle's (the pairs a BVH's self-test
+//! gives: a dozen or so a triangle, instead of a ray cast through the tree per edge); an
+//! edge that meets one marks that triangle and the edge's two triangles as **crossing**. Without crossings the surface bounds one volume and nothing is buried.
 //! Otherwise the surface, cut along the crossing triangles, falls into connected pieces
 //! that are each wholly buried or wholly outer (burial changes only where the surface
 //! crosses itself). One winding number per piece, at a point just off the outer side of
@@ -23,6 +24,7 @@ use std::collections::VecDeque;
 
 use glam::DVec3;
 
+use crate::geom::ray::ray_triangle;
 use crate::mesh::TriMesh;
 use crate::mesh::topology::NO_NEIGHBOUR;
 use crate::par::par_map;
@@ -39,21 +41,31 @@ pub struct Shell {
 }
 
 /// Finds the buried triangles of `mesh` (closed, outward-oriented; `neighbours[t][k]` the
-/// triangle across edge `k`, [`NO_NEIGHBOUR`] at a border). `cast(origin, dir, t_min,
-/// t_max)` is the first triangle the ray meets with `t` in `(t_min, t_max]` and
-/// `winding(p)` the winding number of the whole surface about `p` (the index's, over every
-/// triangle); `height` (m) scales the offsets.
+/// triangle across edge `k`, [`NO_NEIGHBOUR`] at a border). `overlapping` lists the pairs
+/// of triangles whose bounding boxes meet (each pair once, in either order; a self-test of
+/// a BVH over every triangle gives them): an edge can only pass through a triangle whose
+/// box meets the box of the edge's own triangle. `winding(p)` is the winding number of
+/// the whole surface about `p` (the index's, over every triangle); `height` (m) scales the
+/// offsets.
 pub fn find_shell(
     mesh: &TriMesh,
     neighbours: &[[u32; 3]],
     height: f64,
-    cast: impl Fn(DVec3, DVec3, f64, f64) -> Option<(f64, u32)> + Sync,
+    overlapping: &[(u32, u32)],
     winding: impl Fn(DVec3) -> i32 + Sync,
 ) -> Shell {
     let n = mesh.triangles.len();
     let eps = 1e-9;
+    let mut partners: Vec<Vec<u32>> = vec![Vec::new(); n];
+    for &(a, b) in overlapping {
+        if (a as usize) < n && (b as usize) < n {
+            partners[a as usize].push(b);
+            partners[b as usize].push(a);
+        }
+    }
     // Per triangle, for each of its edges it owns (from its low to its high vertex): the
-    // triangles the edge passes through that share no vertex with it.
+    // triangles the edge passes through (strictly between its ends) that share no vertex
+    // with it.
     let pierced: Vec<Vec<(usize, u32)>> = par_map(n, |t| {
         let tri = mesh.triangles[t];
         let mut out = Vec::new();
@@ -63,16 +75,14 @@ pub fn find_shell(
                 continue;
             }
             let (pa, pb) = (mesh.positions[a as usize], mesh.positions[b as usize]);
-            let mut from = eps;
-            while let Some((s, hit)) = cast(pa, pb - pa, from, 1.0 - eps) {
-                let corners = mesh.triangles[hit as usize];
-                if !corners.contains(&a) && !corners.contains(&b) {
-                    out.push((k, hit));
+            for &h in &partners[t] {
+                let corners = mesh.triangles[h as usize];
+                if !corners.contains(&a)
+                    && !corners.contains(&b)
+                    && ray_triangle(pa, pb - pa, mesh.corners(h as usize), eps, 1.0 - eps).is_some()
+                {
+                    out.push((k, h));
                 }
-                if s <= from {
-                    break;
-                }
-                from = s + eps;
             }
         }
         out
