@@ -6,6 +6,8 @@
     python3 scripts/readme_figures.py --metrics M.json   # use an existing metrics file
     python3 scripts/readme_figures.py --bench    # also the M1 benchmark, logging and NURBS
                                                  # experiment tables (times vary)
+    python3 scripts/readme_figures.py --stress   # also the verified stress sweep (about 20
+                                                 # minutes on 2 cores; its times vary)
 
 Each generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
 in README.md; nothing else is touched. Standard library only.
@@ -109,6 +111,14 @@ def m1_bench():
     return "\n\n".join(out)
 
 
+def collision_bench():
+    """`cargo bench --bench collision`: detection modes and point-face against line-line,
+    times beside what each found and missed (times vary: written with --bench only)."""
+    run = subprocess.run(["cargo", "bench", "--quiet", "--bench", "collision"],
+                         cwd=ROOT, check=True, capture_output=True, text=True)
+    return re.sub(r"^## ", "#### ", run.stdout.strip(), flags=re.M)
+
+
 def nurbs_experiment():
     """`drape nurbs-experiment --json`: the L/T table with the true distances (times vary run
     to run: written with --bench only)."""
@@ -197,6 +207,48 @@ def logging_budget():
     return "\n".join(rows)
 
 
+STRESS_SESSIONS, STRESS_STEPS = 10, 8
+
+
+def stress_verified():
+    """`drape stress --verify` over every shipped body, one shard per core (one worker thread
+    each), merged: detection, the partial quality check and the skips against the
+    brute-force truth and against the full versions (its times vary: --stress only)."""
+    drape = os.path.join(ROOT, "target", "release", "drape")
+    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    shards = max(1, os.cpu_count() or 1)
+    with tempfile.TemporaryDirectory() as tmp:
+        reports = [os.path.join(tmp, f"{i}.json") for i in range(shards)]
+        runs = [subprocess.Popen([drape, "--threads", "1", "stress", "--bodies", "assets/bodies",
+                                  "--sessions", str(STRESS_SESSIONS), "--steps", str(STRESS_STEPS), "--verify",
+                                  "--shard", f"{i}/{shards}", "--report", reports[i],
+                                  "--out", os.path.join(tmp, "found")],
+                                 cwd=ROOT, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                for i in range(shards)]
+        for run in runs:
+            if run.wait() != 0:
+                sys.exit("drape stress found a bug: run it without the script to see it")
+        merged = subprocess.run([drape, "stress", "merge", "--json", *reports], cwd=ROOT, check=True,
+                                capture_output=True, text=True)
+    out = json.loads(merged.stdout)
+    rows = [f"`drape --threads 1 stress --bodies assets/bodies --sessions {STRESS_SESSIONS} --steps {STRESS_STEPS} "
+            f"--verify`, {shards} shards merged:",
+            "",
+            "| body | collisions | vertices / edges checked | inside (truth) | missed: on the skin / line-line / "
+            "skipped / point-face | false hits | verdicts the skips changed | quality wrong | partial unlike full "
+            "| quality check ms, median partial / full | partial / full, all steps |",
+            "|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|"]
+    for name, t in [*sorted(out["bodies"].items()), ("all", out["overall"])]:
+        v = t["verified"]
+        rows.append(f"| {name.removesuffix('.obj')} | {v['collisions']} | {v['vertices']} / {v['edges']} | "
+                    f"{v['inside']} | {v['missed']}: {v['missed_on_skin']} / {v['missed_line_line']} / "
+                    f"{v['missed_untested']} / {v['missed_point_face']} | {v['false_hits']} | "
+                    f"{v['skips_changed']} | {v['wrong_quality']} | {v['partial_differs']} | "
+                    f"{v['quality_ms']['median']:.2f} / {v['full_quality_ms']['median']:.2f} | "
+                    f"{v['time_ratio']:.2f}x |")
+    return "\n".join(rows)
+
+
 def busiest_step(steps):
     s = max((s for s in steps if "hits" in s), key=lambda s: s["hits"])
     parts = ", ".join(f"{k} {n}" for k, n in s["hits_by_partition"].items() if n)
@@ -251,6 +303,9 @@ def main():
     ap.add_argument("--bench", action="store_true",
                     help="also rewrite the M1 benchmark table (cargo bench --bench m1; its times vary, so "
                          "--check leaves it out)")
+    ap.add_argument("--stress", action="store_true",
+                    help="also rewrite the verified stress table (drape stress --verify on every shipped body, "
+                         "about 20 minutes on 2 cores; its times vary, so --check leaves it out)")
     args = ap.parse_args()
     steps = json.load(open(args.metrics)) if args.metrics else demo_metrics()
     text = open(README).read()
@@ -258,9 +313,12 @@ def main():
     generated = sections(steps)
     if args.bench:
         generated["m1-bench"] = m1_bench()
+        generated["collision-bench"] = collision_bench()
         generated["logging"] = logging_budget()
         generated["nurbs-experiment"] = nurbs_experiment()
         generated["sculpt-times"] = sculpt_times()
+    if args.stress:
+        generated["stress-verified"] = stress_verified()
     for name, body in generated.items():
         pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
         if not pattern.search(new):

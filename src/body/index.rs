@@ -96,7 +96,7 @@ pub struct BodyIndex {
     /// its pseudo-normals may point the wrong way; the sign of a point nearest to it is
     /// counted along rays instead.
     tangled: Vec<bool>,
-    /// Every triangle (buried ones too), for those counts; only on a self-crossing body.
+    /// Every triangle (buried ones too), for those counts; only on a body with buried triangles.
     all: Option<Bvh>,
     slack: f64,
 }
@@ -268,17 +268,26 @@ impl BodyIndex {
                 .iter()
                 .map(|tri| tri.iter().any(|&v| near_crossing[v as usize]))
                 .collect();
-            index.leaves.retain(|&t| !index.shell.buried[t as usize]);
-            let kept: Vec<Aabb> = index.leaves.iter().map(|&t| boxes[t as usize]).collect();
-            let shell = Bvh::from_leaves(BvhBuildStrategy::Binned, &kept);
-            index.all = Some(std::mem::replace(&mut index.whole, shell));
-            for p in &mut partitions {
-                p.triangles.retain(|&t| !index.shell.buried[t as usize]);
+            // The shell's own tree, unless nothing is buried (crossing pieces that bury no
+            // triangle): then it would be the whole tree again, leaf for leaf.
+            if index.shell.buried.contains(&true) {
+                index.leaves.retain(|&t| !index.shell.buried[t as usize]);
+                let kept: Vec<Aabb> = index.leaves.iter().map(|&t| boxes[t as usize]).collect();
+                let shell = Bvh::from_leaves(BvhBuildStrategy::Binned, &kept);
+                index.all = Some(std::mem::replace(&mut index.whole, shell));
+                for p in &mut partitions {
+                    p.triangles.retain(|&t| !index.shell.buried[t as usize]);
+                }
             }
         }
-        for p in &mut partitions {
-            let local: Vec<Aabb> = p.triangles.iter().map(|&t| boxes[t as usize]).collect();
-            p.bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &local);
+        // Each partition's tree alone (on the worker threads: the trees do not depend on
+        // how many there are).
+        let trees = crate::par::par_map_from(partitions.len(), 2, |i| {
+            let local: Vec<Aabb> = partitions[i].triangles.iter().map(|&t| boxes[t as usize]).collect();
+            Bvh::from_leaves(BvhBuildStrategy::Binned, &local)
+        });
+        for (p, bvh) in partitions.iter_mut().zip(trees) {
+            p.bvh = bvh;
         }
         index.partitions = partitions;
         index

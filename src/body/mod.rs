@@ -16,6 +16,7 @@ pub use landmarks::{Landmark, LandmarkError, LandmarkKind, LandmarkOptions, Land
 pub use partition::{DetectionMethod, Partition, PartitionId, PartitionOptions, ResponseRule};
 pub use rings::{BodyRing, RingError};
 
+use crate::geom::{HeightBands, Plane, SectionLoop, section_mesh_banded};
 use crate::mesh::{Adjacency, MeshError, MeshReport, ObjError, TriMesh, obj, validate_and_repair};
 
 /// The body shipped with drape (MakeHuman, CC0), used by `body builtin`.
@@ -75,7 +76,8 @@ pub enum BodyError {
 pub struct BodyMesh {
     /// Name for messages.
     pub name: String,
-    /// The repaired mesh, outward-facing.
+    /// The repaired mesh, outward-facing. Code that changes it afterwards calls
+    /// [`Self::reindex`] (sections of a mesh changed without it are cut the slow way).
     pub mesh: TriMesh,
     /// Triangle adjacency.
     pub adjacency: Adjacency,
@@ -83,6 +85,8 @@ pub struct BodyMesh {
     pub report: MeshReport,
     /// Polygons with more than 3 corners triangulated on load.
     pub polygons_triangulated: usize,
+    /// The triangles by height, for horizontal sections (made on load, from `mesh`).
+    bands: HeightBands,
 }
 
 impl BodyMesh {
@@ -110,13 +114,26 @@ impl BodyMesh {
     fn from_obj(name: String, parsed: obj::ObjMesh) -> Result<Self, BodyError> {
         let mut mesh = parsed.mesh;
         let (report, adjacency) = validate_and_repair(&mut mesh, &name, &parsed.triangle_lines)?;
+        let bands = HeightBands::new(&mesh);
         Ok(Self {
             name,
             mesh,
             adjacency,
             report,
             polygons_triangulated: parsed.polygons_triangulated,
+            bands,
         })
+    }
+
+    /// Sorts the triangles by height again, after [`Self::mesh`] was changed.
+    pub fn reindex(&mut self) {
+        self.bands = HeightBands::new(&self.mesh);
+    }
+
+    /// The body's section by `plane` ([`section_mesh_banded`]: a horizontal plane looks only
+    /// at the triangles at its height).
+    pub fn section(&self, plane: &Plane) -> Vec<SectionLoop> {
+        section_mesh_banded(&self.mesh, &self.adjacency, &self.bands, plane)
     }
 
     /// Height (top minus floor), m.
@@ -169,7 +186,7 @@ impl Body {
 
 /// Landmark detection on a body mesh (errors carry the body name).
 pub fn find_landmarks(mesh: &BodyMesh, options: &LandmarkOptions) -> Result<Landmarks, BodyError> {
-    landmarks::detect_landmarks(&mesh.mesh, &mesh.adjacency, options).map_err(|source| BodyError::Landmarks {
+    landmarks::detect_landmarks(mesh, options).map_err(|source| BodyError::Landmarks {
         body: mesh.name.clone(),
         source,
     })
@@ -177,7 +194,7 @@ pub fn find_landmarks(mesh: &BodyMesh, options: &LandmarkOptions) -> Result<Land
 
 /// The landmark rings of a body.
 pub fn cut_rings(mesh: &BodyMesh, landmarks: &Landmarks) -> Result<Vec<BodyRing>, BodyError> {
-    rings::landmark_rings(&mesh.mesh, &mesh.adjacency, landmarks).map_err(|source| BodyError::Ring {
+    rings::landmark_rings(mesh, landmarks).map_err(|source| BodyError::Ring {
         body: mesh.name.clone(),
         source,
     })
@@ -189,7 +206,7 @@ pub fn build_partitions(
     landmarks: &Landmarks,
     options: &PartitionOptions,
 ) -> Result<Vec<Partition>, BodyError> {
-    partition::partitions(&mesh.mesh, &mesh.adjacency, landmarks, options).map_err(|source| BodyError::Ring {
+    partition::partitions(mesh, landmarks, options).map_err(|source| BodyError::Ring {
         body: mesh.name.clone(),
         source,
     })

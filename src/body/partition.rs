@@ -1,9 +1,9 @@
 //! Body partitions A-G (\[collide\] section 4.1, table 1): height bands between landmark
 //! rings, each with the collision test and the response rule its shape calls for.
 
+use super::BodyMesh;
 use super::landmarks::{LandmarkKind, Landmarks};
 use super::rings::{BodyRing, RingError, RingPick, pick_rings};
-use crate::mesh::{Adjacency, TriMesh};
 
 /// The seven partitions, bottom to top.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
@@ -163,11 +163,11 @@ pub fn partition_bounds(landmarks: &Landmarks, floor: f64, top: f64) -> [(Partit
 
 /// Builds the partitions: bounds, triangles (with margin) and boundary rings.
 pub fn partitions(
-    mesh: &TriMesh,
-    adjacency: &Adjacency,
+    body: &BodyMesh,
     landmarks: &Landmarks,
     options: &PartitionOptions,
 ) -> Result<Vec<Partition>, RingError> {
+    let mesh = &body.mesh;
     let Some((lo, hi)) = mesh.bounds() else {
         return Ok(Vec::new());
     };
@@ -202,17 +202,9 @@ pub fn partitions(
             _ => (upper_y, RingPick::Torso),
         };
         let name = |which: &str| format!("{}.{which}", id.letter());
-        let mut rings = pick_rings(
-            mesh,
-            adjacency,
-            landmarks,
-            (&name("lower"), None),
-            lower_ring_y,
-            lower_pick,
-        )?;
+        let mut rings = pick_rings(body, landmarks, (&name("lower"), None), lower_ring_y, lower_pick)?;
         rings.extend(pick_rings(
-            mesh,
-            adjacency,
+            body,
             landmarks,
             (&name("upper"), None),
             upper_ring_y,

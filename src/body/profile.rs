@@ -2,8 +2,8 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::geom::{Plane, polygon, section_mesh};
-use crate::mesh::{Adjacency, TriMesh};
+use super::BodyMesh;
+use crate::geom::{Plane, polygon};
 
 /// A closed horizontal section loop with its measures (2D coordinates are `(x, z)`).
 #[derive(Clone, Debug)]
@@ -73,8 +73,9 @@ impl MeasuredLoop {
 
 /// The closed, outer (not nested in another), non-degenerate loops of the body at height `y`.
 /// Degenerate means an area below `1e-9` of `scale^2` (a plane grazing a vertex).
-pub fn outer_loops(mesh: &TriMesh, adjacency: &Adjacency, y: f64, scale: f64) -> Vec<MeasuredLoop> {
-    let loops: Vec<MeasuredLoop> = section_mesh(mesh, adjacency, &Plane::horizontal(y))
+pub fn outer_loops(body: &BodyMesh, y: f64, scale: f64) -> Vec<MeasuredLoop> {
+    let loops: Vec<MeasuredLoop> = body
+        .section(&Plane::horizontal(y))
         .into_iter()
         .filter(|l| l.closed && l.points.len() >= 3)
         .map(|l| MeasuredLoop::new(l.points))

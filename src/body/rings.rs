@@ -4,9 +4,9 @@
 use glam::{DVec2, DVec3};
 use thiserror::Error;
 
+use super::BodyMesh;
 use super::landmarks::{LandmarkKind, Landmarks, Side};
 use super::profile::{MeasuredLoop, loop_at, outer_loops};
-use crate::mesh::{Adjacency, TriMesh};
 
 /// A closed body section at a landmark.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -67,16 +67,15 @@ pub enum RingPick {
 
 /// The section loops at height `y` picked as `pick` says, named after `name`.
 pub fn pick_rings(
-    mesh: &TriMesh,
-    adjacency: &Adjacency,
+    body: &BodyMesh,
     landmarks: &Landmarks,
     (name, kind): (&str, Option<LandmarkKind>),
     y: f64,
     pick: RingPick,
 ) -> Result<Vec<BodyRing>, RingError> {
-    let (lo, hi) = mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
+    let (lo, hi) = body.mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
     let scale = hi.y - lo.y;
-    let loops = outer_loops(mesh, adjacency, y, scale);
+    let loops = outer_loops(body, y, scale);
     let missing = || RingError {
         ring: name.to_string(),
         y,
@@ -107,12 +106,8 @@ pub fn pick_rings(
 
 /// The rings at the landmarks: ankle and knee (both legs), crotch (just above the legs
 /// join), hip, waist, bust, armpit (just below the arms join) and neck.
-pub fn landmark_rings(
-    mesh: &TriMesh,
-    adjacency: &Adjacency,
-    landmarks: &Landmarks,
-) -> Result<Vec<BodyRing>, RingError> {
-    let (lo, hi) = mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
+pub fn landmark_rings(body: &BodyMesh, landmarks: &Landmarks) -> Result<Vec<BodyRing>, RingError> {
+    let (lo, hi) = body.mesh.bounds().unwrap_or((DVec3::ZERO, DVec3::ZERO));
     let eps = (hi.y - lo.y) * 2e-3;
     let specs = [
         (LandmarkKind::Ankle, 0.0, RingPick::Legs),
@@ -127,14 +122,7 @@ pub fn landmark_rings(
     let mut rings = Vec::new();
     for (kind, offset, pick) in specs {
         let y = landmarks.height(kind) + offset;
-        rings.extend(pick_rings(
-            mesh,
-            adjacency,
-            landmarks,
-            (kind.name(), Some(kind)),
-            y,
-            pick,
-        )?);
+        rings.extend(pick_rings(body, landmarks, (kind.name(), Some(kind)), y, pick)?);
     }
     Ok(rings)
 }

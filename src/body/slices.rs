@@ -192,7 +192,7 @@ impl SliceStack {
         let slices = (0..count)
             .map(|i| {
                 let y = y0 + i as f64 * dy;
-                let loops = outer_loops(mesh, &body.mesh.adjacency, y, height);
+                let loops = outer_loops(&body.mesh, y, height);
                 let picked: Vec<usize> = if y < crotch {
                     match body.landmarks.legs_at(y) {
                         Some((l, r)) => {

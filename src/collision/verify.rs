@@ -65,10 +65,22 @@ pub struct VerifyReport {
     pub crossing_before: usize,
     /// Inside vertices detection did not report.
     pub missed: usize,
+    /// Of the missed, those on the skin: nearer to it than detection's surface tolerance
+    /// (neither in nor out for detection; the winding number calls them inside). The
+    /// counts below leave them out.
+    pub missed_on_skin: usize,
     /// Reported vertices that are not inside.
     pub false_hits: usize,
-    /// Of the missed, those tested line-line.
+    /// Of the missed off the skin, those tested line-line.
     pub missed_line_line: usize,
+    /// Of the missed off the skin, those detection skipped (not tested at all).
+    pub missed_untested: usize,
+    /// Of the missed off the skin, those tested point-face.
+    pub missed_point_face: usize,
+    /// Vertices whose verdict (hit or not) differs from a detection that tests every vertex
+    /// (no inert or patch skipping): what the skips changed (the session runner sets it;
+    /// [`compare`] leaves it 0).
+    pub skips_changed: usize,
     /// Of the false hits, those tested line-line.
     pub false_line_line: usize,
     /// Vertices inside after response (truth).
@@ -85,8 +97,15 @@ pub struct VerifyReport {
 }
 
 /// Compares detection (on the mesh of `before`) and quality (on the mesh of `after`) with
-/// the ground truth of both.
-pub fn compare(before: &GroundTruth, detection: &Detection, after: &GroundTruth, quality: &Quality) -> VerifyReport {
+/// the ground truth of both; `on_skin(v)` says whether vertex `v` lies on the skin, within
+/// detection's surface tolerance.
+pub fn compare(
+    before: &GroundTruth,
+    detection: &Detection,
+    after: &GroundTruth,
+    quality: &Quality,
+    on_skin: impl Fn(usize) -> bool,
+) -> VerifyReport {
     let mut reported = vec![false; before.inside.len()];
     for h in &detection.hits {
         if let Some(r) = reported.get_mut(h.vertex as usize) {
@@ -104,7 +123,15 @@ pub fn compare(before: &GroundTruth, detection: &Detection, after: &GroundTruth,
     for (v, (&truth, &said)) in before.inside.iter().zip(&reported).enumerate() {
         if truth && !said {
             report.missed += 1;
-            report.missed_line_line += usize::from(line(v));
+            if on_skin(v) {
+                report.missed_on_skin += 1;
+            } else {
+                match detection.methods.get(v).copied().flatten() {
+                    Some(DetectionMethod::LineLine) => report.missed_line_line += 1,
+                    Some(DetectionMethod::PointFace) => report.missed_point_face += 1,
+                    None => report.missed_untested += 1,
+                }
+            }
         }
         if said && !truth {
             report.false_hits += 1;
@@ -121,4 +148,17 @@ pub fn compare(before: &GroundTruth, detection: &Detection, after: &GroundTruth,
         .collect();
     report.quality_agrees = inside_after == quality.inside && crossing_after == quality.crossing;
     report
+}
+
+/// Vertices reported by one detection and not the other.
+pub fn changed_verdicts(a: &Detection, b: &Detection) -> usize {
+    let hits = |d: &Detection| {
+        let mut v: Vec<u32> = d.hits.iter().map(|h| h.vertex).collect();
+        v.sort_unstable();
+        v.dedup();
+        v
+    };
+    let (a, b) = (hits(a), hits(b));
+    let common = a.iter().filter(|v| b.binary_search(v).is_ok()).count();
+    a.len() + b.len() - 2 * common
 }

@@ -3,6 +3,7 @@
 pub mod chord_spline;
 pub mod closest;
 pub mod coons;
+pub mod height_bands;
 pub mod inside;
 pub mod plane;
 pub mod polygon;
@@ -13,6 +14,7 @@ pub mod spline;
 
 pub use chord_spline::{ChordSpline3, CurveEnds};
 pub use coons::{CoonsPatch, CornerMismatch, ParametricCurve};
+pub use height_bands::HeightBands;
 pub use plane::Plane;
-pub use section::{SectionLoop, section_mesh};
+pub use section::{SectionLoop, section_mesh, section_mesh_banded};
 pub use spline::{CubicSpline, EndCondition, SplineError};

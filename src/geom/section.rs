@@ -10,6 +10,7 @@
 use glam::DVec3;
 
 use super::Plane;
+use super::height_bands::HeightBands;
 use super::polygon;
 use crate::mesh::TriMesh;
 use crate::mesh::topology::{Adjacency, NO_NEIGHBOUR};
@@ -40,14 +41,48 @@ impl SectionLoop {
 /// horizontal plane, the front-most point). Loops come in the order of their first
 /// triangle, so the output is deterministic.
 pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec<SectionLoop> {
-    let distance: Vec<f64> = mesh.positions.iter().map(|p| plane.signed_distance(*p)).collect();
-    let positive: Vec<bool> = distance.iter().map(|d| *d >= 0.0).collect();
+    section_of(mesh, adjacency, plane, 0..mesh.triangles.len())
+}
+
+/// [`section_mesh`], the same loops bit for bit, looking only at the triangles `bands`
+/// lists at the plane's height when the plane is horizontal (normal exactly `+y`) and
+/// `bands` [fit](HeightBands::fit) the mesh; any other plane, or a mesh changed since its
+/// bands were made, is cut by [`section_mesh`]. With finite coordinates a horizontal plane at `y` gives a vertex the
+/// signed distance `p.y - y` exactly, so only triangles with `min_y < y <= max_y` are
+/// crossed, and the band of `y` lists every one of them.
+pub fn section_mesh_banded(
+    mesh: &TriMesh,
+    adjacency: &Adjacency,
+    bands: &HeightBands,
+    plane: &Plane,
+) -> Vec<SectionLoop> {
+    if plane.normal != DVec3::Y || !bands.fit(mesh) {
+        return section_mesh(mesh, adjacency, plane);
+    }
+    section_of(
+        mesh,
+        adjacency,
+        plane,
+        bands.at(plane.offset).iter().map(|&t| t as usize),
+    )
+}
+
+/// The section through the triangles `candidates` (ascending; a superset of the crossed
+/// ones).
+fn section_of(
+    mesh: &TriMesh,
+    adjacency: &Adjacency,
+    plane: &Plane,
+    candidates: impl Iterator<Item = usize>,
+) -> Vec<SectionLoop> {
+    let distance = |v: u32| plane.signed_distance(mesh.positions[v as usize]);
+    let positive = |v: u32| distance(v) >= 0.0;
     let crossed_edges = |t: usize| -> ([usize; 2], usize) {
         let tri = mesh.triangles[t];
         let mut found = [0usize; 2];
         let mut count = 0;
         for k in 0..3 {
-            if positive[tri[k] as usize] != positive[tri[(k + 1) % 3] as usize] && count < 2 {
+            if positive(tri[k]) != positive(tri[(k + 1) % 3]) && count < 2 {
                 found[count] = k;
                 count += 1;
             }
@@ -57,9 +92,11 @@ pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec
     let crossing = |t: usize, k: usize| -> DVec3 {
         let tri = mesh.triangles[t];
         let (a, b) = (tri[k], tri[(k + 1) % 3]);
-        let (lo, hi) = (a.min(b) as usize, a.max(b) as usize);
-        let s = distance[lo] / (distance[lo] - distance[hi]);
-        mesh.positions[lo] + (mesh.positions[hi] - mesh.positions[lo]) * s
+        let (lo, hi) = (a.min(b), a.max(b));
+        let (d_lo, d_hi) = (distance(lo), distance(hi));
+        let s = d_lo / (d_lo - d_hi);
+        let (p_lo, p_hi) = (mesh.positions[lo as usize], mesh.positions[hi as usize]);
+        p_lo + (p_hi - p_lo) * s
     };
     // Local edge of triangle `t` with the vertex pair of edge `k` of triangle `from`.
     let matching_edge = |t: usize, from: usize, k: usize| -> Option<usize> {
@@ -74,7 +111,7 @@ pub fn section_mesh(mesh: &TriMesh, adjacency: &Adjacency, plane: &Plane) -> Vec
 
     let mut visited = vec![false; mesh.triangles.len()];
     let mut loops = Vec::new();
-    for start in 0..mesh.triangles.len() {
+    for start in candidates {
         if visited[start] {
             continue;
         }

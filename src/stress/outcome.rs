@@ -50,8 +50,26 @@ pub struct Verified {
     pub vertices: usize,
     /// Garment edges checked, summed.
     pub edges: usize,
+    /// Vertices inside before the response (the truth), summed.
+    #[serde(default)]
+    pub inside: usize,
     /// Vertices inside before the response that detection did not report.
     pub missed: usize,
+    /// Of the missed, those on the skin (within detection's surface tolerance).
+    #[serde(default)]
+    pub missed_on_skin: usize,
+    /// Of the other missed, those tested line-line (the method's own error).
+    #[serde(default)]
+    pub missed_line_line: usize,
+    /// Of the other missed, those detection skipped untested.
+    #[serde(default)]
+    pub missed_untested: usize,
+    /// Of the other missed, those tested point-face.
+    #[serde(default)]
+    pub missed_point_face: usize,
+    /// Verdicts the inert and patch skips changed (against a detection testing every vertex).
+    #[serde(default)]
+    pub skips_changed: usize,
     /// Vertices detection reported that were not inside.
     pub false_hits: usize,
     /// Steps whose quality check did not find exactly the truth's inside vertices and
@@ -71,7 +89,13 @@ impl Verified {
         self.collisions += other.collisions;
         self.vertices += other.vertices;
         self.edges += other.edges;
+        self.inside += other.inside;
         self.missed += other.missed;
+        self.missed_on_skin += other.missed_on_skin;
+        self.missed_line_line += other.missed_line_line;
+        self.missed_point_face += other.missed_point_face;
+        self.missed_untested += other.missed_untested;
+        self.skips_changed += other.skips_changed;
         self.false_hits += other.false_hits;
         self.wrong_quality.extend(other.wrong_quality);
         self.partial_differs.extend(other.partial_differs);

@@ -82,8 +82,20 @@ pub struct VerifiedTotals {
     pub vertices: usize,
     /// Edges checked.
     pub edges: usize,
+    /// Vertices inside before the responses (the truth).
+    pub inside: usize,
     /// Detection's misses against the truth.
     pub missed: usize,
+    /// Of them, vertices on the skin.
+    pub missed_on_skin: usize,
+    /// Of the others, vertices tested line-line.
+    pub missed_line_line: usize,
+    /// Of the others, vertices skipped untested.
+    pub missed_untested: usize,
+    /// Of the others, vertices tested point-face.
+    pub missed_point_face: usize,
+    /// Verdicts the skips changed against a detection testing every vertex.
+    pub skips_changed: usize,
     /// Detection's false hits.
     pub false_hits: usize,
     /// Steps whose quality check disagreed with the truth.
@@ -106,7 +118,13 @@ impl VerifiedTotals {
             collisions: v.collisions,
             vertices: v.vertices,
             edges: v.edges,
+            inside: v.inside,
             missed: v.missed,
+            missed_on_skin: v.missed_on_skin,
+            missed_line_line: v.missed_line_line,
+            missed_point_face: v.missed_point_face,
+            missed_untested: v.missed_untested,
+            skips_changed: v.skips_changed,
             false_hits: v.false_hits,
             wrong_quality: v.wrong_quality.len(),
             partial_differs: v.partial_differs.len(),
@@ -301,14 +319,20 @@ impl Report {
         let v = &all.verified;
         if v.collisions > 0 {
             s.push_str(&format!(
-                "verified: {} collisions ({} vertices, {} edges) against the brute-force truth: detection missed {}, \
-                 false hits {}; the quality check wrong on {} steps, the partial check unlike a full one on {} steps; \
+                "verified: {} collisions ({} vertices, {} edges) against the brute-force truth: {} inside before the responses, detection missed {} \
+                 ({} on the skin; of the others {} tested line-line, {} skipped untested, {} tested point-face), false hits {}, verdicts the skips changed {}; the quality check wrong on {} steps, the partial check unlike a full one on {} steps; \
                  quality check ms median {:.2} (full {:.2}), max {:.2} (full {:.2}), {:.2}x the full check's time in all\n",
                 v.collisions,
                 v.vertices,
                 v.edges,
+                v.inside,
                 v.missed,
+                v.missed_on_skin,
+                v.missed_line_line,
+                v.missed_untested,
+                v.missed_point_face,
                 v.false_hits,
+                v.skips_changed,
                 v.wrong_quality,
                 v.partial_differs,
                 v.quality_ms.median,

@@ -562,7 +562,7 @@ fn verify_catches_a_vertex_planted_inside_the_body() {
     let before = ground_truth(body, &g.mesh.positions, &g.edges);
     let after = ground_truth(body, &planted, &g.edges);
     // The collision's own quality (of the clean mesh) is now wrong: verify says so.
-    let missed = compare(&before, &c.detection, &after, &c.quality);
+    let missed = compare(&before, &c.detection, &after, &c.quality, |_| false);
     assert_eq!(missed.inside_after, 1);
     assert_eq!(missed.crossing_after, incident.len(), "every edge at the plant crosses");
     assert!(!missed.quality_agrees);
@@ -577,7 +577,7 @@ fn verify_catches_a_vertex_planted_inside_the_body() {
         "depth {} vs {depth}",
         honest.max_depth_m
     );
-    assert!(compare(&before, &c.detection, &after, &honest).quality_agrees);
+    assert!(compare(&before, &c.detection, &after, &honest, |_| false).quality_agrees);
 }
 
 /// `drape run --verify` checks every collision step and writes the figures under `verify`

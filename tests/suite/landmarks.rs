@@ -74,6 +74,7 @@ fn analyse_scaled(scale: DVec3, offset: DVec3) -> Body {
     for p in &mut mesh.mesh.positions {
         *p = *p * scale + offset;
     }
+    mesh.reindex();
     Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).unwrap()
 }
 

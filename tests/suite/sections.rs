@@ -68,10 +68,9 @@ fn ellipsoid_girth_at_a_ring_is_the_ellipse() {
 #[test]
 fn real_body_has_one_torso_loop_at_the_waist_and_two_legs_at_the_knee() {
     let body = real_body();
-    let (mesh, adjacency) = (&body.mesh.mesh, &body.mesh.adjacency);
     let height = body.mesh.height();
     let waist_y = body.landmarks.height(LandmarkKind::Waist);
-    let waist_loops = outer_loops(mesh, adjacency, waist_y, height);
+    let waist_loops = outer_loops(&body.mesh, waist_y, height);
     let torso: Vec<_> = waist_loops
         .iter()
         .filter(|l| l.contains(body.landmarks.torso_at(waist_y).unwrap()))
@@ -84,7 +83,7 @@ fn real_body_has_one_torso_loop_at_the_waist_and_two_legs_at_the_knee() {
     // Whatever else the knee plane cuts (hands hang lower on some bodies), two loops hold
     // the two leg axes, one on each side of the body's middle.
     let knee_y = body.landmarks.height(LandmarkKind::Knee);
-    let knee_loops = outer_loops(mesh, adjacency, knee_y, height);
+    let knee_loops = outer_loops(&body.mesh, knee_y, height);
     let (l, r) = body.landmarks.legs_at(knee_y).unwrap();
     let left = knee_loops.iter().position(|lp| lp.contains(l)).expect("left leg");
     let right = knee_loops.iter().position(|lp| lp.contains(r)).expect("right leg");
@@ -112,5 +111,57 @@ fn body_sections_agree_with_an_independent_segment_soup() {
             .sum();
         let soup = soup_girth(mesh, y);
         assert!((walked - soup).abs() < 1e-9, "y={y}: walk {walked} soup {soup}");
+    }
+}
+
+#[test]
+fn banded_sections_equal_the_full_scan_on_every_shipped_body() {
+    // The body's horizontal sections look only at the triangles of one height band; the
+    // plain section scans every triangle. Both must give the same loops bit for bit at
+    // any height, through vertices (the ties) and off the body, and the band's loops must
+    // measure what an unchained segment soup over all triangles measures.
+    use drape::body::{BodyMesh, BodySource};
+    for path in super::common::shipped_bodies() {
+        let body = BodyMesh::load(&BodySource::File(path.clone()), 1.0).expect("loads");
+        let (lo, hi) = body.mesh.bounds().expect("bounds");
+        let mut heights: Vec<f64> = (0..=240).map(|k| lo.y + (hi.y - lo.y) * (k as f64 / 240.0)).collect();
+        heights.extend(body.mesh.positions.iter().step_by(97).map(|p| p.y));
+        heights.extend([lo.y - 0.1, hi.y + 0.1, f64::NAN]);
+        let mut cut = 0;
+        for &y in &heights {
+            let plane = Plane::horizontal(y);
+            let banded = body.section(&plane);
+            let full = section_mesh(&body.mesh, &body.adjacency, &plane);
+            assert_eq!(banded, full, "{}: y = {y}", path.display());
+            if y.is_finite() {
+                let walked: f64 = banded.iter().map(|l| l.length()).sum();
+                let soup = soup_girth(&body.mesh, y);
+                assert!(
+                    (walked - soup).abs() < 1e-9,
+                    "{}: y = {y}: {walked} vs {soup}",
+                    path.display()
+                );
+            }
+            cut += usize::from(!banded.is_empty());
+        }
+        assert!(cut > 240, "{}: only {cut} heights cut the body", path.display());
+        // A tilted plane is not banded: it is cut by the full scan.
+        let tilted = Plane::from_point_normal(0.5 * (lo + hi), DVec3::new(0.0, 1.0, 0.3));
+        assert_eq!(
+            body.section(&tilted),
+            section_mesh(&body.mesh, &body.adjacency, &tilted)
+        );
+        // A body moved after loading (without reindex) is still cut right, the slow way;
+        // after reindex, by its new bands.
+        let mut moved = body.clone();
+        for p in &mut moved.mesh.positions {
+            *p = *p * 1.1 + DVec3::new(0.0, 0.25, 0.0);
+        }
+        let plane = Plane::horizontal(0.5 * (lo.y + hi.y) * 1.1 + 0.25);
+        let full = section_mesh(&moved.mesh, &moved.adjacency, &plane);
+        assert!(!full.is_empty());
+        assert_eq!(moved.section(&plane), full);
+        moved.reindex();
+        assert_eq!(moved.section(&plane), full);
     }
 }

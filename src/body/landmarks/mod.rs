@@ -32,8 +32,9 @@ mod torso;
 use glam::{DVec2, DVec3};
 use thiserror::Error;
 
+use super::BodyMesh;
 use super::profile::{MeasuredLoop, loop_at};
-use crate::mesh::{Adjacency, TriMesh};
+use crate::mesh::TriMesh;
 use scan::{Scan, front_z_at, nearest};
 
 /// The kinds of landmark.
@@ -282,11 +283,8 @@ impl Landmarks {
 /// # Failures
 /// [`LandmarkError`] when a body event cannot be found (no legs apart, arms touching the
 /// torso all the way, no neck).
-pub fn detect_landmarks(
-    mesh: &TriMesh,
-    adjacency: &Adjacency,
-    options: &LandmarkOptions,
-) -> Result<Landmarks, LandmarkError> {
+pub fn detect_landmarks(body: &BodyMesh, options: &LandmarkOptions) -> Result<Landmarks, LandmarkError> {
+    let mesh = &body.mesh;
     let (lo, hi) = mesh.bounds().ok_or(LandmarkError::NoHeight)?;
     let height = hi.y - lo.y;
     if height.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
@@ -294,8 +292,7 @@ pub fn detect_landmarks(
     }
     let mid_x = mid_plane_x(mesh, lo.x, hi.x);
     let scan = Scan {
-        mesh,
-        adjacency,
+        body,
         floor: lo.y,
         height,
     };

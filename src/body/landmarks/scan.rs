@@ -4,9 +4,9 @@
 
 use glam::DVec2;
 
+use crate::body::BodyMesh;
 use crate::body::profile::{MeasuredLoop, outer_loops};
 use crate::convergence::Bisection;
-use crate::mesh::{Adjacency, TriMesh};
 
 /// The landmark heights found by bisection count as converged once known to this fraction
 /// of the body's height (a micrometre per metre).
@@ -21,8 +21,7 @@ pub(super) fn nearest<T>(items: &[T], y: f64, key: impl Fn(&T) -> f64) -> Option
 
 /// Horizontal sections of the body at chosen heights.
 pub(super) struct Scan<'a> {
-    pub(super) mesh: &'a TriMesh,
-    pub(super) adjacency: &'a Adjacency,
+    pub(super) body: &'a BodyMesh,
     /// The body's lowest `y`, m.
     pub(super) floor: f64,
     /// Its height, m.
@@ -32,7 +31,7 @@ pub(super) struct Scan<'a> {
 impl Scan<'_> {
     /// The outer loops of the section at height `y`.
     pub(super) fn loops(&self, y: f64) -> Vec<MeasuredLoop> {
-        outer_loops(self.mesh, self.adjacency, y, self.height)
+        outer_loops(self.body, y, self.height)
     }
 
     /// The height of level `k` of `levels` equal slabs (their middles).

@@ -10,7 +10,7 @@ use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, DimensionValue, Dimensions, FrameworkError, Layout, NamedPlane};
 use crate::garment::probe::BodyProbe;
 use crate::garment::ring::{GarmentRing, RingInput};
-use crate::geom::{Plane, section_mesh};
+use crate::geom::Plane;
 
 /// What a template's solve works with: the body, its probe, the dimensions the session set,
 /// the settings, and the dimensions reached so far. The helpers cut the body's sections,
@@ -72,31 +72,17 @@ impl BuildCtx<'_> {
     /// The torso's section loop at height `y` (ring `name`, for messages).
     pub fn torso_loop(&self, name: &str, y: f64) -> Result<Vec<DVec3>, FrameworkError> {
         let b = &self.body;
-        pick_rings(
-            &b.mesh.mesh,
-            &b.mesh.adjacency,
-            &b.landmarks,
-            (name, None),
-            y,
-            RingPick::Torso,
-        )
-        .map_err(|e| section_error(name, e.to_string()))
-        .map(|mut r| r.remove(0).points)
+        pick_rings(&b.mesh, &b.landmarks, (name, None), y, RingPick::Torso)
+            .map_err(|e| section_error(name, e.to_string()))
+            .map(|mut r| r.remove(0).points)
     }
 
     /// Both legs' section loops at height `y`, each with its side.
     pub fn leg_loops(&self, name: &str, y: f64) -> Result<Vec<(Side, Vec<DVec3>)>, FrameworkError> {
         let b = &self.body;
-        pick_rings(
-            &b.mesh.mesh,
-            &b.mesh.adjacency,
-            &b.landmarks,
-            (name, None),
-            y,
-            RingPick::Legs,
-        )
-        .map_err(|e| section_error(name, e.to_string()))
-        .map(|rings| rings.into_iter().map(|r| (r.side, r.points)).collect())
+        pick_rings(&b.mesh, &b.landmarks, (name, None), y, RingPick::Legs)
+            .map_err(|e| section_error(name, e.to_string()))
+            .map(|rings| rings.into_iter().map(|r| (r.side, r.points)).collect())
     }
 
     /// Builds ring `name` through every sub-step, meeting its girth target (the
@@ -136,7 +122,7 @@ impl BuildCtx<'_> {
     /// garment ring never reaches a neighbouring limb.
     pub fn limited_ease(&self, y: f64, raw: &[Vec<DVec3>], ease: f64) -> Ease {
         let b = &self.body;
-        let loops = section_mesh(&b.mesh.mesh, &b.mesh.adjacency, &Plane::horizontal(y));
+        let loops = b.mesh.section(&Plane::horizontal(y));
         let mine: Vec<DVec3> = raw.iter().flatten().copied().collect();
         let centre = mine.iter().sum::<DVec3>() / mine.len().max(1) as f64;
         let (mut left, mut right) = (ease, ease);

@@ -206,8 +206,20 @@ fn collide_garment(
         scope.timed("collision.verify", || {
             let before = collision::ground_truth(&body.mesh.mesh, &garment.mesh.positions, &garment.edges);
             let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges);
-            let mut report = collision::compare(&before, &collision.detection, &after, &collision.quality);
+            let surface = options.collision.detect.reach(index.height).surface;
+            let on_skin = |v: usize| {
+                let p = garment.mesh.positions[v];
+                index.nearest(p, f64::INFINITY).is_some_and(|n| n.distance <= surface)
+            };
+            let mut report = collision::compare(&before, &collision.detection, &after, &collision.quality, on_skin);
             report.full_check_agrees = collision.quality == full;
+            let unskipped = collision::detect(
+                index,
+                &garment.input(),
+                &options.collision.detect.clone().with_skipping(false),
+                &mut collision::DetectState::default(),
+            );
+            report.skips_changed = collision::changed_verdicts(&collision.detection, &unskipped);
             report
         })
     });

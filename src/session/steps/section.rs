@@ -6,7 +6,7 @@ use super::super::emit::StepScope;
 use super::super::error::StepError;
 use super::super::stage::{SectionCut, Stage};
 use super::super::state::SessionState;
-use crate::geom::{Plane, SectionLoop, section_mesh};
+use crate::geom::{Plane, SectionLoop};
 
 /// The figures of a section step.
 #[derive(Serialize)]
@@ -24,9 +24,7 @@ pub(super) fn run(
     y: f64,
 ) -> Result<(), StepError> {
     let body = &state.body.mesh;
-    let loops = scope.timed("section.cut", || {
-        section_mesh(&body.mesh, &body.adjacency, &Plane::horizontal(y))
-    });
+    let loops = scope.timed("section.cut", || body.section(&Plane::horizontal(y)));
     if loops.is_empty() {
         let (lo, hi) = body.mesh.bounds().map_or((0.0, 0.0), |(l, h)| (l.y, h.y));
         return Err(StepError::SectionMisses {
