@@ -63,7 +63,7 @@ def collision_table(steps, texts):
         v = s.get("verify", {})
         missed, false = v.get("missed", "?"), v.get("false_hits", "?")
         note = ""
-        if (missed or false) and missed == v.get("missed_line_line") and false == v.get("false_line_line"):
+        if (missed or false) and missed == v.get("missed_by", {}).get("line_line") and false == v.get("false_line_line"):
             note = ", all line-line"
         rounds = ", ".join(str(r) for r in s["crossing_edges_by_round"])
         rows.append(
@@ -241,8 +241,8 @@ def stress_verified():
     for name, t in [*sorted(out["bodies"].items()), ("all", out["overall"])]:
         v = t["verified"]
         rows.append(f"| {name.removesuffix('.obj')} | {v['collisions']} | {v['vertices']} / {v['edges']} | "
-                    f"{v['inside']} | {v['missed']}: {v['missed_on_skin']} / {v['missed_line_line']} / "
-                    f"{v['missed_untested']} / {v['missed_point_face']} | {v['false_hits']} | "
+                    f"{v['inside']} | {v['missed']}: {v['missed_by']['on_skin']} / {v['missed_by']['line_line']} / "
+                    f"{v['missed_by']['untested']} / {v['missed_by']['point_face']} | {v['false_hits']} | "
                     f"{v['skips_changed']} | {v['wrong_quality']} | {v['partial_differs']} | "
                     f"{v['quality_ms']['median']:.2f} / {v['full_quality_ms']['median']:.2f} | "
                     f"{v['time_ratio']:.2f}x |")

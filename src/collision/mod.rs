@@ -31,7 +31,7 @@ pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
 pub use reuse::{Reuse, Reused};
-pub use verify::{GroundTruth, VerifyReport, changed_verdicts, compare, ground_truth};
+pub use verify::{GroundTruth, Misses, VerifyReport, changed_verdicts, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};
 use crate::mesh::TriMesh;

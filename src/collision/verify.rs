@@ -56,6 +56,40 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
     GroundTruth { inside, crossing }
 }
 
+/// Detection's misses by cause.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct Misses {
+    /// On the skin: nearer to it than detection's surface tolerance (neither in nor out for
+    /// detection; the winding number calls them inside). The others leave them out.
+    pub on_skin: usize,
+    /// Tested line-line (the method's own error).
+    pub line_line: usize,
+    /// Skipped untested (inert or in a still patch).
+    pub untested: usize,
+    /// Tested point-face.
+    pub point_face: usize,
+}
+
+impl Misses {
+    /// Adds `other`'s counts.
+    pub fn add(&mut self, other: &Misses) {
+        self.on_skin += other.on_skin;
+        self.line_line += other.line_line;
+        self.untested += other.untested;
+        self.point_face += other.point_face;
+    }
+}
+
+impl std::fmt::Display for Misses {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} on the skin; of the others line-line {}, skipped {}, point-face {}",
+            self.on_skin, self.line_line, self.untested, self.point_face
+        )
+    }
+}
+
 /// Detection and quality checked against the ground truth.
 #[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct VerifyReport {
@@ -65,24 +99,16 @@ pub struct VerifyReport {
     pub crossing_before: usize,
     /// Inside vertices detection did not report.
     pub missed: usize,
-    /// Of the missed, those on the skin: nearer to it than detection's surface tolerance
-    /// (neither in nor out for detection; the winding number calls them inside). The
-    /// counts below leave them out.
-    pub missed_on_skin: usize,
+    /// The missed by cause.
+    pub missed_by: Misses,
     /// Reported vertices that are not inside.
     pub false_hits: usize,
-    /// Of the missed off the skin, those tested line-line.
-    pub missed_line_line: usize,
-    /// Of the missed off the skin, those detection skipped (not tested at all).
-    pub missed_untested: usize,
-    /// Of the missed off the skin, those tested point-face.
-    pub missed_point_face: usize,
+    /// Of the false hits, those tested line-line.
+    pub false_line_line: usize,
     /// Vertices whose verdict (hit or not) differs from a detection that tests every vertex
     /// (no inert or patch skipping): what the skips changed (the session runner sets it;
     /// [`compare`] leaves it 0).
     pub skips_changed: usize,
-    /// Of the false hits, those tested line-line.
-    pub false_line_line: usize,
     /// Vertices inside after response (truth).
     pub inside_after: usize,
     /// Edges crossing after response (truth).
@@ -123,15 +149,13 @@ pub fn compare(
     for (v, (&truth, &said)) in before.inside.iter().zip(&reported).enumerate() {
         if truth && !said {
             report.missed += 1;
-            if on_skin(v) {
-                report.missed_on_skin += 1;
-            } else {
-                match detection.methods.get(v).copied().flatten() {
-                    Some(DetectionMethod::LineLine) => report.missed_line_line += 1,
-                    Some(DetectionMethod::PointFace) => report.missed_point_face += 1,
-                    None => report.missed_untested += 1,
-                }
-            }
+            let by = &mut report.missed_by;
+            *match (on_skin(v), detection.methods.get(v).copied().flatten()) {
+                (true, _) => &mut by.on_skin,
+                (false, Some(DetectionMethod::LineLine)) => &mut by.line_line,
+                (false, Some(DetectionMethod::PointFace)) => &mut by.point_face,
+                (false, None) => &mut by.untested,
+            } += 1;
         }
         if said && !truth {
             report.false_hits += 1;

@@ -5,6 +5,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use crate::collision::Misses;
 use crate::convergence::{self, Tallies};
 use crate::session::{RunOptions, Shortfall, parse_session, run_session};
 
@@ -55,18 +56,9 @@ pub struct Verified {
     pub inside: usize,
     /// Vertices inside before the response that detection did not report.
     pub missed: usize,
-    /// Of the missed, those on the skin (within detection's surface tolerance).
+    /// The missed by cause.
     #[serde(default)]
-    pub missed_on_skin: usize,
-    /// Of the other missed, those tested line-line (the method's own error).
-    #[serde(default)]
-    pub missed_line_line: usize,
-    /// Of the other missed, those detection skipped untested.
-    #[serde(default)]
-    pub missed_untested: usize,
-    /// Of the other missed, those tested point-face.
-    #[serde(default)]
-    pub missed_point_face: usize,
+    pub missed_by: Misses,
     /// Verdicts the inert and patch skips changed (against a detection testing every vertex).
     #[serde(default)]
     pub skips_changed: usize,
@@ -91,10 +83,7 @@ impl Verified {
         self.edges += other.edges;
         self.inside += other.inside;
         self.missed += other.missed;
-        self.missed_on_skin += other.missed_on_skin;
-        self.missed_line_line += other.missed_line_line;
-        self.missed_point_face += other.missed_point_face;
-        self.missed_untested += other.missed_untested;
+        self.missed_by.add(&other.missed_by);
         self.skips_changed += other.skips_changed;
         self.false_hits += other.false_hits;
         self.wrong_quality.extend(other.wrong_quality);

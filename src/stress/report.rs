@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use serde::{Deserialize, Serialize};
 
 use super::outcome::{SessionOutcome, Verified};
+use crate::collision::Misses;
 use crate::convergence::{LOOPS, Tallies, merge_into};
 
 /// One session's record.
@@ -86,14 +87,8 @@ pub struct VerifiedTotals {
     pub inside: usize,
     /// Detection's misses against the truth.
     pub missed: usize,
-    /// Of them, vertices on the skin.
-    pub missed_on_skin: usize,
-    /// Of the others, vertices tested line-line.
-    pub missed_line_line: usize,
-    /// Of the others, vertices skipped untested.
-    pub missed_untested: usize,
-    /// Of the others, vertices tested point-face.
-    pub missed_point_face: usize,
+    /// Of them, by cause.
+    pub missed_by: Misses,
     /// Verdicts the skips changed against a detection testing every vertex.
     pub skips_changed: usize,
     /// Detection's false hits.
@@ -120,10 +115,7 @@ impl VerifiedTotals {
             edges: v.edges,
             inside: v.inside,
             missed: v.missed,
-            missed_on_skin: v.missed_on_skin,
-            missed_line_line: v.missed_line_line,
-            missed_point_face: v.missed_point_face,
-            missed_untested: v.missed_untested,
+            missed_by: v.missed_by,
             skips_changed: v.skips_changed,
             false_hits: v.false_hits,
             wrong_quality: v.wrong_quality.len(),
@@ -320,17 +312,14 @@ impl Report {
         if v.collisions > 0 {
             s.push_str(&format!(
                 "verified: {} collisions ({} vertices, {} edges) against the brute-force truth: {} inside before the responses, detection missed {} \
-                 ({} on the skin; of the others {} tested line-line, {} skipped untested, {} tested point-face), false hits {}, verdicts the skips changed {}; the quality check wrong on {} steps, the partial check unlike a full one on {} steps; \
+                 ({}), false hits {}, verdicts the skips changed {}; the quality check wrong on {} steps, the partial check unlike a full one on {} steps; \
                  quality check ms median {:.2} (full {:.2}), max {:.2} (full {:.2}), {:.2}x the full check's time in all\n",
                 v.collisions,
                 v.vertices,
                 v.edges,
                 v.inside,
                 v.missed,
-                v.missed_on_skin,
-                v.missed_line_line,
-                v.missed_untested,
-                v.missed_point_face,
+                v.missed_by,
                 v.false_hits,
                 v.skips_changed,
                 v.wrong_quality,

@@ -193,15 +193,12 @@ impl RerunLogger {
         self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
             format!(
-                "; verified by brute force: {} inside before ({} missed, {} false hits; line-line {} and {}; {} missed on the skin, {} untested, {} point-face; verdicts the skips changed {}), {} inside and {} crossing after, quality agrees: {}, equals a full check: {}",
+                "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside and {} crossing after, quality agrees: {}, equals a full check: {}",
                 v.inside_before,
                 v.missed,
+                v.missed_by,
                 v.false_hits,
-                v.missed_line_line,
                 v.false_line_line,
-                v.missed_on_skin,
-                v.missed_untested,
-                v.missed_point_face,
                 v.skips_changed,
                 v.inside_after,
                 v.crossing_after,

@@ -208,7 +208,7 @@ fn verified_stress_sessions_on_every_shipped_body_agree_with_the_truth() {
         // The inert and patch skips give the verdicts a detection testing every vertex
         // gives, and the exact point-face test misses nothing off the skin.
         assert_eq!(
-            (v.skips_changed, v.missed_point_face),
+            (v.skips_changed, v.missed_by.point_face),
             (0, 0),
             "{}: {v:?}",
             body.display()

@@ -94,14 +94,11 @@ impl StageSink for Progress {
         }
         if let Some(v) = &outcome.verify {
             eprintln!(
-                "  step {} verify: truth {} inside before, detection missed {} ({} on the skin; line-line {}, skipped {}, point-face {}), false hits {} (line-line {}), verdicts the skips changed {}; after: {} inside, {} crossing; quality agrees: {}, equals a full check: {}",
+                "  step {} verify: truth {} inside before, detection missed {} ({}), false hits {} (line-line {}), verdicts the skips changed {}; after: {} inside, {} crossing; quality agrees: {}, equals a full check: {}",
                 info.step,
                 v.inside_before,
                 v.missed,
-                v.missed_on_skin,
-                v.missed_line_line,
-                v.missed_untested,
-                v.missed_point_face,
+                v.missed_by,
                 v.false_hits,
                 v.false_line_line,
                 v.skips_changed,
