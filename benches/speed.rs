@@ -4,7 +4,8 @@
 //! `cargo bench --bench speed` prints, every figure on one worker thread (`--threads N` for
 //! more), medians of repeated runs timed here:
 //!
-//! 1. the body index build (pseudo-normals, the BVHs, the shell, the slices);
+//! 1. the body index build (pseudo-normals, the BVHs, the shell, the slices), and the same
+//!    index read back from its cache file;
 //! 2. for the demo's tight jumpsuit (waist +4 cm, ease 4 mm) at resolutions 3, 6, 12 and 24
 //!    and for its M1 (every patch refined once): cold detection (a fresh state, every
 //!    vertex tested by its partition's test), the exact signed distance of every vertex
@@ -23,6 +24,7 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use drape::body::index_cache::{CacheOutcome, IndexCache};
 use drape::body::{Body, BodyMesh, LandmarkOptions, PartitionOptions};
 use drape::collision::{
     BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, collide, detect, quality,
@@ -118,6 +120,28 @@ fn export(dir: &Path, name: &str, body: &TriMesh, points: &[DVec3], signed: &[f6
     );
 }
 
+/// The body index read back from a cache file (written first, in a fresh folder), ms.
+fn cache_read_ms(body: &Body, runs: usize) -> f64 {
+    let slices = drape::collision::SliceOptions::default();
+    let dir = std::env::temp_dir().join(format!("drape-speed-cache-{}", std::process::id()));
+    let cache = IndexCache::new(&dir);
+    let (_, first) = cache.load_or_build(body, &slices);
+    assert!(
+        matches!(first, CacheOutcome::Built { write_error: None, .. }),
+        "the cache was written: {first}"
+    );
+    let ms = median_ms(runs, || {
+        let (index, outcome) = cache.load_or_build(body, &slices);
+        assert!(
+            matches!(outcome, CacheOutcome::Read(_)),
+            "read from the cache: {outcome}"
+        );
+        black_box(index);
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+    ms
+}
+
 struct Args {
     export: Option<PathBuf>,
     json: Option<PathBuf>,
@@ -158,8 +182,9 @@ fn main() {
     let probe = BodyProbe::from_index(index_build.expect("built"));
     let index = probe.index();
     let body_mesh = &body.mesh.mesh;
+    let cached_ms = cache_read_ms(&body, runs.min(5));
     println!(
-        "# drape speed, {} thread(s): body {} triangles, index build {index_ms:.1} ms\n",
+        "# drape speed, {} thread(s): body {} triangles, index build {index_ms:.1} ms, read from the cache {cached_ms:.1} ms\n",
         drape::par::threads(),
         body_mesh.triangles.len()
     );
@@ -277,7 +302,7 @@ fn main() {
     if let Some(path) = &args.json {
         let out = json!({
             "threads": drape::par::threads(), "body_triangles": body_mesh.triangles.len(),
-            "index_build_ms": index_ms, "garments": rows, "body_scaling": scaling,
+            "index_build_ms": index_ms, "index_cached_ms": cached_ms, "garments": rows, "body_scaling": scaling,
         });
         std::fs::write(path, serde_json::to_string_pretty(&out).expect("json")).expect("writes the json");
     }

@@ -51,7 +51,7 @@ impl Nearest {
 }
 
 /// One partition's triangles and their BVH.
-#[derive(Debug)]
+#[derive(Debug, serde::Serialize, serde::Deserialize)]
 pub struct PartitionIndex {
     /// Which partition.
     pub id: PartitionId,
@@ -65,10 +65,13 @@ pub struct PartitionIndex {
     pub response: ResponseRule,
     /// Body triangles (with the margin band), ascending.
     pub triangles: Vec<u32>,
+    /// Stored apart by the cache (see [`BodyIndex::trees`]).
+    #[serde(skip)]
     bvh: Bvh,
 }
 
 /// The body prepared for collision.
+#[derive(serde::Serialize, serde::Deserialize)]
 pub struct BodyIndex {
     /// Vertex positions, m (world frame).
     pub positions: Vec<DVec3>,
@@ -89,6 +92,8 @@ pub struct BodyIndex {
     /// Which triangles lie inside another part of the body (see [`super::shell`]); the
     /// nearest-point and ray queries see only the others.
     pub shell: Shell,
+    /// The trees are stored apart by the cache (see [`Self::trees`]).
+    #[serde(skip)]
     whole: Bvh,
     /// Triangle of each leaf of `whole`.
     leaves: Vec<u32>,
@@ -97,7 +102,10 @@ pub struct BodyIndex {
     /// counted along rays instead.
     tangled: Vec<bool>,
     /// Every triangle (buried ones too), for those counts; only on a body with buried triangles.
+    #[serde(skip)]
     all: Option<Bvh>,
+    /// Whether `all` is there (kept with the rest when the trees are stored apart).
+    has_all: bool,
     slack: f64,
 }
 
@@ -245,6 +253,7 @@ impl BodyIndex {
             leaves: (0..boxes.len() as u32).collect(),
             tangled: Vec::new(),
             all: None,
+            has_all: false,
             slack: 1e-5 * height,
         };
         let mut overlapping = Vec::new();
@@ -275,6 +284,7 @@ impl BodyIndex {
                 let kept: Vec<Aabb> = index.leaves.iter().map(|&t| boxes[t as usize]).collect();
                 let shell = Bvh::from_leaves(BvhBuildStrategy::Binned, &kept);
                 index.all = Some(std::mem::replace(&mut index.whole, shell));
+                index.has_all = true;
                 for p in &mut partitions {
                     p.triangles.retain(|&t| !index.shell.buried[t as usize]);
                 }
@@ -291,6 +301,40 @@ impl BodyIndex {
         }
         index.partitions = partitions;
         index
+    }
+
+    /// Every tree of the index, in a fixed order (the shell's, every triangle's when some are
+    /// buried, then each partition's): the cache stores them apart from the rest, which
+    /// serializes without them.
+    pub(super) fn trees(&self) -> Vec<&Bvh> {
+        let mut out = vec![&self.whole];
+        out.extend(self.all.as_ref());
+        out.extend(self.partitions.iter().map(|p| &p.bvh));
+        out
+    }
+
+    /// How many trees [`Self::trees`] gives.
+    pub(super) fn tree_count(&self) -> usize {
+        1 + usize::from(self.has_all) + self.partitions.len()
+    }
+
+    /// Puts back the trees of an index deserialized without them, in the order of
+    /// [`Self::trees`]; `false` (and the index unchanged) if their count is wrong.
+    pub(super) fn set_trees(&mut self, trees: Vec<Bvh>) -> bool {
+        if trees.len() != self.tree_count() {
+            return false;
+        }
+        let mut trees = trees.into_iter();
+        if let Some(whole) = trees.next() {
+            self.whole = whole;
+        }
+        if self.has_all {
+            self.all = trees.next();
+        }
+        for (p, bvh) in self.partitions.iter_mut().zip(trees) {
+            p.bvh = bvh;
+        }
+        true
     }
 
     /// The corners of triangle `t`.

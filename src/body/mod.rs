@@ -1,6 +1,7 @@
 //! The body: mesh loading and validation, landmarks, section rings, partitions A-G.
 
 pub mod index;
+pub mod index_cache;
 pub mod landmarks;
 pub mod partition;
 pub mod profile;

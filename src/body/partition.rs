@@ -6,7 +6,7 @@ use super::landmarks::{LandmarkKind, Landmarks};
 use super::rings::{BodyRing, RingError, RingPick, pick_rings};
 
 /// The seven partitions, bottom to top.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize, serde::Deserialize)]
 pub enum PartitionId {
     /// Legs.
     A,
@@ -75,7 +75,7 @@ impl PartitionId {
 }
 
 /// Collision test of a partition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DetectionMethod {
     /// The vertex's short normal segment against the body triangles.
@@ -85,7 +85,7 @@ pub enum DetectionMethod {
 }
 
 /// Response direction rule of a partition.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ResponseRule {
     /// Along the ray from the ring's global or local centre (legs, crotch, hip).

@@ -30,7 +30,7 @@ use crate::mesh::topology::NO_NEIGHBOUR;
 use crate::par::par_map;
 
 /// Which triangles of a body are buried, and how many cross another part.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub struct Shell {
     /// Per triangle: it lies inside another part of the body.
     pub buried: Vec<bool>,

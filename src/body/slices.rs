@@ -38,7 +38,7 @@ impl Default for SliceOptions {
 }
 
 /// Which ring centres a slice keeps.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum CentreChoice {
     /// A local centre lies farther than `W / 2`: global and local centres.
@@ -50,7 +50,7 @@ pub enum CentreChoice {
 }
 
 /// The centres of one ring.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Centres {
     /// Midpoint of the left and right extremes, `(x, z)`, m.
     pub global: DVec2,
@@ -93,7 +93,7 @@ impl Centres {
 }
 
 /// One closed loop of a slice, counter-clockwise in `(x, z)`.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Loop2 {
     /// Points `(x, z)`, m, not repeated at the end.
     pub points: Vec<DVec2>,
@@ -109,7 +109,7 @@ impl Loop2 {
 }
 
 /// The body's section at one height.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Slice {
     /// Height, m.
     pub y: f64,
@@ -121,7 +121,7 @@ pub struct Slice {
 }
 
 /// Slices from the floor to the top of the highest partition that needs them.
-#[derive(Clone, Debug, PartialEq, Default)]
+#[derive(Clone, Debug, PartialEq, Default, serde::Serialize, serde::Deserialize)]
 pub struct SliceStack {
     /// Height of the first slice, m.
     pub y0: f64,

@@ -112,6 +112,11 @@ impl StepScope<'_, '_, '_> {
         self.shortfalls.push(Shortfall::Refused(message.to_string()));
     }
 
+    /// Adds a note to the step's metrics (see [`StepMetrics::notes`]).
+    pub(crate) fn note(&mut self, note: String) {
+        self.metrics.notes.push(note);
+    }
+
     /// Records a group of figures (see [`StepMetrics::record`]).
     pub(crate) fn record<T: Serialize + ?Sized>(&mut self, figures: &T) {
         self.metrics.record(figures);

@@ -22,6 +22,10 @@ pub struct StepMetrics {
     pub figures: Map<String, Value>,
     /// The error that stopped this step, if any.
     pub error: Option<String>,
+    /// What the step says about how it ran that is not a figure of its result (where the
+    /// body index came from, say): printed with the progress, kept in `--metrics`, never
+    /// logged to the recording.
+    pub notes: Vec<String>,
 }
 
 impl StepMetrics {
@@ -53,6 +57,9 @@ impl StepMetrics {
         object.insert("timings_ms".into(), Value::Object(timings));
         for (k, v) in &self.figures {
             object.insert(k.clone(), v.clone());
+        }
+        if !self.notes.is_empty() {
+            object.insert("notes".into(), self.notes.clone().into());
         }
         if let Some(e) = &self.error {
             object.insert("error".into(), e.clone().into());

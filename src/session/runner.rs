@@ -35,6 +35,8 @@ pub struct RunOptions {
     /// do not run, an `interrupted` stage says where it stopped, and the report has
     /// [`RunReport::interrupted`].
     pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// Where body indexes are kept between runs (`--index-cache`); `None`: built every run.
+    pub index_cache: Option<crate::body::index_cache::IndexCache>,
 }
 
 /// What a run produced.

@@ -7,6 +7,7 @@ mod coons;
 mod ease;
 mod fuzz;
 mod garment;
+mod index_cache;
 mod interrupt;
 mod landmarks;
 mod m1;

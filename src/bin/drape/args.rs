@@ -29,6 +29,14 @@ pub(crate) struct Cli {
     /// truth) [default: one per core]. Results are the same, bit for bit, for any number.
     #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=16))]
     pub(crate) threads: Option<u16>,
+    /// Where body indexes are kept between runs (one file per body, about 6 MB), so that
+    /// a body's next session reads its index instead of building it [default: the user
+    /// cache folder, ~/.cache/drape/index on Linux].
+    #[arg(long, global = true, value_name = "DIR")]
+    pub(crate) index_cache: Option<PathBuf>,
+    /// Build the body index every run: read and write no index cache.
+    #[arg(long, global = true, conflicts_with = "index_cache")]
+    pub(crate) no_index_cache: bool,
 }
 
 /// The subcommands.

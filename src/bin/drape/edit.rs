@@ -43,6 +43,7 @@ pub(crate) fn edit(args: &EditArgs) -> Result<ExitCode> {
     let mut sinks: Vec<&mut dyn StageSink> = vec![&mut progress, &mut logger];
     let options = RunOptions {
         max_input_bytes: crate::max_input_bytes(),
+        index_cache: crate::index_cache(),
         ..RunOptions::default()
     };
     let mut live = match LiveSession::start(&session, options, &mut sinks) {

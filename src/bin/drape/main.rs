@@ -21,6 +21,7 @@ use std::process::ExitCode;
 
 use anyhow::Context as _;
 use clap::Parser as _;
+use drape::body::index_cache::IndexCache;
 use drape::session::{DEMO_SESSION, DEMO_SESSION_NAME, Session, parse_session};
 
 use args::{Cli, Command, RunArgs};
@@ -35,6 +36,12 @@ fn main() -> ExitCode {
     if let Some(n) = cli.threads {
         drape::par::set_threads(usize::from(n));
     }
+    let cache = match (cli.no_index_cache, &cli.index_cache) {
+        (true, _) => None,
+        (false, Some(dir)) => Some(IndexCache::new(dir)),
+        (false, None) => IndexCache::default_dir().map(IndexCache::new),
+    };
+    let _ = INDEX_CACHE.set(cache);
     let result = match cli.command {
         None => run::run(RunArgs::default()),
         Some(Command::Run(args)) => run::run(args),
@@ -63,6 +70,14 @@ static MAX_INPUT_BYTES: std::sync::atomic::AtomicU64 =
 /// The largest input file read, bytes.
 fn max_input_bytes() -> u64 {
     MAX_INPUT_BYTES.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// The body index cache of this run (`--index-cache`, `--no-index-cache`).
+static INDEX_CACHE: std::sync::OnceLock<Option<IndexCache>> = std::sync::OnceLock::new();
+
+/// Where this run keeps body indexes (`None`: built every run).
+fn index_cache() -> Option<IndexCache> {
+    INDEX_CACHE.get().cloned().flatten()
 }
 
 /// Reads and parses a session file (a regular file within the input limit), or the demo; a

@@ -28,6 +28,9 @@ impl StageSink for Progress {
                     .sum();
                 // An empty sum is -0.0.
                 let (compute, log) = (compute + 0.0, log + 0.0);
+                for note in &m.notes {
+                    eprintln!("  step {} {note}", info.step);
+                }
                 eprintln!(
                     "  step {} {:<10} done: compute {compute:8.1} ms, logging {log:6.1} ms",
                     info.step, info.op

@@ -52,6 +52,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         verify: args.verify,
         max_input_bytes: crate::max_input_bytes(),
         stop: Some(stop.clone()),
+        index_cache: crate::index_cache(),
         ..RunOptions::default()
     };
     if args.brute_force {

@@ -143,8 +143,17 @@ pub(super) fn body_probe<'p>(
     cx: &StepContext<'_>,
 ) -> &'p BodyProbe {
     slot.get_or_insert_with(|| {
-        scope.timed("body.index", || {
-            BodyProbe::from_index(BodyIndex::new(body, &cx.options.collision.slices))
-        })
+        let slices = &cx.options.collision.slices;
+        let (index, outcome) = scope.timed("body.index", || match &cx.options.index_cache {
+            Some(cache) => {
+                let (index, outcome) = cache.load_or_build(body, slices);
+                (index, Some(outcome))
+            }
+            None => (BodyIndex::new(body, slices), None),
+        });
+        if let Some(outcome) = outcome {
+            scope.note(outcome.to_string());
+        }
+        BodyProbe::from_index(index)
     })
 }
