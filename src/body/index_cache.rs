@@ -38,7 +38,7 @@ const FORMAT: u32 = 1;
 const HEADER: usize = 8 + 4 + 8 + 8 + 8;
 /// The sources' fingerprint (see `build.rs`).
 const SOURCE: &str = env!("DRAPE_SOURCE_FINGERPRINT");
-/// Index files the folder keeps (the most recently used; about 6 MB each for a
+/// Index files the folder keeps (the most recently used; about 10 MB each for a
 /// 27,000-triangle body).
 pub const KEEP: usize = 16;
 

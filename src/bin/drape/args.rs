@@ -29,7 +29,7 @@ pub(crate) struct Cli {
     /// truth) [default: one per core]. Results are the same, bit for bit, for any number.
     #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u16).range(1..=16))]
     pub(crate) threads: Option<u16>,
-    /// Where body indexes are kept between runs (one file per body, about 6 MB), so that
+    /// Where body indexes are kept between runs (one file per body, about 10 MB), so that
     /// a body's next session reads its index instead of building it [default: the user
     /// cache folder, ~/.cache/drape/index on Linux].
     #[arg(long, global = true, value_name = "DIR")]
