@@ -6,6 +6,19 @@ use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions}
 use drape::mesh::TriMesh;
 use glam::DVec3;
 
+/// The user cache folder the binary sees in tests (`XDG_CACHE_HOME`): one under the test
+/// target folder, so that a test run never reads or fills the user's own index cache.
+pub fn cache_home() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cache-home")
+}
+
+/// The `drape` binary, with [`cache_home`] for its cache folder.
+pub fn drape_cli() -> std::process::Command {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_drape"));
+    command.env("XDG_CACHE_HOME", cache_home());
+    command
+}
+
 /// The shipped real body, analysed once per test run.
 pub fn real_body() -> &'static Body {
     static BODY: OnceLock<Body> = OnceLock::new();

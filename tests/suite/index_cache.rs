@@ -254,3 +254,81 @@ fn a_session_gives_the_same_figures_and_garment_with_its_index_built_or_read() {
         );
     }
 }
+
+/// The files of `dir` (none when it does not exist).
+fn files_in(dir: &Path) -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = std::fs::read_dir(dir)
+        .map(|d| d.flatten().map(|e| e.path()).collect())
+        .unwrap_or_default();
+    out.sort();
+    out
+}
+
+/// `drape run` of a short session with `args`: the notes of its steps (from `--metrics`).
+fn cli_notes(folder: &Path, args: &[&str]) -> Vec<String> {
+    let session = folder.join("short.drape");
+    std::fs::write(
+        &session,
+        "drape 1\nbody builtin\nunits m\nlog detail=metrics\ngarment jumpsuit fit=tight resolution=3\n",
+    )
+    .expect("session written");
+    let metrics = folder.join("metrics.json");
+    let out = super::common::drape_cli()
+        .args(args)
+        .arg("run")
+        .arg(&session)
+        .arg("--save")
+        .arg(folder.join("short.rrd"))
+        .arg("--metrics")
+        .arg(&metrics)
+        .output()
+        .expect("drape runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let steps: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(&metrics).expect("metrics written")).expect("JSON");
+    steps
+        .iter()
+        .filter_map(|s| s.get("notes").and_then(|n| n.as_array()).cloned())
+        .flatten()
+        .filter_map(|n| n.as_str().map(str::to_string))
+        .collect()
+}
+
+#[test]
+fn the_command_line_reads_writes_or_skips_the_cache_as_told() {
+    let folder = Folder::new("index-cache-cli");
+    std::fs::create_dir_all(&folder.0).expect("folder");
+    let cache = folder.0.join("cache");
+    let cache_arg = cache.to_str().expect("utf-8 path");
+    // --no-index-cache: no note, and nothing written anywhere (the tests' user cache folder
+    // is checked before and after).
+    let default_dir = super::common::cache_home().join("drape").join("index");
+    let before = files_in(&default_dir);
+    assert!(cli_notes(&folder.0, &["--no-index-cache"]).is_empty());
+    assert_eq!(files_in(&default_dir), before, "--no-index-cache wrote to the cache");
+    // --index-cache DIR: built and written on the first run, read on the second.
+    let first = cli_notes(&folder.0, &["--index-cache", cache_arg]);
+    assert!(
+        first.len() == 1 && first[0].starts_with("body index built and cached"),
+        "{first:?}"
+    );
+    let written = files_in(&cache);
+    assert_eq!(written.len(), 1, "{written:?}");
+    assert!(written[0].extension().is_some_and(|e| e == "index"), "{written:?}");
+    let second = cli_notes(&folder.0, &["--index-cache", cache_arg]);
+    assert!(
+        second.len() == 1 && second[0].starts_with("body index read from the cache"),
+        "{second:?}"
+    );
+    assert_eq!(files_in(&cache), written);
+    // Without either flag: the user cache folder (here the tests' own).
+    let default = cli_notes(&folder.0, &[]);
+    assert_eq!(default.len(), 1, "{default:?}");
+    assert!(
+        files_in(&default_dir)
+            .iter()
+            .any(|f| f.extension().is_some_and(|e| e == "index")),
+        "nothing in {}",
+        default_dir.display()
+    );
+}

@@ -16,7 +16,7 @@ fn sigint_mid_run_leaves_a_recording_that_verifies_and_holds_the_finished_steps(
     }
     std::fs::write(&session, text).unwrap();
     let rrd = dir.join("long.rrd");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let mut child = super::common::drape_cli()
         .args(["run", session.to_str().unwrap(), "--save", rrd.to_str().unwrap()])
         .stderr(Stdio::piped())
         .spawn()

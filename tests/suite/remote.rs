@@ -25,7 +25,7 @@ fn scratch(name: &str) -> PathBuf {
 /// Starts `drape ARGS` and waits until it says it is serving late viewers; returns the
 /// child and what it printed.
 fn serving(args: &[&str]) -> (Child, String) {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let mut child = super::common::drape_cli()
         .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::null())
@@ -105,7 +105,7 @@ fn the_web_viewer_served_by_drape_shows_the_scene_in_headless_chromium() {
     );
     assert_eq!(code, Some(0));
     let plain = dir.join("plain.rrd");
-    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let out = super::common::drape_cli()
         .args(["run", "--save", plain.to_str().unwrap()])
         .output()
         .expect("drape runs");
@@ -144,7 +144,7 @@ fn a_viewer_that_goes_away_mid_edit_loses_nothing_from_the_file() {
     let rest = "drag waist.front by=0,0,-0.01\nundo\nset waist_girth +0.02\nquit\n";
     let live = dir.join("live.rrd");
     let url = format!("rerun+http://127.0.0.1:{port}/proxy");
-    let mut edit = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let mut edit = super::common::drape_cli()
         .args(["edit", "--connect", &url, "--save", live.to_str().unwrap()])
         .stdin(Stdio::piped())
         .stderr(Stdio::piped())
@@ -164,7 +164,7 @@ fn a_viewer_that_goes_away_mid_edit_loses_nothing_from_the_file() {
     assert!(stderr.contains("step 5 set"), "the last line ran: {stderr}");
 
     let alone = dir.join("alone.rrd");
-    let mut edit = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let mut edit = super::common::drape_cli()
         .args(["edit", "--save", alone.to_str().unwrap()])
         .stdin(Stdio::piped())
         .stderr(Stdio::null())

@@ -122,10 +122,7 @@ fn drape_replay_passes_on_its_own_recording_and_fails_on_another_digest() {
     )
     .unwrap();
     let run = |args: &[&str]| {
-        let out = std::process::Command::new(env!("CARGO_BIN_EXE_drape"))
-            .args(args)
-            .output()
-            .expect("drape runs");
+        let out = super::common::drape_cli().args(args).output().expect("drape runs");
         (out.status.code(), String::from_utf8_lossy(&out.stdout).into_owned())
     };
     let d = dir.to_str().unwrap();
@@ -158,7 +155,7 @@ fn a_piped_edit_session_saved_and_replayed_logs_what_the_live_run_logged() {
     std::fs::create_dir_all(&dir).unwrap();
     let live = dir.join("live.rrd");
     let saved = dir.join("saved");
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_drape"))
+    let mut child = super::common::drape_cli()
         .args(["edit", "--save", live.to_str().unwrap()])
         .stdin(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())

@@ -187,10 +187,7 @@ fn the_demo_session_file_is_the_embedded_one() {
 
 /// Runs the binary; returns (exit code, stderr).
 pub(super) fn drape(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
-        .args(args)
-        .output()
-        .expect("drape runs");
+    let out = super::common::drape_cli().args(args).output().expect("drape runs");
     (
         out.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&out.stderr).into_owned(),

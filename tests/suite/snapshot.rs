@@ -298,6 +298,7 @@ fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_two() {
     std::fs::create_dir_all(&dir).unwrap();
     let files: Vec<std::path::PathBuf> = (0..2).map(|i| dir.join(format!("run{i}.rrd"))).collect();
     let one_core = std::process::Command::new("taskset")
+        .env("XDG_CACHE_HOME", super::common::cache_home())
         .args([
             "-c",
             "0",

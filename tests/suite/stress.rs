@@ -3,7 +3,6 @@
 //! the whole sweep; and every session a stress run found a bug with, kept as a regression.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use super::common::LastGarment;
 use drape::collision::ground_truth;
@@ -11,7 +10,7 @@ use drape::session::{RunOptions, parse_session, run_session};
 use drape::stress::{StressOptions, run_one, sessions_of};
 
 fn stress_json(args: &[&str]) -> serde_json::Value {
-    let out = Command::new(env!("CARGO_BIN_EXE_drape"))
+    let out = super::common::drape_cli()
         .arg("stress")
         .args(args)
         .output()
