@@ -31,6 +31,34 @@ use super::reuse::{Reuse, Reused};
 use crate::body::index::BodyIndex;
 use crate::par::par_map;
 
+/// Distances measured before the edge rounds: vertex `v`, standing at `at[v]`, was at least
+/// `free[v]` (m) from the body surface (zero where not known). An edge both of whose ends
+/// still stand there, and whose ends' free balls overlap along it (`free[a] + free[b]` more
+/// than its length, by a margin for the ray test's rounding), has no point on the surface:
+/// the first edge round does not cast its ray.
+#[derive(Clone, Copy, Debug)]
+pub struct KnownClearance<'a> {
+    /// Where each vertex stood when measured, m.
+    pub at: &'a [DVec3],
+    /// How far from the surface it stood at least, m.
+    pub free: &'a [f64],
+}
+
+impl KnownClearance<'_> {
+    /// Whether edge `[a, b]`, now at `ends`, is known to be clear of the surface by more
+    /// than `margin` (m).
+    fn covers(&self, [a, b]: [u32; 2], ends: [DVec3; 2], margin: f64) -> bool {
+        let known = |v: u32, p: DVec3| {
+            let v = v as usize;
+            (self.at.get(v) == Some(&p)).then(|| self.free.get(v).copied().unwrap_or(0.0))
+        };
+        match (known(a, ends[0]), known(b, ends[1])) {
+            (Some(fa), Some(fb)) => fa + fb > ends[0].distance(ends[1]) + margin,
+            _ => false,
+        }
+    }
+}
+
 /// A crossing edge: its ends, where along it it is deepest, the way out there and how deep.
 struct Crossing {
     ends: [u32; 2],
@@ -112,7 +140,8 @@ fn slide(index: &BodyIndex, p: DVec3, way: &Way, towards: DVec3, want: f64, ease
 /// Edge rounds on `positions` (updated): returns the lifts made, as responses, the number
 /// of crossing edges each round found, and the edges the first round found (their ends).
 /// With `reuse`, the first round skips the edges it knows were clear of the body at the
-/// same ends (and remembers this round's verdicts): the same lifts.
+/// same ends (and remembers this round's verdicts); with `known`, those the measured
+/// distances of their ends show clear: the same lifts.
 #[allow(clippy::too_many_arguments)]
 pub fn respond_edges(
     index: &BodyIndex,
@@ -123,6 +152,7 @@ pub fn respond_edges(
     ease: f64,
     options: &ResponseOptions,
     mut reuse: Option<(&mut Reuse, &mut Reused)>,
+    known: Option<KnownClearance<'_>>,
 ) -> (Vec<Response>, Vec<usize>, Vec<[u32; 2]>) {
     let reach = 0.2 * index.height;
     let mut all = Vec::new();
@@ -138,6 +168,12 @@ pub fn respond_edges(
             .collect(),
         None => (0..edges.len()).collect(),
     };
+    if let Some(k) = known {
+        // A ray test rounds at about 1e-16 of the body's size; a millionth of the body
+        // (about 2 um) keeps every edge the rounded test could call crossing.
+        let margin = 1e-6 * index.height;
+        check.retain(|&e| !k.covers(edges[e], ends_at(positions, e), margin));
+    }
     if let Some((_, counts)) = &mut reuse {
         counts.round_edges = edges.len() - check.len();
     }

@@ -26,7 +26,7 @@ use glam::DVec3;
 pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
-pub use edges::respond_edges;
+pub use edges::{KnownClearance, respond_edges};
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
@@ -240,7 +240,19 @@ pub fn collide(
     if options.full_quality {
         state.reuse.clear();
     }
-    let (edge_responses, edge_rounds, first_round) = timed(&mut timings.respond_edges, || {
+    // Every vertex's distance after the vertex response (those not known from earlier
+    // steps): the edge rounds cast no ray along an edge its ends' distances show clear, and
+    // the quality check takes the distances of the vertices the rounds leave in place.
+    let measured = timed(&mut timings.respond_edges, || {
+        quality::measure_vertices(index, &positions, Some(&state.reuse))
+    });
+    let free = measured.free();
+    let known = KnownClearance {
+        at: &measured.at,
+        free: &free,
+    };
+    let mut rounds_ms = 0.0;
+    let (edge_responses, edge_rounds, first_round) = timed(&mut rounds_ms, || {
         respond_edges(
             index,
             &mut positions,
@@ -250,8 +262,10 @@ pub fn collide(
             ease,
             &options.response,
             Some((&mut state.reuse, &mut reused)),
+            Some(known),
         )
     });
+    timings.respond_edges += rounds_ms;
     responses.extend(edge_responses);
     let quality = timed(&mut timings.quality, || {
         quality_reusing(
@@ -262,6 +276,7 @@ pub fn collide(
             &responses,
             &mut state.reuse,
             &mut reused,
+            Some(&measured),
         )
     });
     Collision {

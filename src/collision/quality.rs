@@ -41,6 +41,61 @@ pub struct Quality {
     pub clearance: Vec<f64>,
 }
 
+/// Signed distances measured during a step before the quality check (the collision
+/// measures its vertices after the vertex response, for the edge rounds): the check takes
+/// a vertex's distance from here when the vertex still stands at `at`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Measured {
+    /// Where each vertex stood, m.
+    pub at: Vec<DVec3>,
+    /// Its signed distance there, m (as the check measures it; NaN where not measured).
+    pub signed: Vec<f64>,
+}
+
+impl Measured {
+    /// The distance of vertex `v` at `p`, if measured there.
+    fn signed(&self, v: usize, p: DVec3) -> Option<f64> {
+        (self.at.get(v) == Some(&p))
+            .then(|| self.signed[v])
+            .filter(|s| !s.is_nan())
+    }
+
+    /// How far from the surface each vertex stood at least (zero where not measured), m.
+    pub fn free(&self) -> Vec<f64> {
+        self.signed
+            .iter()
+            .map(|s| if s.is_nan() { 0.0 } else { s.abs() })
+            .collect()
+    }
+}
+
+/// The quality check's signed distance of `p`: `reach` where no body point is nearer.
+fn signed_at(index: &BodyIndex, p: DVec3) -> f64 {
+    let reach = 0.2 * index.height;
+    index.nearest(p, reach).map_or(reach, |n| n.signed(p))
+}
+
+/// Every vertex's signed distance at `positions`, as the quality check measures it; those
+/// `reuse` knows at the same position are taken from it (and not written to it).
+pub fn measure_vertices(index: &BodyIndex, positions: &[DVec3], reuse: Option<&Reuse>) -> Measured {
+    let mut signed = vec![f64::NAN; positions.len()];
+    let mut list: Vec<u32> = Vec::new();
+    for (v, &p) in positions.iter().enumerate() {
+        match reuse.and_then(|r| r.signed(v, p)) {
+            Some(s) => signed[v] = s,
+            None => list.push(v as u32),
+        }
+    }
+    let found = par_map(list.len(), |k| signed_at(index, positions[list[k] as usize]));
+    for (&v, s) in list.iter().zip(found) {
+        signed[v as usize] = s;
+    }
+    Measured {
+        at: positions.to_vec(),
+        signed,
+    }
+}
+
 /// Measures `positions` (with `edges`) against the body; `responses` give the ease error and
 /// `before` (the positions before the response) the moves and stretches.
 pub fn quality(
@@ -66,12 +121,14 @@ pub fn quality_where(
     edges: &[[u32; 2]],
     responses: &[Response],
 ) -> Quality {
-    measure(index, before, positions, vertices, edges, responses, None)
+    measure(index, before, positions, vertices, edges, responses, None, None)
 }
 
 /// [`quality`] measuring only what `reuse` does not know (vertices and edges at other
-/// positions than when it was last measured), and remembering what it measured: the same
-/// figures as the full check, bit for bit.
+/// positions than when it was last measured) and what `measured` did not measure this step
+/// at the same positions, and remembering both: the same figures as the full check, bit for
+/// bit. (`counts` tells what came from earlier steps.)
+#[allow(clippy::too_many_arguments)]
 pub fn quality_reusing(
     index: &BodyIndex,
     before: &[DVec3],
@@ -80,11 +137,22 @@ pub fn quality_reusing(
     responses: &[Response],
     reuse: &mut Reuse,
     counts: &mut Reused,
+    measured: Option<&Measured>,
 ) -> Quality {
     let all: Vec<u32> = (0..positions.len() as u32).collect();
-    measure(index, before, positions, &all, edges, responses, Some((reuse, counts)))
+    measure(
+        index,
+        before,
+        positions,
+        &all,
+        edges,
+        responses,
+        Some((reuse, counts)),
+        measured,
+    )
 }
 
+#[allow(clippy::too_many_arguments)]
 fn measure(
     index: &BodyIndex,
     before: &[DVec3],
@@ -93,6 +161,7 @@ fn measure(
     edges: &[[u32; 2]],
     responses: &[Response],
     mut reuse: Option<(&mut Reuse, &mut Reused)>,
+    measured: Option<&Measured>,
 ) -> Quality {
     let reach = 0.2 * index.height;
     let surface = 1e-12 * index.height;
@@ -116,8 +185,11 @@ fn measure(
         }
     }
     let found = par_map(list.len(), |k| {
-        let p = positions[list[k] as usize];
-        index.nearest(p, reach).map_or(reach, |n| n.signed(p))
+        let v = list[k] as usize;
+        let p = positions[v];
+        measured
+            .and_then(|m| m.signed(v, p))
+            .unwrap_or_else(|| signed_at(index, p))
     });
     for (&v, s) in list.iter().zip(found) {
         signed[v as usize] = s;

@@ -12,7 +12,8 @@ use glam::DVec3;
 use super::M1;
 use crate::collision::quality::quality_where;
 use crate::collision::{
-    BodyIndex, CollisionOptions, Hit, Quality, Response, VertexRoles, respond, respond_edges, response_ease,
+    BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, respond, respond_edges,
+    response_ease,
 };
 use crate::mesh::TriMesh;
 use crate::par::par_map;
@@ -173,6 +174,17 @@ pub fn collide_refined(
     .collect();
     let ease = response_ease(index, garment_ease, &options.response);
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
+    // The check before measured every end of these edges: those whose free balls cover
+    // them need no ray in the first edge round.
+    let free: Vec<f64> = before
+        .clearance
+        .iter()
+        .map(|c| if c.is_finite() { c.abs() } else { 0.0 })
+        .collect();
+    let known = KnownClearance {
+        at: positions,
+        free: &free,
+    };
     let (edge_responses, edge_rounds, _) = respond_edges(
         index,
         &mut moved,
@@ -182,6 +194,7 @@ pub fn collide_refined(
         ease,
         &options.response,
         None,
+        Some(known),
     );
     responses.extend(edge_responses);
     // After the response only what moved (and what was inside) is measured again, with the

@@ -20,6 +20,7 @@ use glam::DVec3;
 
 use crate::body::index::BodyIndex;
 use crate::mesh::TriMesh;
+use crate::mesh::topology::sorted_edges;
 
 /// A selection rule.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -139,14 +140,12 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
     let mesh = input.mesh;
     let mut fired: Vec<Vec<Rule>> = vec![Vec::new(); input.patches];
     let on = |r: Rule| options.rules.contains(&r);
-    // Each undirected edge once, with its patch (border edges count for both patches).
-    let mut edges: BTreeMap<[u32; 2], Vec<usize>> = BTreeMap::new();
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (t[k], t[(k + 1) % 3]);
-            edges.entry([a.min(b), a.max(b)]).or_default().push(f);
-        }
-    }
+    // Each undirected edge once, in order, with its faces in order (border edges count for
+    // both patches).
+    let records = sorted_edges(mesh);
+    let edges = records
+        .chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
+        .map(|group| ([group[0].0, group[0].1], group.iter().map(|r| r.2 as usize)));
     let length = |[a, b]: [u32; 2]| mesh.positions[a as usize].distance(mesh.positions[b as usize]);
     let mut fire = |patch: u32, rule: Rule| {
         let list = &mut fired[patch as usize];
@@ -174,9 +173,14 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
     } else {
         Vec::new()
     };
-    for (&edge, faces) in &edges {
+    let mut faces: Vec<usize> = Vec::new();
+    let mut patches: Vec<u32> = Vec::new();
+    for (edge, of_edge) in edges {
+        faces.clear();
+        faces.extend(of_edge);
         let len = length(edge);
-        let mut patches: Vec<u32> = faces.iter().map(|&f| input.face_patch[f]).collect();
+        patches.clear();
+        patches.extend(faces.iter().map(|&f| input.face_patch[f]));
         patches.dedup();
         for &p in &patches {
             let s = &mut stats[p as usize];

@@ -87,13 +87,7 @@ pub fn kobbelt_alpha(n: usize) -> f64 {
 pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing: Smoothing) -> Step {
     let n0 = mesh.positions.len();
     let split = |f: usize| refine.get(face_patch[f] as usize).copied().unwrap_or(false);
-    // Directed edge -> face.
-    let mut directed: BTreeMap<[u32; 2], usize> = BTreeMap::new();
-    for (f, t) in mesh.triangles.iter().enumerate() {
-        for k in 0..3 {
-            directed.insert([t[k], t[(k + 1) % 3]], f);
-        }
-    }
+    let directed = Directed::new(mesh);
     let mut positions = mesh.positions.clone();
     let mut origin = vec![Origin::Old; n0];
     let mut centroid_of = vec![None; mesh.triangles.len()];
@@ -107,7 +101,7 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
     }
     // The face across the directed edge b -> c, when the edge flips (both split, same patch).
     let flips_with = |f: usize, b: u32, c: u32| -> Option<usize> {
-        let g = *directed.get(&[c, b])?;
+        let g = directed.get(c, b)?;
         (split(f) && split(g) && face_patch[f] == face_patch[g]).then_some(g)
     };
     let mut triangles = Vec::with_capacity(mesh.triangles.len() * 3);
@@ -165,10 +159,76 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
     }
 }
 
+/// Directed edge -> face: the directed edges of a mesh sorted by start vertex, then end
+/// vertex, with where each start vertex's run begins. Where a directed edge repeats (two
+/// faces running the same way, a mesh folded over itself) the later face counts.
+struct Directed {
+    /// Per vertex, and one past the last: where its run of edges begins.
+    first: Vec<u32>,
+    /// End vertex and face of each edge.
+    edges: Vec<(u32, u32)>,
+}
+
+impl Directed {
+    fn new(mesh: &TriMesh) -> Self {
+        let n = mesh.positions.len();
+        let mut first = vec![0u32; n + 1];
+        for t in &mesh.triangles {
+            for &v in t {
+                first[v as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            first[v + 1] += first[v];
+        }
+        let mut fill = first.clone();
+        let mut edges = vec![(0u32, 0u32); mesh.triangles.len() * 3];
+        for (f, t) in mesh.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let slot = &mut fill[t[k] as usize];
+                edges[*slot as usize] = (t[(k + 1) % 3], f as u32);
+                *slot += 1;
+            }
+        }
+        // Each run by end vertex (faces stay in order), then the later face of a repeat.
+        let mut kept = Vec::with_capacity(edges.len());
+        let mut start = 0u32;
+        for v in 0..n {
+            let run = &mut edges[first[v] as usize..first[v + 1] as usize];
+            run.sort_by_key(|e| e.0);
+            first[v] = start;
+            for (i, &e) in run.iter().enumerate() {
+                if run.get(i + 1).is_none_or(|next| next.0 != e.0) {
+                    kept.push(e);
+                }
+            }
+            start = kept.len() as u32;
+        }
+        first[n] = start;
+        Self { first, edges: kept }
+    }
+
+    /// The face with the directed edge `b -> c`.
+    fn get(&self, b: u32, c: u32) -> Option<usize> {
+        let v = b as usize;
+        let run = &self.edges[*self.first.get(v)? as usize..*self.first.get(v + 1)? as usize];
+        run.iter().find(|e| e.0 == c).map(|e| e.1 as usize)
+    }
+
+    /// Every directed edge `(b, c, face)`, by `b` then `c`.
+    fn iter(&self) -> impl Iterator<Item = (u32, u32, usize)> + '_ {
+        self.first.windows(2).enumerate().flat_map(move |(b, w)| {
+            self.edges[w[0] as usize..w[1] as usize]
+                .iter()
+                .map(move |&(c, f)| (b as u32, c, f as usize))
+        })
+    }
+}
+
 /// Kobbelt's rule for the old vertices whose every edge flips (inside a refined patch).
 fn smooth_old(
     mesh: &TriMesh,
-    directed: &BTreeMap<[u32; 2], usize>,
+    directed: &Directed,
     split: &dyn Fn(usize) -> bool,
     flips_with: &dyn Fn(usize, u32, u32) -> Option<usize>,
 ) -> Vec<(u32, DVec3)> {
@@ -176,7 +236,7 @@ fn smooth_old(
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); n];
     let mut inner = vec![true; n];
     let mut touched = vec![false; n];
-    for (&[b, c], &f) in directed {
+    for (b, c, f) in directed.iter() {
         neighbours[b as usize].push(c);
         touched[b as usize] |= split(f);
         if flips_with(f, b, c).is_none() {
