@@ -165,3 +165,108 @@ fn warm_started_and_capped_queries_agree_with_a_brute_force_on_every_body() {
         );
     }
 }
+
+/// On every shipped body, the jumpsuit's M0 moved onto it and perturbed (up to 3 cm each
+/// way): the edge rounds give the same lifts, rounds and positions, bit for bit, whether the
+/// first round casts a ray along every edge or skips those the measured distances of their
+/// ends show clear; and a brute-force ray test over every shell triangle finds none of the
+/// skipped edges meeting the body.
+#[test]
+fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
+    use drape::collision::quality::measure_vertices;
+    use drape::collision::{KnownClearance, ResponseOptions, VertexRoles, respond_edges, response_ease};
+    let jumpsuit = &real_jumpsuit().m0;
+    let edges = &jumpsuit.edges;
+    let mut rng = Lcg(11);
+    for path in &shipped_bodies() {
+        let body = body(path);
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let mesh = &body.mesh.mesh;
+        let shell = TriMesh {
+            positions: mesh.positions.clone(),
+            triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
+        };
+        let (lo, hi) = mesh.bounds().expect("a body");
+        let (glo, ghi) = jumpsuit.mesh.bounds().expect("a garment");
+        let shift = 0.5 * (lo + hi) - 0.5 * (glo + ghi);
+        let garment = TriMesh {
+            positions: jumpsuit.mesh.positions.iter().map(|p| *p + shift).collect(),
+            triangles: jumpsuit.mesh.triangles.clone(),
+        };
+        let normals = garment.vertex_normals();
+        let positions: Vec<DVec3> = garment
+            .positions
+            .iter()
+            .zip(&normals)
+            .map(|(p, n)| *p + *n * (rng.next() * 0.06 - 0.03))
+            .collect();
+        let partition: Vec<usize> = positions.iter().map(|p| index.partition_at(p.y).unwrap_or(0)).collect();
+        let (boundary, rings) = (vec![false; positions.len()], vec![None; positions.len()]);
+        let roles = VertexRoles {
+            normals: &normals,
+            boundary: &boundary,
+            ring_normal: &rings,
+            pinned: &[],
+        };
+        let options = ResponseOptions::default();
+        let ease = response_ease(&index, 0.01, &options);
+        let measured = measure_vertices(&index, &positions, None);
+        let free = measured.free();
+        let known = KnownClearance {
+            at: &measured.at,
+            free: &free,
+        };
+        let run = |known: Option<KnownClearance<'_>>| {
+            let mut moved = positions.clone();
+            let out = respond_edges(
+                &index, &mut moved, edges, &partition, &roles, ease, &options, None, known,
+            );
+            (out, moved)
+        };
+        let (every, every_positions) = run(None);
+        let (skipping, skipping_positions) = run(Some(known));
+        let name = path.display();
+        assert!(
+            every.0.len() > 10,
+            "{name}: {} lifts, the rounds must do something",
+            every.0.len()
+        );
+        assert!(
+            every == skipping,
+            "{name}: lifts, rounds or first crossings differ ({} vs {} lifts, rounds {:?} vs {:?})",
+            every.0.len(),
+            skipping.0.len(),
+            every.1,
+            skipping.1
+        );
+        assert!(
+            every_positions
+                .iter()
+                .zip(&skipping_positions)
+                .all(|(a, b)| a.to_array().map(f64::to_bits) == b.to_array().map(f64::to_bits)),
+            "{name}: positions differ"
+        );
+        // The edges the distances show clear, checked against every triangle.
+        let clear: Vec<&[u32; 2]> = edges
+            .iter()
+            .filter(|&&[a, b]| {
+                let (pa, pb) = (positions[a as usize], positions[b as usize]);
+                free[a as usize] + free[b as usize] > pa.distance(pb) + 1e-6 * index.height
+            })
+            .collect();
+        assert!(
+            clear.len() > edges.len() / 2,
+            "{name}: only {} of {} edges known clear",
+            clear.len(),
+            edges.len()
+        );
+        for &&[a, b] in clear.iter().step_by(40) {
+            let (pa, pb) = (positions[a as usize], positions[b as usize]);
+            let hit = super::common::ray_hit(&shell, pa, pb - pa);
+            assert!(
+                hit.is_none_or(|t| t > 1.0),
+                "{name}: edge {a}-{b} meets the body at {hit:?}"
+            );
+        }
+    }
+}
