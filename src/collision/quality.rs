@@ -39,60 +39,81 @@ pub struct Quality {
     /// measured): the garment's clearance, for fit maps.
     #[serde(skip)]
     pub clearance: Vec<f64>,
+    /// Each vertex's nearest body triangle within a fifth of the body's height
+    /// ([`NO_TRIANGLE`] where none, or not measured).
+    #[serde(skip)]
+    pub nearest: Vec<u32>,
 }
 
-/// Signed distances measured during a step before the quality check (the collision
-/// measures its vertices after the vertex response, for the edge rounds): the check takes
-/// a vertex's distance from here when the vertex still stands at `at`.
+/// No body triangle: none within reach, or not measured.
+pub const NO_TRIANGLE: u32 = u32::MAX;
+
+/// A vertex's distance as the quality check measures it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexDistance {
+    /// Signed distance, m (negative inside; a fifth of the body's height where no body
+    /// point is nearer).
+    pub signed: f64,
+    /// The nearest body triangle ([`NO_TRIANGLE`] where none is within that reach).
+    pub triangle: u32,
+}
+
+/// Distances measured during a step before the quality check (the collision measures its
+/// vertices after the vertex response, for the edge rounds): the check takes a vertex's
+/// distance from here when the vertex still stands at `at`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Measured {
     /// Where each vertex stood, m.
     pub at: Vec<DVec3>,
-    /// Its signed distance there, m (as the check measures it; NaN where not measured).
-    pub signed: Vec<f64>,
+    /// Its distance there, as the check measures it.
+    pub distance: Vec<VertexDistance>,
 }
 
 impl Measured {
     /// The distance of vertex `v` at `p`, if measured there.
-    fn signed(&self, v: usize, p: DVec3) -> Option<f64> {
-        (self.at.get(v) == Some(&p))
-            .then(|| self.signed[v])
-            .filter(|s| !s.is_nan())
+    fn distance(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
+        (self.at.get(v) == Some(&p)).then(|| self.distance[v])
     }
 
-    /// How far from the surface each vertex stood at least (zero where not measured), m.
+    /// How far from the surface each vertex stood at least, m.
     pub fn free(&self) -> Vec<f64> {
-        self.signed
-            .iter()
-            .map(|s| if s.is_nan() { 0.0 } else { s.abs() })
-            .collect()
+        self.distance.iter().map(|d| d.signed.abs()).collect()
     }
 }
 
-/// The quality check's signed distance of `p`: `reach` where no body point is nearer.
-fn signed_at(index: &BodyIndex, p: DVec3) -> f64 {
+/// The quality check's distance of `p` (within a fifth of the body's height).
+fn distance_at(index: &BodyIndex, p: DVec3) -> VertexDistance {
     let reach = 0.2 * index.height;
-    index.nearest(p, reach).map_or(reach, |n| n.signed(p))
+    index.nearest(p, reach).map_or(
+        VertexDistance {
+            signed: reach,
+            triangle: NO_TRIANGLE,
+        },
+        |n| VertexDistance {
+            signed: n.signed(p),
+            triangle: n.triangle,
+        },
+    )
 }
 
-/// Every vertex's signed distance at `positions`, as the quality check measures it; those
-/// `reuse` knows at the same position are taken from it (and not written to it).
+/// Every vertex's distance at `positions`, as the quality check measures it; those `reuse`
+/// knows at the same position are taken from it (and not written to it).
 pub fn measure_vertices(index: &BodyIndex, positions: &[DVec3], reuse: Option<&Reuse>) -> Measured {
-    let mut signed = vec![f64::NAN; positions.len()];
-    let mut list: Vec<u32> = Vec::new();
-    for (v, &p) in positions.iter().enumerate() {
-        match reuse.and_then(|r| r.signed(v, p)) {
-            Some(s) => signed[v] = s,
-            None => list.push(v as u32),
-        }
-    }
-    let found = par_map(list.len(), |k| signed_at(index, positions[list[k] as usize]));
-    for (&v, s) in list.iter().zip(found) {
-        signed[v as usize] = s;
+    let mut known: Vec<Option<VertexDistance>> = positions
+        .iter()
+        .enumerate()
+        .map(|(v, &p)| reuse.and_then(|r| r.signed(v, p)))
+        .collect();
+    let list: Vec<u32> = (0..positions.len() as u32)
+        .filter(|&v| known[v as usize].is_none())
+        .collect();
+    let found = par_map(list.len(), |k| distance_at(index, positions[list[k] as usize]));
+    for (&v, d) in list.iter().zip(found) {
+        known[v as usize] = Some(d);
     }
     Measured {
         at: positions.to_vec(),
-        signed,
+        distance: known.into_iter().flatten().collect(),
     }
 }
 
@@ -174,13 +195,14 @@ fn measure(
         needed[v as usize] = true;
     }
     let mut signed = vec![reach; positions.len()];
+    let mut nearest = vec![NO_TRIANGLE; positions.len()];
     let mut list: Vec<u32> = Vec::new();
     for v in 0..positions.len() {
         if !needed[v] {
             continue;
         }
         match reuse.as_ref().and_then(|(r, _)| r.signed(v, positions[v])) {
-            Some(s) => signed[v] = s,
+            Some(d) => (signed[v], nearest[v]) = (d.signed, d.triangle),
             None => list.push(v as u32),
         }
     }
@@ -188,11 +210,11 @@ fn measure(
         let v = list[k] as usize;
         let p = positions[v];
         measured
-            .and_then(|m| m.signed(v, p))
-            .unwrap_or_else(|| signed_at(index, p))
+            .and_then(|m| m.distance(v, p))
+            .unwrap_or_else(|| distance_at(index, p))
     });
     for (&v, s) in list.iter().zip(found) {
-        signed[v as usize] = s;
+        (signed[v as usize], nearest[v as usize]) = (s.signed, s.triangle);
         if let Some((r, _)) = &mut reuse {
             r.set_signed(positions.len(), v as usize, positions[v as usize], s);
         }
@@ -203,6 +225,7 @@ fn measure(
     q.clearance = (0..positions.len())
         .map(|v| if needed[v] { signed[v] } else { f64::INFINITY })
         .collect();
+    q.nearest = nearest;
     let mut measured: Vec<u32> = vertices.to_vec();
     measured.sort_unstable();
     measured.dedup();

@@ -11,11 +11,13 @@
 
 use glam::DVec3;
 
+use super::quality::VertexDistance;
+
 /// Remembered answers, by vertex and by edge (the same garment topology).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Reuse {
-    /// Per vertex: where its signed distance was measured, and the distance (m).
-    signed: Vec<Option<(DVec3, f64)>>,
+    /// Per vertex: where its distance was measured, and the distance.
+    signed: Vec<Option<(DVec3, VertexDistance)>>,
     /// Per edge: its ends when the quality check tested it, and whether it met the body.
     crossing: Vec<Option<([DVec3; 2], bool)>>,
     /// Per edge: its ends when the first edge round tested it; it did not cross then.
@@ -39,8 +41,8 @@ impl Reuse {
         *self = Self::default();
     }
 
-    /// The signed distance of vertex `v` at `p`, if it was measured there.
-    pub fn signed(&self, v: usize, p: DVec3) -> Option<f64> {
+    /// The distance of vertex `v` at `p`, if it was measured there.
+    pub fn signed(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
         match self.signed.get(v) {
             Some(Some((at, s))) if *at == p => Some(*s),
             _ => None,
@@ -60,8 +62,8 @@ impl Reuse {
         matches!(self.clear_in_round.get(e), Some(Some(at)) if *at == ends)
     }
 
-    /// Remembers the signed distance of vertex `v` at `p`.
-    pub fn set_signed(&mut self, vertices: usize, v: usize, p: DVec3, s: f64) {
+    /// Remembers the distance of vertex `v` at `p`.
+    pub fn set_signed(&mut self, vertices: usize, v: usize, p: DVec3, s: VertexDistance) {
         if self.signed.len() != vertices {
             self.signed = vec![None; vertices];
         }

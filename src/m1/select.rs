@@ -19,6 +19,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use crate::body::index::BodyIndex;
+use crate::collision::quality::NO_TRIANGLE;
 use crate::mesh::TriMesh;
 use crate::mesh::topology::sorted_edges;
 
@@ -133,6 +134,10 @@ pub struct SelectInput<'a> {
     pub patches: usize,
     /// M0's vertex positions as first built (the standard size), if known.
     pub standard: Option<&'a [DVec3]>,
+    /// Each vertex's nearest body triangle within a fifth of the body's height
+    /// ([`NO_TRIANGLE`]: none), if known (M0's quality check measured it): rule 4 then needs
+    /// no search of its own.
+    pub nearest: Option<&'a [u32]>,
 }
 
 /// Applies the rules.
@@ -163,15 +168,22 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
     // body edge "beneath" a garment edge: the mean of its two ends'; 0 where no body is
     // within reach).
     let reach = 0.2 * index.height;
-    let beneath: Vec<f64> = if on(Rule::Body) {
-        crate::par::par_map(mesh.positions.len(), |v| {
-            index.nearest(mesh.positions[v], reach).map_or(0.0, |near| {
-                let [a, b, c] = index.triangles[near.triangle as usize].map(|v| index.positions[v as usize]);
-                (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0
-            })
-        })
-    } else {
-        Vec::new()
+    let mean_edge = |t: u32| {
+        let [a, b, c] = index.triangles[t as usize].map(|v| index.positions[v as usize]);
+        (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0
+    };
+    let known = input.nearest.filter(|n| n.len() == mesh.positions.len());
+    let beneath: Vec<f64> = match known {
+        _ if !on(Rule::Body) => Vec::new(),
+        Some(nearest) => nearest
+            .iter()
+            .map(|&t| if t == NO_TRIANGLE { 0.0 } else { mean_edge(t) })
+            .collect(),
+        None => crate::par::par_map(mesh.positions.len(), |v| {
+            index
+                .nearest(mesh.positions[v], reach)
+                .map_or(0.0, |near| mean_edge(near.triangle))
+        }),
     };
     let mut faces: Vec<usize> = Vec::new();
     let mut patches: Vec<u32> = Vec::new();

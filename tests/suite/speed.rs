@@ -270,3 +270,60 @@ fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
         }
     }
 }
+
+/// M1's selection reads each M0 vertex's nearest body triangle from M0's quality check
+/// instead of searching again: the same patches by the same rules as its own search, on
+/// the jumpsuit perturbed three ways (the body rule made strict enough to fire), and the
+/// triangles the check found are the nearest by a brute force over every shell triangle.
+#[test]
+fn the_selection_reading_the_quality_checks_nearest_triangles_selects_the_same_patches() {
+    use drape::collision::{CollisionOptions, DetectState, GarmentMesh, collide};
+    use drape::m1::{SelectInput, SelectOptions, select};
+    let index = super::common::real_probe().index();
+    let mesh = &super::common::real_body().mesh.mesh;
+    let shell = TriMesh {
+        positions: mesh.positions.clone(),
+        triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
+    };
+    let mut options = SelectOptions::default();
+    options.body_edge = 1.5;
+    let mut fired = 0;
+    for seed in [1, 2, 3] {
+        let mut g = GarmentMesh::from_framework(real_jumpsuit(), index.height);
+        let mut rng = Lcg(seed);
+        for (p, n) in g.mesh.positions.iter_mut().zip(&g.normals) {
+            *p += *n * (rng.next() * 0.03 - 0.01);
+        }
+        g.normals = g.mesh.vertex_normals();
+        let c = collide(
+            index,
+            &g,
+            0.01,
+            &CollisionOptions::default(),
+            &mut DetectState::default(),
+        );
+        let input = |nearest| SelectInput {
+            mesh: &c.mesh,
+            face_patch: &g.face_patch,
+            patches: real_jumpsuit().m0.patch_names.len(),
+            standard: Some(&g.mesh.positions),
+            nearest,
+        };
+        let own = select(&input(None), index, &options);
+        let read = select(&input(Some(&c.quality.nearest)), index, &options);
+        assert_eq!(own, read, "seed {seed}");
+        fired += own.by_rule().get("body").copied().unwrap_or(0);
+        for v in (0..c.mesh.positions.len()).step_by(37) {
+            let p = c.mesh.positions[v];
+            let t = c.quality.nearest[v];
+            let truth = brute_distance(&shell, p);
+            let found =
+                super::common::triangle_distance(p, mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]));
+            assert!(
+                (found - truth).abs() < 1e-12,
+                "seed {seed}, vertex {v}: {found} vs {truth}"
+            );
+        }
+    }
+    assert!(fired > 0, "the body rule never fired");
+}

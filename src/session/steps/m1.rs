@@ -75,6 +75,7 @@ pub(super) fn build_m1(
                 face_patch,
                 patches,
                 standard: state.standard.as_deref(),
+                nearest: Some(&outcome.collision.quality.nearest),
             };
             m1::select(&input, index, &m1_options.select)
         }
