@@ -287,3 +287,39 @@ fn a_cut_that_misses_the_garment_is_refused_and_the_session_goes_on() {
     assert_eq!(cut_lines(4), Some(0));
     assert_eq!(cut_lines(5), Some(0));
 }
+
+/// `undirected_edges` (gathered per smaller vertex) against a sort of every face's edges,
+/// written here: random soups with repeated, degenerate and unused vertices, and M1 itself.
+#[test]
+fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
+    let reference = |mesh: &TriMesh| {
+        let mut all: Vec<[u32; 2]> = Vec::new();
+        for t in &mesh.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                all.push([a.min(b), a.max(b)]);
+            }
+        }
+        all.sort();
+        all.dedup();
+        all
+    };
+    let mut rng = super::common::Lcg(3);
+    for n in [1usize, 2, 5, 40, 300] {
+        let triangles: Vec<[u32; 3]> = (0..2 * n)
+            .map(|_| std::array::from_fn(|_| (rng.next() * n as f64) as u32))
+            .collect();
+        let mesh = TriMesh {
+            positions: vec![DVec3::ZERO; n + 3],
+            triangles,
+        };
+        assert_eq!(drape::m1::undirected_edges(&mesh), reference(&mesh), "{n} vertices");
+    }
+    let empty = TriMesh {
+        positions: Vec::new(),
+        triangles: Vec::new(),
+    };
+    assert!(drape::m1::undirected_edges(&empty).is_empty());
+    let m0 = &super::common::real_jumpsuit().m0.mesh;
+    assert_eq!(drape::m1::undirected_edges(m0), reference(m0));
+}
