@@ -155,6 +155,7 @@ fn table(path: &Path) {
                 };
                 let built = m1::build(&m0, &g.face_patch, selection, &options);
                 let collided = M0Collided {
+                    measured: None,
                     inside: &m0_inside,
                     crossing: &m0_crossing,
                     partition: &partition,

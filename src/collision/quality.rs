@@ -69,6 +69,25 @@ pub struct Measured {
     pub distance: Vec<VertexDistance>,
 }
 
+impl Quality {
+    /// The vertex distances this check measured, as [`Measured`] at `positions` (those it
+    /// measured them at); a vertex it did not measure matches no position.
+    pub fn measured(&self, positions: &[DVec3]) -> Measured {
+        let at = positions
+            .iter()
+            .zip(&self.clearance)
+            .map(|(&p, c)| if c.is_finite() { p } else { DVec3::NAN })
+            .collect();
+        let distance = self
+            .clearance
+            .iter()
+            .zip(&self.nearest)
+            .map(|(&signed, &triangle)| VertexDistance { signed, triangle })
+            .collect();
+        Measured { at, distance }
+    }
+}
+
 impl Measured {
     /// The distance of vertex `v` at `p`, if measured there.
     fn distance(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
@@ -127,13 +146,13 @@ pub fn quality(
     responses: &[Response],
 ) -> Quality {
     let all: Vec<u32> = (0..positions.len() as u32).collect();
-    quality_where(index, before, positions, &all, edges, responses)
+    quality_where(index, before, positions, &all, edges, responses, None)
 }
 
 /// [`quality`] over the vertices `vertices` and the edges `edges` only (the others are known:
 /// M1's vertices and edges that are M0's, measured by M0's check). `inside` lists vertex
 /// indices, `crossing` indices into `edges`; moves and stretches are over `vertices` and
-/// `edges`.
+/// `edges`. A vertex `measured` has at its position is not measured again.
 pub fn quality_where(
     index: &BodyIndex,
     before: &[DVec3],
@@ -141,8 +160,9 @@ pub fn quality_where(
     vertices: &[u32],
     edges: &[[u32; 2]],
     responses: &[Response],
+    measured: Option<&Measured>,
 ) -> Quality {
-    measure(index, before, positions, vertices, edges, responses, None, None)
+    measure(index, before, positions, vertices, edges, responses, None, measured)
 }
 
 /// [`quality`] measuring only what `reuse` does not know (vertices and edges at other

@@ -10,7 +10,7 @@
 use glam::DVec3;
 
 use super::M1;
-use crate::collision::quality::quality_where;
+use crate::collision::quality::{Measured, quality_where};
 use crate::collision::{
     BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, respond, respond_edges,
     response_ease,
@@ -56,6 +56,9 @@ pub struct M0Collided<'a> {
     pub partition: &'a [usize],
     /// Ring plane normal of each vertex on a garment ring.
     pub ring_normal: &'a [Option<DVec3>],
+    /// Its vertices' distances as its exact check measured them, if kept: the check of the
+    /// refinement takes those of the base's vertices it leaves in place from here.
+    pub measured: Option<&'a Measured>,
 }
 
 /// A refinement of a mesh already collided (M1 over M0, a sculpt over the garment): the
@@ -151,7 +154,7 @@ pub fn collide_refined(
         m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
     let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
     let kept_inside: Vec<u32> = m0.inside.iter().copied().filter(|&v| pinned[v as usize]).collect();
-    let before = quality_where(index, positions, positions, &tested, &edges, &[]);
+    let before = quality_where(index, positions, positions, &tested, &edges, &[], m0.measured);
     let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     crossing_before_edges.extend(&kept_crossing);
     // The vertices the check found inside are the hits.
@@ -207,7 +210,15 @@ pub fn collide_refined(
     let (touching, untouched): (Vec<usize>, Vec<usize>) =
         (0..edges.len()).partition(|&e| edges[e].iter().any(|&v| again[v as usize]));
     let touching_edges: Vec<[u32; 2]> = touching.iter().map(|&e| edges[e]).collect();
-    let mut quality = quality_where(index, positions, &moved, &remeasured, &touching_edges, &responses);
+    let mut quality = quality_where(
+        index,
+        positions,
+        &moved,
+        &remeasured,
+        &touching_edges,
+        &responses,
+        m0.measured,
+    );
     let was_crossing: std::collections::BTreeSet<u32> = before.crossing.iter().copied().collect();
     let mut crossing_after_edges: Vec<[u32; 2]> = untouched
         .iter()

@@ -88,7 +88,9 @@ pub(super) fn build_m1(
         .iter()
         .map(|&e| outcome.garment.edges[e as usize])
         .collect();
+    let measured = outcome.collision.quality.measured(&m0.positions);
     let collided = M0Collided {
+        measured: Some(&measured),
         inside: &outcome.collision.quality.inside,
         crossing: &m0_crossing,
         partition: &outcome.collision.detection.partition,

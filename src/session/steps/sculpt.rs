@@ -128,6 +128,7 @@ fn apply(
             crossing: &base.crossing,
             partition: &base.partition,
             ring_normal: &base.ring_normal,
+            measured: None,
         };
         collide_refined(index, &input, &left, ease, collision)
     });
