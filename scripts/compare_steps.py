@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Times the demo's drag steps (resolution 6, and the same session at resolution 24) with two
+drape binaries side by side, one core each (`taskset -c 0`, `--threads 1`), runs alternating,
+and prints the median of every stage's compute time (ms, from `--metrics`) for both.
+
+    python3 scripts/compare_steps.py BEFORE_BINARY [AFTER_BINARY] [--runs N]
+
+AFTER_BINARY defaults to target/release/drape. Build the "before" binary from an earlier
+commit (`git checkout REV && cargo build --release && cp target/release/drape /tmp/before`).
+"""
+
+import argparse
+import json
+import statistics
+import subprocess
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
+           "collision.respond_edges", "collision.quality"]
+M1 = ["m1.select", "m1.subdivide", "m1.collide"]
+
+
+def drag_timings(binary, session, folder):
+    metrics = folder / "metrics.json"
+    subprocess.run(["taskset", "-c", "0", str(binary), "--threads", "1", "--no-index-cache", "run",
+                    str(session), "--log-detail", "metrics", "--metrics", str(metrics),
+                    "--save", str(folder / "run.rrd")], cwd=ROOT, capture_output=True, check=True)
+    steps = json.loads(metrics.read_text())
+    return [s["timings_ms"] for s in steps if s["op"] == "drag" and "m1.select" in s.get("timings_ms", {})]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("before")
+    ap.add_argument("after", nargs="?", default=str(ROOT / "target/release/drape"))
+    ap.add_argument("--runs", type=int, default=3)
+    args = ap.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        folder = Path(tmp)
+        demo = ROOT / "assets/sessions/demo.drape"
+        fine = folder / "demo-24.drape"
+        fine.write_text(demo.read_text().replace("resolution=6", "resolution=24"))
+        sessions = {"resolution 6": demo, "resolution 24": fine}
+        times = {}
+        for _ in range(args.runs):
+            for name, session in sessions.items():
+                for which, binary in (("before", args.before), ("after", args.after)):
+                    for t in drag_timings(binary, session, folder):
+                        for k in GARMENT + M1:
+                            times.setdefault((name, which, k), []).append(t.get(k, 0.0))
+                        times.setdefault((name, which, "garment"), []).append(sum(t.get(k, 0.0) for k in GARMENT))
+                        times.setdefault((name, which, "M1"), []).append(sum(t.get(k, 0.0) for k in M1))
+    for name in sessions:
+        print(f"\n{name}: drag steps, one core, median ms over {args.runs} runs of the demo's drags\n")
+        print("| stage | before | after |\n|---|---:|---:|")
+        for k in GARMENT + ["garment"] + M1 + ["M1"]:
+            a = statistics.median(times[(name, "before", k)])
+            b = statistics.median(times[(name, "after", k)])
+            label = f"**{k}**" if k in ("garment", "M1") else k
+            print(f"| {label} | {a:.1f} | {b:.1f} |")
+
+
+if __name__ == "__main__":
+    main()
