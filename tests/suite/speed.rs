@@ -100,6 +100,20 @@ fn body(path: &std::path::Path) -> Body {
     Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("the body analyses")
 }
 
+/// The surface the queries see, the body's outer shell (on a body that crosses itself, the
+/// triangles buried inside another part are left out), and the shift that moves the
+/// jumpsuit onto the body (its bounding box centre onto the body's).
+fn shell_and_shift(body: &Body, index: &BodyIndex) -> (TriMesh, DVec3) {
+    let mesh = &body.mesh.mesh;
+    let shell = TriMesh {
+        positions: mesh.positions.clone(),
+        triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
+    };
+    let (lo, hi) = mesh.bounds().expect("a body");
+    let (glo, ghi) = real_jumpsuit().m0.mesh.bounds().expect("a garment");
+    (shell, 0.5 * (lo + hi) - 0.5 * (glo + ghi))
+}
+
 /// On every shipped body, the jumpsuit's M0 perturbed at random (up to 3 cm each way): the
 /// nearest-point query, warm-started from the last triangle found (in garment order), from
 /// a random triangle, or capped at 1 cm, agrees with a brute force over every triangle
@@ -115,17 +129,8 @@ fn warm_started_and_capped_queries_agree_with_a_brute_force_on_every_body() {
         let body = body(path);
         let index = BodyIndex::new(&body, &SliceOptions::default());
         let mesh = &body.mesh.mesh;
-        // The surface the queries see: the body's outer shell (on a body that crosses
-        // itself, the triangles buried inside another part are left out).
-        let shell = TriMesh {
-            positions: mesh.positions.clone(),
-            triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
-        };
-        // The garment moved onto this body (its bounding box centre), every 9th vertex.
-        let (lo, hi) = mesh.bounds().expect("a body");
-        let centre = 0.5 * (lo + hi);
-        let (glo, ghi) = real_jumpsuit().m0.mesh.bounds().expect("a garment");
-        let shift = centre - 0.5 * (glo + ghi);
+        // The garment moved onto this body, every 9th vertex.
+        let (shell, shift) = shell_and_shift(&body, &index);
         let points: Vec<DVec3> = garment
             .iter()
             .step_by(9)
@@ -181,14 +186,7 @@ fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
     for path in &shipped_bodies() {
         let body = body(path);
         let index = BodyIndex::new(&body, &SliceOptions::default());
-        let mesh = &body.mesh.mesh;
-        let shell = TriMesh {
-            positions: mesh.positions.clone(),
-            triangles: index.shell_triangles().map(|t| mesh.triangles[t as usize]).collect(),
-        };
-        let (lo, hi) = mesh.bounds().expect("a body");
-        let (glo, ghi) = jumpsuit.mesh.bounds().expect("a garment");
-        let shift = 0.5 * (lo + hi) - 0.5 * (glo + ghi);
+        let (shell, shift) = shell_and_shift(&body, &index);
         let garment = TriMesh {
             positions: jumpsuit.mesh.positions.iter().map(|p| *p + shift).collect(),
             triangles: jumpsuit.mesh.triangles.clone(),
