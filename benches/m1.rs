@@ -149,7 +149,7 @@ fn table(path: &Path) {
                         face_patch: &g.face_patch,
                         patches,
                         standard: Some(&g.mesh.positions),
-                        nearest: None,
+                        measured: None,
                     };
                     m1::select(&input, index, &options.select)
                 };

@@ -70,6 +70,14 @@ pub struct Measured {
 }
 
 impl Quality {
+    /// How far from the surface each vertex stood at least, m (zero where not measured).
+    pub fn free(&self) -> Vec<f64> {
+        self.clearance
+            .iter()
+            .map(|c| if c.is_finite() { c.abs() } else { 0.0 })
+            .collect()
+    }
+
     /// The vertex distances this check measured, as [`Measured`] at `positions` (those it
     /// measured them at); a vertex it did not measure matches no position.
     pub fn measured(&self, positions: &[DVec3]) -> Measured {
@@ -90,7 +98,7 @@ impl Quality {
 
 impl Measured {
     /// The distance of vertex `v` at `p`, if measured there.
-    fn distance(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
+    pub fn distance(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
         (self.at.get(v) == Some(&p)).then(|| self.distance[v])
     }
 
@@ -121,7 +129,7 @@ pub fn measure_vertices(index: &BodyIndex, positions: &[DVec3], reuse: Option<&R
     let mut known: Vec<Option<VertexDistance>> = positions
         .iter()
         .enumerate()
-        .map(|(v, &p)| reuse.and_then(|r| r.signed(v, p)))
+        .map(|(v, &p)| reuse.and_then(|r| r.distance(v, p)))
         .collect();
     let list: Vec<u32> = (0..positions.len() as u32)
         .filter(|&v| known[v as usize].is_none())
@@ -221,7 +229,7 @@ fn measure(
         if !needed[v] {
             continue;
         }
-        match reuse.as_ref().and_then(|(r, _)| r.signed(v, positions[v])) {
+        match reuse.as_ref().and_then(|(r, _)| r.distance(v, positions[v])) {
             Some(d) => (signed[v], nearest[v]) = (d.signed, d.triangle),
             None => list.push(v as u32),
         }
@@ -236,7 +244,7 @@ fn measure(
     for (&v, s) in list.iter().zip(found) {
         (signed[v as usize], nearest[v as usize]) = (s.signed, s.triangle);
         if let Some((r, _)) = &mut reuse {
-            r.set_signed(positions.len(), v as usize, positions[v as usize], s);
+            r.set_distance(positions.len(), v as usize, positions[v as usize], s);
         }
     }
     if let Some((_, counts)) = &mut reuse {

@@ -17,7 +17,7 @@ use super::quality::VertexDistance;
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Reuse {
     /// Per vertex: where its distance was measured, and the distance.
-    signed: Vec<Option<(DVec3, VertexDistance)>>,
+    distance: Vec<Option<(DVec3, VertexDistance)>>,
     /// Per edge: its ends when the quality check tested it, and whether it met the body.
     crossing: Vec<Option<([DVec3; 2], bool)>>,
     /// Per edge: its ends when the first edge round tested it; it did not cross then.
@@ -42,8 +42,8 @@ impl Reuse {
     }
 
     /// The distance of vertex `v` at `p`, if it was measured there.
-    pub fn signed(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
-        match self.signed.get(v) {
+    pub fn distance(&self, v: usize, p: DVec3) -> Option<VertexDistance> {
+        match self.distance.get(v) {
             Some(Some((at, s))) if *at == p => Some(*s),
             _ => None,
         }
@@ -63,11 +63,11 @@ impl Reuse {
     }
 
     /// Remembers the distance of vertex `v` at `p`.
-    pub fn set_signed(&mut self, vertices: usize, v: usize, p: DVec3, s: VertexDistance) {
-        if self.signed.len() != vertices {
-            self.signed = vec![None; vertices];
+    pub fn set_distance(&mut self, vertices: usize, v: usize, p: DVec3, s: VertexDistance) {
+        if self.distance.len() != vertices {
+            self.distance = vec![None; vertices];
         }
-        self.signed[v] = Some((p, s));
+        self.distance[v] = Some((p, s));
     }
 
     /// Remembers whether edge `e` at `ends` meets the body.

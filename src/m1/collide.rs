@@ -179,11 +179,7 @@ pub fn collide_refined(
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
     // The check before measured every end of these edges: those whose free balls cover
     // them need no ray in the first edge round.
-    let free: Vec<f64> = before
-        .clearance
-        .iter()
-        .map(|c| if c.is_finite() { c.abs() } else { 0.0 })
-        .collect();
+    let free = before.free();
     let known = KnownClearance {
         at: positions,
         free: &free,

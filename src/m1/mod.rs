@@ -76,44 +76,21 @@ impl M1 {
     }
 }
 
-/// The undirected edges of a mesh, each once, sorted: gathered per smaller vertex (a
-/// counting pass), each vertex's few larger neighbours sorted and deduplicated.
+/// The undirected edges of a mesh, each once, sorted: grouped by their smaller vertex,
+/// then each vertex's few larger neighbours sorted and deduplicated.
 pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
-    let ends = |t: &[u32; 3], k: usize| {
-        let (a, b) = (t[k], t[(k + 1) % 3]);
-        (a.min(b), a.max(b))
-    };
-    let n = mesh.triangles.iter().flatten().max().map_or(0, |&v| v as usize + 1);
-    let mut first = vec![0usize; n + 1];
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            first[ends(t, k).0 as usize + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        first[v + 1] += first[v];
-    }
-    let mut fill = first.clone();
-    let mut larger = vec![0u32; first[n]];
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (lo, hi) = ends(t, k);
-            larger[fill[lo as usize]] = hi;
-            fill[lo as usize] += 1;
-        }
-    }
-    let mut edges = Vec::with_capacity(first[n] / 2 + 1);
+    let ends: Vec<(u32, u32)> = (mesh.triangles.iter())
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
+    let n = ends.iter().map(|e| e.0 as usize + 1).max().unwrap_or(0);
+    let (first, mut larger) = crate::mesh::topology::group_by_vertex(n, &ends);
+    let mut edges = Vec::with_capacity(larger.len() / 2 + 1);
     for v in 0..n {
         let run = &mut larger[first[v]..first[v + 1]];
         run.sort_unstable();
-        let mut last = None;
-        for &w in run.iter() {
-            if last != Some(w) {
-                edges.push([v as u32, w]);
-                last = Some(w);
-            }
-        }
+        edges.extend(run.iter().map(|&w| [v as u32, w]));
     }
+    edges.dedup();
     edges
 }
 

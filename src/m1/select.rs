@@ -19,7 +19,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use crate::body::index::BodyIndex;
-use crate::collision::quality::NO_TRIANGLE;
+use crate::collision::quality::{Measured, NO_TRIANGLE};
 use crate::mesh::TriMesh;
 use crate::mesh::topology::sorted_edges;
 
@@ -134,10 +134,9 @@ pub struct SelectInput<'a> {
     pub patches: usize,
     /// M0's vertex positions as first built (the standard size), if known.
     pub standard: Option<&'a [DVec3]>,
-    /// Each vertex's nearest body triangle within a fifth of the body's height
-    /// ([`NO_TRIANGLE`]: none), if known (M0's quality check measured it): rule 4 then needs
-    /// no search of its own.
-    pub nearest: Option<&'a [u32]>,
+    /// The vertices' distances M0's quality check measured, if kept: rule 4 reads the
+    /// nearest body triangle of a vertex still where it was measured instead of searching.
+    pub measured: Option<&'a Measured>,
 }
 
 /// Applies the rules.
@@ -172,18 +171,17 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
         let [a, b, c] = index.triangles[t as usize].map(|v| index.positions[v as usize]);
         (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0
     };
-    let known = input.nearest.filter(|n| n.len() == mesh.positions.len());
-    let beneath: Vec<f64> = match known {
-        _ if !on(Rule::Body) => Vec::new(),
-        Some(nearest) => nearest
-            .iter()
-            .map(|&t| if t == NO_TRIANGLE { 0.0 } else { mean_edge(t) })
-            .collect(),
-        None => crate::par::par_map(mesh.positions.len(), |v| {
-            index
-                .nearest(mesh.positions[v], reach)
-                .map_or(0.0, |near| mean_edge(near.triangle))
-        }),
+    let beneath: Vec<f64> = if on(Rule::Body) {
+        crate::par::par_map(mesh.positions.len(), |v| {
+            let p = mesh.positions[v];
+            let nearest = match input.measured.and_then(|m| m.distance(v, p)) {
+                Some(d) => (d.triangle != NO_TRIANGLE).then_some(d.triangle),
+                None => index.nearest(p, reach).map(|near| near.triangle),
+            };
+            nearest.map_or(0.0, mean_edge)
+        })
+    } else {
+        Vec::new()
     };
     let mut faces: Vec<usize> = Vec::new();
     let mut patches: Vec<u32> = Vec::new();

@@ -21,6 +21,7 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use crate::mesh::TriMesh;
+use crate::mesh::topology::group_by_vertex;
 
 /// What happens to the old vertices of a refined patch.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -164,7 +165,7 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
 /// faces running the same way, a mesh folded over itself) the later face counts.
 struct Directed {
     /// Per vertex, and one past the last: where its run of edges begins.
-    first: Vec<u32>,
+    first: Vec<usize>,
     /// End vertex and face of each edge.
     edges: Vec<(u32, u32)>,
 }
@@ -172,53 +173,37 @@ struct Directed {
 impl Directed {
     fn new(mesh: &TriMesh) -> Self {
         let n = mesh.positions.len();
-        let mut first = vec![0u32; n + 1];
-        for t in &mesh.triangles {
-            for &v in t {
-                first[v as usize + 1] += 1;
-            }
-        }
-        for v in 0..n {
-            first[v + 1] += first[v];
-        }
-        let mut fill = first.clone();
-        let mut edges = vec![(0u32, 0u32); mesh.triangles.len() * 3];
-        for (f, t) in mesh.triangles.iter().enumerate() {
-            for k in 0..3 {
-                let slot = &mut fill[t[k] as usize];
-                edges[*slot as usize] = (t[(k + 1) % 3], f as u32);
-                *slot += 1;
-            }
-        }
+        let records: Vec<(u32, (u32, u32))> = (mesh.triangles.iter().enumerate())
+            .flat_map(|(f, t)| (0..3).map(move |k| (t[k], (t[(k + 1) % 3], f as u32))))
+            .collect();
+        let (mut first, mut grouped) = group_by_vertex(n, &records);
         // Each run by end vertex (faces stay in order), then the later face of a repeat.
-        let mut kept = Vec::with_capacity(edges.len());
-        let mut start = 0u32;
+        let mut edges = Vec::with_capacity(grouped.len());
         for v in 0..n {
-            let run = &mut edges[first[v] as usize..first[v + 1] as usize];
+            let run = &mut grouped[first[v]..first[v + 1]];
             run.sort_by_key(|e| e.0);
-            first[v] = start;
+            first[v] = edges.len();
             for (i, &e) in run.iter().enumerate() {
                 if run.get(i + 1).is_none_or(|next| next.0 != e.0) {
-                    kept.push(e);
+                    edges.push(e);
                 }
             }
-            start = kept.len() as u32;
         }
-        first[n] = start;
-        Self { first, edges: kept }
+        first[n] = edges.len();
+        Self { first, edges }
     }
 
     /// The face with the directed edge `b -> c`.
     fn get(&self, b: u32, c: u32) -> Option<usize> {
         let v = b as usize;
-        let run = &self.edges[*self.first.get(v)? as usize..*self.first.get(v + 1)? as usize];
+        let run = &self.edges[*self.first.get(v)?..*self.first.get(v + 1)?];
         run.iter().find(|e| e.0 == c).map(|e| e.1 as usize)
     }
 
     /// Every directed edge `(b, c, face)`, by `b` then `c`.
     fn iter(&self) -> impl Iterator<Item = (u32, u32, usize)> + '_ {
         self.first.windows(2).enumerate().flat_map(move |(b, w)| {
-            self.edges[w[0] as usize..w[1] as usize]
+            self.edges[w[0]..w[1]]
                 .iter()
                 .map(move |&(c, f)| (b as u32, c, f as usize))
         })

@@ -24,16 +24,50 @@ pub struct NonManifoldEdge {
     pub triangles: Vec<u32>,
 }
 
-/// Undirected edge records `(min vertex, max vertex, triangle, local edge)`, sorted.
+/// Items grouped by a vertex in one counting pass: `(first, grouped)`, where vertex `v`'s
+/// items, in the order given, are `grouped[first[v]..first[v + 1]]` (`first` has one entry
+/// past the last vertex, `n` vertices in all; an item of a vertex `n` or above is dropped).
+/// Each group is then small (a vertex's edges), so sorting the groups one by one sorts
+/// the whole by vertex first in linear time.
+pub fn group_by_vertex<T: Copy>(n: usize, items: &[(u32, T)]) -> (Vec<usize>, Vec<T>) {
+    let within = |v: u32| (v as usize) < n;
+    let mut first = vec![0usize; n + 1];
+    for &(v, _) in items.iter().filter(|(v, _)| within(*v)) {
+        first[v as usize + 1] += 1;
+    }
+    for v in 0..n {
+        first[v + 1] += first[v];
+    }
+    let Some(&(_, any)) = items.iter().find(|(v, _)| within(*v)) else {
+        return (first, Vec::new());
+    };
+    let mut fill = first.clone();
+    let mut grouped = vec![any; first[n]];
+    for &(v, item) in items.iter().filter(|(v, _)| within(*v)) {
+        grouped[fill[v as usize]] = item;
+        fill[v as usize] += 1;
+    }
+    (first, grouped)
+}
+
+/// Undirected edge records `(min vertex, max vertex, triangle, local edge)`, sorted (by
+/// smaller vertex in one counting pass, then each vertex's few edges).
 pub fn sorted_edges(mesh: &TriMesh) -> Vec<(u32, u32, u32, u8)> {
-    let mut edges = Vec::with_capacity(mesh.triangles.len() * 3);
+    let mut records = Vec::with_capacity(mesh.triangles.len() * 3);
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for k in 0..3u8 {
             let (a, b) = (tri[k as usize], tri[(k as usize + 1) % 3]);
-            edges.push((a.min(b), a.max(b), t as u32, k));
+            records.push((a.min(b), (a.max(b), t as u32, k)));
         }
     }
-    edges.sort_unstable();
+    let n = records.iter().map(|r| r.0 as usize + 1).max().unwrap_or(0);
+    let (first, mut grouped) = group_by_vertex(n, &records);
+    let mut edges = Vec::with_capacity(grouped.len());
+    for v in 0..n {
+        let run = &mut grouped[first[v]..first[v + 1]];
+        run.sort_unstable();
+        edges.extend(run.iter().map(|&(b, t, k)| (v as u32, b, t, k)));
+    }
     edges
 }
 

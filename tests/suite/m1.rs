@@ -288,8 +288,8 @@ fn a_cut_that_misses_the_garment_is_refused_and_the_session_goes_on() {
     assert_eq!(cut_lines(5), Some(0));
 }
 
-/// `undirected_edges` (gathered per smaller vertex) against a sort of every face's edges,
-/// written here: random soups with repeated, degenerate and unused vertices, and M1 itself.
+/// `undirected_edges` and `sorted_edges` (grouped per smaller vertex) against a sort of every
+/// face's edges, written here: random soups with repeated, degenerate and unused vertices, and M1 itself.
 #[test]
 fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
     let reference = |mesh: &TriMesh| {
@@ -314,6 +314,16 @@ fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
             triangles,
         };
         assert_eq!(drape::m1::undirected_edges(&mesh), reference(&mesh), "{n} vertices");
+        // The edge records they come from, against a plain sort of them.
+        let mut records: Vec<(u32, u32, u32, u8)> = Vec::new();
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            for k in 0..3u8 {
+                let (a, b) = (tri[k as usize], tri[(k as usize + 1) % 3]);
+                records.push((a.min(b), a.max(b), t as u32, k));
+            }
+        }
+        records.sort();
+        assert_eq!(drape::mesh::topology::sorted_edges(&mesh), records, "{n} vertices");
     }
     let empty = TriMesh {
         positions: Vec::new(),

@@ -300,15 +300,16 @@ fn the_selection_reading_the_quality_checks_nearest_triangles_selects_the_same_p
             &CollisionOptions::default(),
             &mut DetectState::default(),
         );
-        let input = |nearest| SelectInput {
+        let measured = c.quality.measured(&c.mesh.positions);
+        let input = |measured| SelectInput {
             mesh: &c.mesh,
             face_patch: &g.face_patch,
             patches: real_jumpsuit().m0.patch_names.len(),
             standard: Some(&g.mesh.positions),
-            nearest,
+            measured,
         };
         let own = select(&input(None), index, &options);
-        let read = select(&input(Some(&c.quality.nearest)), index, &options);
+        let read = select(&input(Some(&measured)), index, &options);
         assert_eq!(own, read, "seed {seed}");
         fired += own.by_rule().get("body").copied().unwrap_or(0);
         for v in (0..c.mesh.positions.len()).step_by(37) {

@@ -66,6 +66,8 @@ pub(super) fn build_m1(
     let m0 = &outcome.collision.mesh;
     let face_patch = &outcome.garment.face_patch;
     let patches = fw.m0.patch_names.len();
+    // M0's distances as its quality check measured them: the selection and M1's check read them.
+    let measured = outcome.collision.quality.measured(&m0.positions);
     let selection = scope.timed("m1.select", || {
         if m1_options.all_patches {
             Selection::all(patches)
@@ -75,7 +77,7 @@ pub(super) fn build_m1(
                 face_patch,
                 patches,
                 standard: state.standard.as_deref(),
-                nearest: Some(&outcome.collision.quality.nearest),
+                measured: Some(&measured),
             };
             m1::select(&input, index, &m1_options.select)
         }
@@ -88,7 +90,6 @@ pub(super) fn build_m1(
         .iter()
         .map(|&e| outcome.garment.edges[e as usize])
         .collect();
-    let measured = outcome.collision.quality.measured(&m0.positions);
     let collided = M0Collided {
         measured: Some(&measured),
         inside: &outcome.collision.quality.inside,
