@@ -230,8 +230,9 @@ fn methods_table(body: &Body, probe: &BodyProbe) {
             .iter()
             .flat_map(|s| s.loops.iter())
             .flat_map(|l| {
-                let n = l.points.len();
-                (0..n).map(move |i| l.points[i].distance(l.points[(i + 1) % n]))
+                let points = l.points();
+                let n = points.len();
+                (0..n).map(move |i| points[i].distance(points[(i + 1) % n]))
             })
             .fold((0.0, 0usize), |(s, c), e| (s + e, c + 1));
         let edge = sum / count.max(1) as f64;

@@ -92,14 +92,64 @@ impl Centres {
     }
 }
 
-/// One closed loop of a slice, counter-clockwise in `(x, z)`.
+/// Edges per [`Loop2::chunks`] box.
+pub const CHUNK: usize = 8;
+
+/// One closed loop of a slice, counter-clockwise in `(x, z)`, with a bounding box over
+/// every run of [`CHUNK`] consecutive edges, so that a query can pass by the runs that
+/// lie far from it (the loop is a polyline: consecutive edges lie close together).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Loop2 {
-    /// Points `(x, z)`, m, not repeated at the end.
-    pub points: Vec<DVec2>,
+    points: Vec<DVec2>,
+    chunks: Vec<[DVec2; 2]>,
+    bounds: [DVec2; 2],
 }
 
 impl Loop2 {
+    /// The loop through `points` (not repeated at the end).
+    ///
+    /// Each box is grown by a billionth of the loop's extent plus a picometre, far above
+    /// the rounding of any distance or side computed in it, so that a box test never
+    /// passes by an edge whose own computed test would have counted.
+    pub fn new(points: Vec<DVec2>) -> Self {
+        let n = points.len();
+        let (lo, hi) = points
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let pad = DVec2::splat(1e-12 + 1e-9 * (hi - lo).max_element().max(0.0));
+        let bounds = [lo - pad, hi + pad];
+        let chunks = (0..n)
+            .step_by(CHUNK)
+            .map(|first| {
+                let (lo, hi) = (first..(first + CHUNK).min(n))
+                    .flat_map(|i| [points[i], points[(i + 1) % n]])
+                    .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                        (lo.min(p), hi.max(p))
+                    });
+                [lo - pad, hi + pad]
+            })
+            .collect();
+        Self { points, chunks, bounds }
+    }
+
+    /// Box `[min, max]` of the whole loop, grown as told in [`Self::new`].
+    pub fn bounds(&self) -> [DVec2; 2] {
+        self.bounds
+    }
+
+    /// Points `(x, z)`, m, not repeated at the end.
+    pub fn points(&self) -> &[DVec2] {
+        &self.points
+    }
+
+    /// Box `[min, max]` of edges `k * CHUNK ..` up to `(k + 1) * CHUNK` (the last run may be
+    /// shorter), grown as told in [`Self::new`].
+    pub fn chunks(&self) -> &[[DVec2; 2]] {
+        &self.chunks
+    }
+
     /// Outward unit normal of edge `i` (from point `i` to `i + 1`).
     pub fn edge_normal(&self, i: usize) -> DVec2 {
         let n = self.points.len();
@@ -219,7 +269,7 @@ impl SliceStack {
                         if polygon::signed_area(&points) < 0.0 {
                             points.reverse();
                         }
-                        Loop2 { points }
+                        Loop2::new(points)
                     })
                     .collect();
                 Slice { y, loops, centres }

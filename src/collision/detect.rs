@@ -164,10 +164,11 @@ pub enum Skip {
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Memo {
     position: DVec3,
-    partition: usize,
-    method: DetectionMethod,
     clearance: f64,
-    slice: Option<usize>,
+    partition: u32,
+    /// The slice read by the line-line test (`u32::MAX`: none).
+    slice: u32,
+    method: DetectionMethod,
 }
 
 /// What detection remembers between steps (same garment topology).
@@ -223,7 +224,11 @@ fn max_move(before: Option<&Vec<DVec3>>, after: Option<&Vec<DVec3>>, r: &CurveRe
     }
 }
 
-/// The test of one vertex: its hit (if inside) and its memo.
+/// No slice in a [`Memo`].
+const NO_SLICE: u32 = u32::MAX;
+
+/// The test of one vertex: its hit (if inside; boxed, as hits are few and the memos are
+/// many) and its memo.
 fn test_vertex(
     index: &BodyIndex,
     options: &DetectOptions,
@@ -232,7 +237,7 @@ fn test_vertex(
     p: DVec3,
     normal: DVec3,
     partition: usize,
-) -> (Option<Hit>, Memo) {
+) -> (Option<Box<Hit>>, Memo) {
     let method = options.method_override.unwrap_or(index.partitions[partition].method);
     let slice = match method {
         DetectionMethod::LineLine => {
@@ -243,21 +248,23 @@ fn test_vertex(
     };
     let memo = |clearance: f64, slice: Option<usize>| Memo {
         position: p,
-        partition,
-        method,
         clearance,
-        slice,
+        partition: partition as u32,
+        slice: slice.map_or(NO_SLICE, |k| k as u32),
+        method,
     };
     if let Some((k, s)) = slice {
         let r = line_line(s, k, p, normal, reach);
-        let hit = r.inside.then_some(Hit {
-            vertex: v as u32,
-            partition,
-            method,
-            depth: r.depth,
-            foot: r.foot,
-            normal: r.normal,
-            triangle: None,
+        let hit = r.inside.then(|| {
+            Box::new(Hit {
+                vertex: v as u32,
+                partition,
+                method,
+                depth: r.depth,
+                foot: r.foot,
+                normal: r.normal,
+                triangle: None,
+            })
         });
         return (hit, memo(r.clearance, Some(k)));
     }
@@ -269,7 +276,7 @@ fn test_vertex(
     };
     let r = point_face(index, search, p, reach);
     let hit = match (r.inside, r.nearest) {
-        (true, Some(n)) => Some(Hit {
+        (true, Some(n)) => Some(Box::new(Hit {
             vertex: v as u32,
             partition,
             method: DetectionMethod::PointFace,
@@ -277,7 +284,7 @@ fn test_vertex(
             foot: n.foot,
             normal: n.normal,
             triangle: Some(n.triangle),
-        }),
+        })),
         _ => None,
     };
     let mut m = memo(r.clearance(reach), None);
@@ -340,9 +347,12 @@ pub fn detect(
         by_method: [0, 0],
     };
     let fresh = state.memo.is_empty();
+    if fresh {
+        state.memo.reserve_exact(n);
+    }
     // Which vertices to test (cheap, in order), then their tests on the worker threads, then
     // the results in vertex order: the same whatever the number of threads.
-    let mut to_test = Vec::new();
+    let mut to_test = Vec::with_capacity(n);
     for v in 0..n {
         let p = garment.positions[v];
         let partition = index.partition_at(p.y).unwrap_or(0);
@@ -351,14 +361,11 @@ pub fn detect(
         if !fresh {
             let m = &state.memo[v];
             let moved = p.distance(m.position);
-            let same_slice = match m.slice {
-                Some(k) => {
-                    let now = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
-                    now >= 0.0 && now as usize == k
-                }
-                None => true,
+            let same_slice = m.slice == NO_SLICE || {
+                let now = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
+                now >= 0.0 && now as usize == m.slice as usize
             };
-            let safe = moved < m.clearance && m.partition == partition && same_slice && m.method == method;
+            let safe = moved < m.clearance && m.partition as usize == partition && same_slice && m.method == method;
             let patch = garment.vertex_patches.get(v).is_some_and(|ps| {
                 !ps.is_empty()
                     && ps
@@ -400,7 +407,7 @@ pub fn detect(
         out.by_method[usize::from(memo.method == DetectionMethod::LineLine)] += 1;
         out.tested += 1;
         out.methods[v] = Some(memo.method);
-        out.hits.extend(hit);
+        out.hits.extend(hit.map(|h| *h));
         if fresh {
             state.memo.push(memo);
         } else {

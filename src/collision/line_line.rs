@@ -5,7 +5,7 @@
 //! loop, from a point inside it leaves one; so the nearest crossing's side gives the
 //! verdict, and its distance to the crossed edge the depth.
 //!
-//! The test is cheap (a few hundred 2D edges) and approximate: it reads the section at the
+//! The test is cheap (a few runs of 2D edges near the vertex or its line) and approximate: it reads the section at the
 //! nearest slice height, not the vertex's own, and it misses points deeper than `w1`
 //! along the normal. The error it really makes is measured against the exact test (see
 //! the collision benchmark and `--verify`).
@@ -13,7 +13,7 @@
 use glam::{DVec2, DVec3};
 
 use super::point_face::Reach;
-use crate::body::slices::{Slice, flat};
+use crate::body::slices::{CHUNK, Loop2, Slice, flat};
 use crate::geom::polygon;
 
 /// What the line-line test found.
@@ -41,12 +41,13 @@ fn cross_segment(p: DVec2, d: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
         return None;
     }
     let w = a - p;
-    let t = w.perp_dot(e) / den;
     let s = w.perp_dot(d) / den;
-    (0.0..=1.0).contains(&s).then_some(t)
+    (0.0..=1.0).contains(&s).then(|| w.perp_dot(e) / den)
 }
 
-fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+/// Squared distance from `p` to the segment `a..b` (its square root is the distance, bit
+/// for bit: the square root is monotone and correctly rounded).
+fn segment_distance2(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let e = b - a;
     let len2 = e.length_squared();
     let t = if len2 > 0.0 {
@@ -54,12 +55,43 @@ fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     } else {
         0.0
     };
-    p.distance(a + e * t)
+    (p - (a + e * t)).length_squared()
+}
+
+/// Squared distance from `p` to the box `[lo, hi]` (zero inside).
+fn box_distance2(p: DVec2, [lo, hi]: [DVec2; 2]) -> f64 {
+    (lo - p).max(p - hi).max(DVec2::ZERO).length_squared()
+}
+
+/// Whether the line through `p` along the unit `d` meets the box `[lo, hi]`: its corners do
+/// not all lie strictly on one side.
+fn line_meets_box(p: DVec2, d: DVec2, [lo, hi]: [DVec2; 2]) -> bool {
+    let sides = [lo, hi, DVec2::new(lo.x, hi.y), DVec2::new(hi.x, lo.y)].map(|c| (c - p).perp_dot(d));
+    !(sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0))
+}
+
+/// The edges of `l`'s run `c`: `(i, a, b)`.
+fn run(l: &Loop2, c: usize) -> impl Iterator<Item = (usize, DVec2, DVec2)> + '_ {
+    let points = l.points();
+    let n = points.len();
+    (c * CHUNK..((c + 1) * CHUNK).min(n)).map(move |i| (i, points[i], points[(i + 1) % n]))
+}
+
+thread_local! {
+    /// The run holding the nearest edge of the last line-line test on this thread: (the
+    /// slice's address, loop, run). Only a hint: see [`line_line`].
+    static LAST_RUN: std::cell::Cell<(usize, usize, usize)> = const { std::cell::Cell::new((0, 0, 0)) };
 }
 
 /// The line-line test of `p` with (3D) normal `normal` in slice `slice` (index `k`).
 /// A normal with no horizontal part is replaced by the direction from the ring's global
 /// centre, then by `+z`.
+///
+/// Every edge of every loop counts, but a run of edges is read only where its box could
+/// matter: for the clearance when the box lies no farther than the nearest edge so far
+/// (first the run nearest the last vertex's, or else the run whose box is nearest), for the crossing when the vertex's line meets
+/// the box. The runs are read in loop order, so the answer is the one a scan of every
+/// edge gives, bit for bit.
 pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach) -> LineLine {
     let q = flat(p);
     let mut d = flat(normal).normalize_or_zero();
@@ -71,22 +103,77 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
     if d == DVec2::ZERO {
         d = DVec2::Y;
     }
+    // The clearance so far (squared), first from the run nearest the last vertex tested on
+    // this slice by this thread (vertices come in a spatially coherent order), else from
+    // the run whose box is nearest. It only prunes: the answer does not depend on it.
+    let key = std::ptr::from_ref(slice) as usize;
+    let (last_key, last_loop, last_run) = LAST_RUN.get();
+    let seed = (last_key == key && last_loop < slice.loops.len() && last_run < slice.loops[last_loop].chunks().len())
+        .then_some((last_loop, last_run))
+        .or_else(|| {
+            slice
+                .loops
+                .iter()
+                .enumerate()
+                .flat_map(|(j, l)| {
+                    l.chunks()
+                        .iter()
+                        .enumerate()
+                        .map(move |(c, b)| (box_distance2(q, *b), j, c))
+                })
+                .min_by(|x, y| x.0.total_cmp(&y.0))
+                .map(|(_, j, c)| (j, c))
+        });
+    let mut near2 = f64::INFINITY;
+    CNT[2].fetch_add(usize::from(last_key == key), std::sync::atomic::Ordering::Relaxed);
+    CNT[4].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let mut nearest = seed;
+    if let Some((j, c)) = seed {
+        for (_, a, b) in run(&slice.loops[j], c) {
+            near2 = near2.min(segment_distance2(q, a, b));
+        }
+    }
     let mut best: Option<(f64, DVec2)> = None;
-    let mut clearance = f64::INFINITY;
-    for l in &slice.loops {
-        let n = l.points.len();
-        for i in 0..n {
-            let (a, b) = (l.points[i], l.points[(i + 1) % n]);
-            clearance = clearance.min(segment_distance(q, a, b));
-            if let Some(t) = cross_segment(q, d, a, b)
-                && t >= -reach.outside
-                && t <= reach.inside
-                && best.is_none_or(|(bt, _)| t.abs() < bt.abs())
-            {
-                best = Some((t, l.edge_normal(i)));
+    for (j, l) in slice.loops.iter().enumerate() {
+        if box_distance2(q, l.bounds()) > near2 && !line_meets_box(q, d, l.bounds()) {
+            continue;
+        }
+        CNT[3].fetch_add(l.chunks().len(), std::sync::atomic::Ordering::Relaxed);
+        for (c, &bounds) in l.chunks().iter().enumerate() {
+            let near = box_distance2(q, bounds) <= near2;
+            let crossing = line_meets_box(q, d, bounds);
+            if !near && !crossing {
+                continue;
+            }
+            if near {
+                CNT[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            }
+            if crossing {
+                CNT[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            }
+            for (i, a, b) in run(l, c) {
+                if near {
+                    let e2 = segment_distance2(q, a, b);
+                    if e2 < near2 {
+                        near2 = e2;
+                        nearest = Some((j, c));
+                    }
+                }
+                if crossing
+                    && let Some(t) = cross_segment(q, d, a, b)
+                    && t >= -reach.outside
+                    && t <= reach.inside
+                    && best.is_none_or(|(bt, _)| t.abs() < bt.abs())
+                {
+                    best = Some((t, l.edge_normal(i)));
+                }
             }
         }
     }
+    if let Some((j, c)) = nearest {
+        LAST_RUN.set((key, j, c));
+    }
+    let clearance = near2.sqrt();
     let at = |v: DVec2| DVec3::new(v.x, slice.y, v.y);
     match best {
         Some((t, n)) => {
@@ -108,7 +195,7 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
             foot: at(q),
             normal: DVec3::ZERO,
             // Deeper than the reach: missed, and never skipped later.
-            clearance: if slice.loops.iter().any(|l| polygon::contains(&l.points, q)) {
+            clearance: if slice.loops.iter().any(|l| polygon::contains(l.points(), q)) {
                 0.0
             } else {
                 clearance
@@ -116,3 +203,6 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
         },
     }
 }
+
+/// debug
+pub static CNT: [std::sync::atomic::AtomicUsize; 5] = [const { std::sync::atomic::AtomicUsize::new(0) }; 5];
