@@ -15,8 +15,9 @@ with `taskset -c 0`, unless the row says 2 threads):
    pseudo-normal sign) on exactly those points and that body, on one core, then on every
    core, and checks their inside verdicts and distances against drape's.
 4. Runs the demo session (resolution 6) and the same session at resolution 24 with
-   `drape run --threads 1 --metrics`, and once more with 2 threads, and reads the per-step
-   compute and logging times.
+   `drape run --threads 1 --metrics`, and the same with 2 threads, each `--session-runs`
+   times (default 3; a drag step's figure is the median over every drag of every run), and
+   reads the per-step compute and logging times.
 5. Prints one table: each figure beside its goal and the peer ratios (with --readme, also
    writes everything it printed into README.md between `<!-- figures:speed -->` and
    `<!-- /figures:speed -->`).
@@ -161,6 +162,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--json", type=Path, help="also write every figure here as JSON")
     ap.add_argument("--skip-sessions", action="store_true", help="only the query tables")
+    ap.add_argument("--session-runs", type=int, default=3, help="runs of each session (default 3)")
     ap.add_argument("--readme", action="store_true", help="write the report into README.md (figures:speed)")
     a = ap.parse_args()
     if shutil.which("taskset") is None:
@@ -209,21 +211,24 @@ def main():
         runs = {}
         for tag, session in (("demo6", demo), ("demo24", fine)):
             for threads in (1, 2):
-                runs[f"{tag}.{threads}"] = run_session(binary, session, threads, folder, f"{tag}.{threads}")
+                runs[f"{tag}.{threads}"] = [
+                    run_session(binary, session, threads, folder, f"{tag}.{threads}.{k}")
+                    for k in range(max(1, a.session_runs))
+                ]
         figures["sessions"] = runs
 
         def index_ms(tag, how):
-            """The `body.index` time of run `tag`, which must have `how` (built, read) it."""
-            step = next(s for s in runs[tag] if "body.index" in s["compute"])
+            """The `body.index` time of the first run `tag`, which must have `how` (built, read) it."""
+            step = next(s for s in runs[tag][0] if "body.index" in s["compute"])
             if not any(n.startswith(f"body index {how}") for n in step["notes"]):
                 sys.exit(f"{tag}: expected the body index {how}, the run says {step['notes']}")
             return step["compute"]["body.index"]
 
         def drags(tag):
-            return [s for s in runs[tag] if s["op"] == "drag" and "garment.assemble" in s["compute"]]
+            return [s for r in runs[tag] for s in r if s["op"] == "drag" and "garment.assemble" in s["compute"]]
 
         emit()
-        emit("#### The table (the demo session and the same at resolution 24; drag steps: its 4 accepted drags)")
+        emit(f"#### The table (the demo session and the same at resolution 24; drag steps: its 4 accepted drags, {max(1, a.session_runs)} runs)")
         emit()
         emit("| what | 1 thread, one core | 2 threads | goal |")
         emit("|---|---:|---:|---|")
