@@ -65,7 +65,7 @@ fn deviation(mesh: &TriMesh, reference: &BodyIndex) -> (f64, f64, f64) {
 }
 
 fn edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
-    m1::undirected_edges(mesh)
+    drape::mesh::topology::undirected_edges(mesh)
 }
 
 fn main() {

@@ -12,6 +12,7 @@ use glam::DVec3;
 
 use crate::geom::{CoonsPatch, CornerMismatch};
 use crate::mesh::TriMesh;
+use crate::mesh::topology::{repeated_triangles, undirected_edges};
 
 /// One patch sampled on its grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -191,7 +192,8 @@ pub fn weld(points: &[DVec3], threshold: f64) -> (Vec<u32>, usize) {
     let n = points.len();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_by(|&a, &b| points[a as usize].x.total_cmp(&points[b as usize].x).then(a.cmp(&b)));
+    // A total order (ties by index), so the unstable sort gives the one sorted order.
+    order.sort_unstable_by(|&a, &b| points[a as usize].x.total_cmp(&points[b as usize].x).then(a.cmp(&b)));
     for (k, &i) in order.iter().enumerate() {
         let p = points[i as usize];
         for &j in &order[k + 1..] {
@@ -243,36 +245,28 @@ pub fn stitch(patches: &[PatchGrid], threshold: f64) -> M0 {
         welded: points.len() - count,
         ..StitchReport::default()
     };
-    let mut seen = std::collections::BTreeSet::new();
-    let mut triangles = Vec::with_capacity(faces.len());
-    let mut face_patch = Vec::with_capacity(faces.len());
-    for (t, p) in faces {
-        let t = t.map(|i| map[i as usize]);
-        if t[0] == t[1] || t[1] == t[2] || t[0] == t[2] {
-            report.degenerate_faces += 1;
-            continue;
-        }
-        let mut key = t;
-        key.sort_unstable();
-        if !seen.insert(key) {
-            report.duplicate_faces += 1;
-            continue;
-        }
-        triangles.push(t);
-        face_patch.push(p);
-    }
+    // Degenerate faces out, then every face with the corners of an earlier one.
+    let (kept, degenerate): (Vec<([u32; 3], u32)>, Vec<_>) = faces
+        .into_iter()
+        .map(|(t, p)| (t.map(|i| map[i as usize]), p))
+        .partition(|(t, _)| t[0] != t[1] && t[1] != t[2] && t[0] != t[2]);
+    report.degenerate_faces = degenerate.len();
+    let repeated = repeated_triangles(&kept.iter().map(|(t, _)| *t).collect::<Vec<_>>());
+    report.duplicate_faces = repeated.iter().filter(|r| **r).count();
+    let (triangles, face_patch): (Vec<[u32; 3]>, Vec<u32>) = kept
+        .into_iter()
+        .zip(&repeated)
+        .filter(|(_, r)| !**r)
+        .map(|(f, _)| f)
+        .unzip();
     let directed_edges: Vec<[u32; 2]> = triangles
         .iter()
         .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
         .collect();
-    let mut edges: Vec<[u32; 2]> = directed_edges
-        .iter()
-        .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
+    let mesh = TriMesh { positions, triangles };
+    let edges = undirected_edges(&mesh);
     M0 {
-        mesh: TriMesh { positions, triangles },
+        mesh,
         face_patch,
         patch_names: patches.iter().map(|p| p.name.clone()).collect(),
         directed_edges,

@@ -76,24 +76,6 @@ impl M1 {
     }
 }
 
-/// The undirected edges of a mesh, each once, sorted: grouped by their smaller vertex,
-/// then each vertex's few larger neighbours sorted and deduplicated.
-pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
-    let ends: Vec<(u32, u32)> = (mesh.triangles.iter())
-        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
-        .collect();
-    let n = ends.iter().map(|e| e.0 as usize + 1).max().unwrap_or(0);
-    let (first, mut larger) = crate::mesh::topology::group_by_vertex(n, &ends);
-    let mut edges = Vec::with_capacity(larger.len() / 2 + 1);
-    for v in 0..n {
-        let run = &mut larger[first[v]..first[v + 1]];
-        run.sort_unstable();
-        edges.extend(run.iter().map(|&w| [v as u32, w]));
-    }
-    edges.dedup();
-    edges
-}
-
 /// Builds M1 from the collided M0: `steps` sqrt(3) steps over the patches `selection`
 /// refines.
 pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M1Options) -> M1 {
@@ -127,7 +109,7 @@ pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M
     smoothed.sort_unstable();
     smoothed.dedup();
     M1 {
-        edges: undirected_edges(&mesh),
+        edges: crate::mesh::topology::undirected_edges(&mesh),
         mesh,
         face_patch: patches,
         selection,

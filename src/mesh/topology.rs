@@ -50,6 +50,51 @@ pub fn group_by_vertex<T: Copy>(n: usize, items: &[(u32, T)]) -> (Vec<usize>, Ve
     (first, grouped)
 }
 
+/// The undirected edges of a mesh, each once, sorted: grouped by their smaller vertex,
+/// then each vertex's few larger neighbours sorted and deduplicated.
+pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
+    let ends: Vec<(u32, u32)> = (mesh.triangles.iter())
+        .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
+        .collect();
+    let n = ends.iter().map(|e| e.0 as usize + 1).max().unwrap_or(0);
+    let (first, mut larger) = group_by_vertex(n, &ends);
+    let mut edges = Vec::with_capacity(larger.len() / 2 + 1);
+    for v in 0..n {
+        let run = &mut larger[first[v]..first[v + 1]];
+        run.sort_unstable();
+        edges.extend(run.iter().map(|&w| [v as u32, w]));
+    }
+    edges.dedup();
+    edges
+}
+
+/// For each triangle, whether an earlier triangle has the same three corners (in any
+/// order): grouped by the smallest corner, then each corner's few triangles sorted.
+pub fn repeated_triangles(triangles: &[[u32; 3]]) -> Vec<bool> {
+    let keys: Vec<(u32, (u32, u32, u32))> = triangles
+        .iter()
+        .enumerate()
+        .map(|(t, tri)| {
+            let mut key = *tri;
+            key.sort_unstable();
+            (key[0], (key[1], key[2], t as u32))
+        })
+        .collect();
+    let n = keys.iter().map(|k| k.0 as usize + 1).max().unwrap_or(0);
+    let (first, mut grouped) = group_by_vertex(n, &keys);
+    let mut repeated = vec![false; triangles.len()];
+    for v in 0..n {
+        let run = &mut grouped[first[v]..first[v + 1]];
+        run.sort_unstable();
+        for pair in run.windows(2) {
+            if (pair[0].0, pair[0].1) == (pair[1].0, pair[1].1) {
+                repeated[pair[1].2 as usize] = true;
+            }
+        }
+    }
+    repeated
+}
+
 /// Undirected edge records `(min vertex, max vertex, triangle, local edge)`, sorted (by
 /// smaller vertex in one counting pass, then each vertex's few edges).
 pub fn sorted_edges(mesh: &TriMesh) -> Vec<(u32, u32, u32, u8)> {

@@ -289,7 +289,8 @@ fn a_cut_that_misses_the_garment_is_refused_and_the_session_goes_on() {
 }
 
 /// `undirected_edges` and `sorted_edges` (grouped per smaller vertex) against a sort of every
-/// face's edges, written here: random soups with repeated, degenerate and unused vertices, and M1 itself.
+/// face's edges, written here, and `repeated_triangles` against a set of the corners seen
+/// so far: random soups with repeated, degenerate and unused vertices, and M1 itself.
 #[test]
 fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
     let reference = |mesh: &TriMesh| {
@@ -313,7 +314,11 @@ fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
             positions: vec![DVec3::ZERO; n + 3],
             triangles,
         };
-        assert_eq!(drape::m1::undirected_edges(&mesh), reference(&mesh), "{n} vertices");
+        assert_eq!(
+            drape::mesh::topology::undirected_edges(&mesh),
+            reference(&mesh),
+            "{n} vertices"
+        );
         // The edge records they come from, against a plain sort of them.
         let mut records: Vec<(u32, u32, u32, u8)> = Vec::new();
         for (t, tri) in mesh.triangles.iter().enumerate() {
@@ -324,12 +329,28 @@ fn undirected_edges_equal_a_plain_sort_of_every_faces_edges() {
         }
         records.sort();
         assert_eq!(drape::mesh::topology::sorted_edges(&mesh), records, "{n} vertices");
+        let mut seen = std::collections::BTreeSet::new();
+        let repeated: Vec<bool> = mesh
+            .triangles
+            .iter()
+            .map(|t| {
+                let mut key = *t;
+                key.sort_unstable();
+                !seen.insert(key)
+            })
+            .collect();
+        assert_eq!(
+            drape::mesh::topology::repeated_triangles(&mesh.triangles),
+            repeated,
+            "{n} vertices"
+        );
+        assert!(n > 5 || repeated.contains(&true), "{n} vertices: no repeat tested");
     }
     let empty = TriMesh {
         positions: Vec::new(),
         triangles: Vec::new(),
     };
-    assert!(drape::m1::undirected_edges(&empty).is_empty());
+    assert!(drape::mesh::topology::undirected_edges(&empty).is_empty());
     let m0 = &super::common::real_jumpsuit().m0.mesh;
-    assert_eq!(drape::m1::undirected_edges(m0), reference(m0));
+    assert_eq!(drape::mesh::topology::undirected_edges(m0), reference(m0));
 }

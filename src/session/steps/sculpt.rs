@@ -18,8 +18,9 @@ use super::super::stage::{SculptOutcome, SculptStage, Stage};
 use super::super::state::{GarmentState, SessionState};
 use super::StepContext;
 use crate::collision::{BodyIndex, CollisionOptions, response_ease};
-use crate::m1::{M0Collided, RefinedInput, collide_refined, partition_through, undirected_edges};
+use crate::m1::{M0Collided, RefinedInput, collide_refined, partition_through};
 use crate::mesh::TriMesh;
+use crate::mesh::topology::undirected_edges;
 use crate::sculpt::{Drag, SculptError, SculptOptions, measure};
 
 /// The mesh a sculpt is made on, collided, with what its collision left.
