@@ -263,7 +263,7 @@ fn store_point(m1: &M1, m0: &[[u32; 3]], positions: &[DVec3], p: &CutPoint) -> O
     }
     // A flipped edge between two centroids.
     let (fa, fb) = (face_of(a)?, face_of(b)?);
-    let (&edge, &faces) = m1
+    let &(edge, faces) = m1
         .first
         .flips
         .iter()

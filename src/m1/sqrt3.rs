@@ -16,8 +16,6 @@
 //! its `n` neighbours, `alpha_n = (4 - 2 cos(2 pi / n)) / 9` (Kobbelt's rule; at valence 6
 //! it is `(1 - 6 beta) p + beta sum(p_i)` with `beta = 1/18`, the paper's formula (1)).
 
-use std::collections::BTreeMap;
-
 use glam::DVec3;
 
 use crate::mesh::TriMesh;
@@ -72,9 +70,10 @@ pub struct Step {
     pub origin: Vec<Origin>,
     /// For each face before the step, the vertex at its centroid, if it was split.
     pub centroid_of: Vec<Option<u32>>,
-    /// Flipped edges: the old edge `[b, c]` (`b < c`) to the two faces `[f1, f2]` whose
-    /// centroids the new edge joins (`f1` has the directed edge `b -> c`).
-    pub flips: BTreeMap<[u32; 2], [u32; 2]>,
+    /// Flipped edges, sorted by the old edge: the old edge `[b, c]` (`b < c`) and the two
+    /// faces `[f1, f2]` whose centroids the new edge joins (`f1` has the directed edge
+    /// `b -> c`).
+    pub flips: Vec<([u32; 2], [u32; 2])>,
     /// Old vertices that moved (smoothing).
     pub smoothed: Vec<u32>,
 }
@@ -107,7 +106,7 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
     };
     let mut triangles = Vec::with_capacity(mesh.triangles.len() * 3);
     let mut patches = Vec::with_capacity(mesh.triangles.len() * 3);
-    let mut flips = BTreeMap::new();
+    let mut flips = Vec::new();
     for (f, t) in mesh.triangles.iter().enumerate() {
         let patch = face_patch[f];
         let Some(m1) = centroid_of[f] else {
@@ -125,14 +124,14 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
                     triangles.push([m1, b, m2]);
                     triangles.push([m2, c, m1]);
                     patches.extend([patch, patch]);
-                    flips.insert(
+                    flips.push((
                         [b.min(c), b.max(c)],
                         if b < c {
                             [f as u32, g as u32]
                         } else {
                             [g as u32, f as u32]
                         },
-                    );
+                    ));
                 }
                 Some(_) => {}
                 None => {
@@ -142,6 +141,12 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
             }
         }
     }
+    // By edge; an edge given twice (only where the mesh is not manifold) keeps its last
+    // faces, as a map would.
+    flips.sort_by_key(|&(edge, _)| edge);
+    flips.reverse();
+    flips.dedup_by_key(|(edge, _)| *edge);
+    flips.reverse();
     let mut smoothed = Vec::new();
     if smoothing == Smoothing::Kobbelt {
         let moved = smooth_old(mesh, &directed, &split, &flips_with);
