@@ -13,6 +13,7 @@ use glam::DVec3;
 use parry3d::bounding_volume::Aabb;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
 
+use super::near_tree::NearTree;
 use super::shell::{Shell, find_shell};
 use super::slices::{SliceOptions, SliceStack};
 use super::{Body, DetectionMethod, PartitionId, ResponseRule};
@@ -65,9 +66,8 @@ pub struct PartitionIndex {
     pub response: ResponseRule,
     /// Body triangles (with the margin band), ascending.
     pub triangles: Vec<u32>,
-    /// Stored apart by the cache (see [`BodyIndex::trees`]).
-    #[serde(skip)]
-    bvh: Bvh,
+    /// Their nearest-point tree.
+    tree: NearTree,
 }
 
 /// The body prepared for collision.
@@ -107,6 +107,8 @@ pub struct BodyIndex {
     /// Whether `all` is there (kept with the rest when the trees are stored apart).
     has_all: bool,
     slack: f64,
+    /// The shell's nearest-point and segment tree (parry's `whole` casts the rays).
+    near: NearTree,
 }
 
 thread_local! {
@@ -159,7 +161,7 @@ impl BodyIndex {
                 method: p.method,
                 response: p.response,
                 triangles: p.triangles.clone(),
-                bvh: Bvh::new(),
+                tree: NearTree::default(),
             })
             .collect();
         Self::build(
@@ -184,7 +186,7 @@ impl BodyIndex {
             method: DetectionMethod::PointFace,
             response: ResponseRule::VertexNormal,
             triangles: (0..mesh.triangles.len() as u32).collect(),
-            bvh: Bvh::new(),
+            tree: NearTree::default(),
         };
         Ok(Self::build(
             mesh,
@@ -255,6 +257,7 @@ impl BodyIndex {
             all: None,
             has_all: false,
             slack: 1e-5 * height,
+            near: NearTree::default(),
         };
         let mut overlapping = Vec::new();
         index
@@ -290,32 +293,39 @@ impl BodyIndex {
                 }
             }
         }
-        // Each partition's tree alone (on the worker threads: the trees do not depend on
-        // how many there are).
-        let trees = crate::par::par_map_from(partitions.len(), 2, |i| {
-            let local: Vec<Aabb> = partitions[i].triangles.iter().map(|&t| boxes[t as usize]).collect();
-            Bvh::from_leaves(BvhBuildStrategy::Binned, &local)
-        });
-        for (p, bvh) in partitions.iter_mut().zip(trees) {
-            p.bvh = bvh;
+        // The shell's nearest-point tree, and each partition's (on the worker threads: the
+        // trees do not depend on how many there are).
+        let corners = |t: u32| index.corners(t);
+        let bounds = |t: u32| (boxes[t as usize].mins, boxes[t as usize].maxs);
+        let mut trees = crate::par::par_map_from(partitions.len() + 1, 2, |i| {
+            let triangles = if i == 0 {
+                &index.leaves
+            } else {
+                &partitions[i - 1].triangles
+            };
+            NearTree::new(triangles, corners, bounds)
+        })
+        .into_iter();
+        index.near = trees.next().unwrap_or_default();
+        for (p, tree) in partitions.iter_mut().zip(trees) {
+            p.tree = tree;
         }
         index.partitions = partitions;
         index
     }
 
-    /// Every tree of the index, in a fixed order (the shell's, every triangle's when some are
-    /// buried, then each partition's): the cache stores them apart from the rest, which
-    /// serializes without them.
+    /// Every parry tree of the index, in a fixed order (the shell's, then every triangle's
+    /// when some are buried): the cache stores them apart from the rest, which serializes
+    /// without them.
     pub(super) fn trees(&self) -> Vec<&Bvh> {
         let mut out = vec![&self.whole];
         out.extend(self.all.as_ref());
-        out.extend(self.partitions.iter().map(|p| &p.bvh));
         out
     }
 
     /// How many trees [`Self::trees`] gives.
     pub(super) fn tree_count(&self) -> usize {
-        1 + usize::from(self.has_all) + self.partitions.len()
+        1 + usize::from(self.has_all)
     }
 
     /// Puts back the trees of an index deserialized without them, in the order of
@@ -330,9 +340,6 @@ impl BodyIndex {
         }
         if self.has_all {
             self.all = trees.next();
-        }
-        for (p, bvh) in self.partitions.iter_mut().zip(trees) {
-            p.bvh = bvh;
         }
         true
     }
@@ -458,41 +465,43 @@ impl BodyIndex {
     /// the demo's garment, and the walk's own triangle tests cost more than they save.)
     fn nearest_in(
         &self,
-        bvh: &Bvh,
-        map: impl Fn(u32) -> u32,
+        tree: &NearTree,
         member: impl Fn(u32) -> bool,
         p: DVec3,
         reach: f64,
         hint: Option<u32>,
     ) -> Option<Nearest> {
-        let q = p.as_vec3();
         let start = hint
             .filter(|&t| (t as usize) < self.triangles.len() && member(t))
             .map(|t| self.candidate(p, t))
             .filter(|n| n.distance <= reach);
-        let best = Cell::new(start);
-        // Costs are squared distances (no square root per box).
+        let mut best = start;
         let limit = start.map_or(reach, |n| n.distance) + self.slack;
-        bvh.find_best(
-            (limit * limit) as f32,
-            |node, _| {
-                let b = node.aabb();
-                (b.mins - q).max(q - b.maxs).max(glam::Vec3::ZERO).length_squared()
-            },
-            |leaf, _| {
-                let t = map(leaf);
-                let n = self.candidate(p, t);
-                let better = best
-                    .get()
-                    .is_none_or(|b| n.distance < b.distance || (n.distance == b.distance && t < b.triangle));
-                if n.distance <= reach && better {
-                    best.set(Some(n));
-                }
-                let cost = n.distance + self.slack;
-                Some((cost * cost) as f32)
-            },
-        );
-        let best = best.get()?;
+        let slack = self.slack;
+        // Costs are squared distances (no square root per box).
+        tree.nearest(p.as_vec3(), (limit * limit) as f32, |t, corners| {
+            let (foot, feature) = closest_on_triangle(p, *corners);
+            let distance = p.distance(foot);
+            let better = best.is_none_or(|b| distance < b.distance || (distance == b.distance && t < b.triangle));
+            if distance <= reach && better {
+                let normal = match feature {
+                    Feature::Face => self.face_normals[t as usize],
+                    Feature::Edge(k) => self.edge_normals[t as usize][k as usize],
+                    Feature::Vertex(k) => self.vertex_normals[self.triangles[t as usize][k as usize] as usize],
+                };
+                best = Some(Nearest {
+                    triangle: t,
+                    foot,
+                    feature,
+                    distance,
+                    normal,
+                    behind: None,
+                });
+            }
+            let cost = distance + slack;
+            Some((cost * cost) as f32)
+        });
+        let best = best?;
         LAST_FOUND.set((self.key(), best.triangle));
         Some(self.settle(p, best))
     }
@@ -522,14 +531,7 @@ impl BodyIndex {
     /// [`Self::nearest`] warm-started from triangle `hint` (the one found for this point at
     /// its last position, say).
     pub fn nearest_from(&self, p: DVec3, reach: f64, hint: Option<u32>) -> Option<Nearest> {
-        self.nearest_in(
-            &self.whole,
-            |i| self.leaves[i as usize],
-            |t| self.on_shell(t),
-            p,
-            reach,
-            hint,
-        )
+        self.nearest_in(&self.near, |t| self.on_shell(t), p, reach, hint)
     }
 
     /// The nearest point of partition `k`'s triangles within `reach` (warm-started as
@@ -537,8 +539,7 @@ impl BodyIndex {
     pub fn nearest_in_partition(&self, k: usize, p: DVec3, reach: f64) -> Option<Nearest> {
         let part = &self.partitions[k];
         self.nearest_in(
-            &part.bvh,
-            |i| part.triangles[i as usize],
+            &part.tree,
             |t| part.triangles.binary_search(&t).is_ok(),
             p,
             reach,
@@ -571,11 +572,8 @@ impl BodyIndex {
     /// an edge or a corner shared by triangles is never let through the crack between
     /// them, as rounded ray-triangle tests can (see [`crate::geom::predicates`]).
     pub fn segment_hits(&self, a: DVec3, b: DVec3) -> bool {
-        let d = b - a;
-        let ray = parry3d::query::Ray::new(a.as_vec3(), d.as_vec3());
-        let pad = self.slack / d.length().max(f64::MIN_POSITIVE);
-        self.whole
-            .leaves(|node| node.cast_ray(&ray, (1.0 + pad) as f32) < f32::MAX)
-            .any(|leaf| segment_crosses_triangle(a, b, self.corners(self.leaves[leaf as usize])))
+        let pad = self.slack / (b - a).length().max(f64::MIN_POSITIVE);
+        self.near
+            .any_on_segment(a, b, pad, |_, c| segment_crosses_triangle(a, b, *c))
     }
 }

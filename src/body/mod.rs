@@ -3,6 +3,7 @@
 pub mod index;
 pub mod index_cache;
 pub mod landmarks;
+pub mod near_tree;
 pub mod partition;
 pub mod profile;
 pub mod rings;

@@ -156,7 +156,7 @@ pub fn brute_distance(mesh: &TriMesh, p: DVec3) -> f64 {
 
 /// The distances `t > 0` at which the ray `p + t d` meets the mesh's triangles
 /// (Möller-Trumbore per triangle, written here).
-fn ray_hits(mesh: &TriMesh, p: DVec3, d: DVec3) -> impl Iterator<Item = f64> + '_ {
+pub fn ray_hits(mesh: &TriMesh, p: DVec3, d: DVec3) -> impl Iterator<Item = f64> + '_ {
     (0..mesh.triangles.len()).filter_map(move |t| {
         let [a, b, c] = mesh.corners(t);
         let (e1, e2) = (b - a, c - a);

@@ -12,7 +12,9 @@ use drape::session::{
 };
 use glam::DVec3;
 
-use super::common::{Lcg, brute_distance, inside_by_parity, real_jumpsuit, shipped_bodies};
+use super::common::{
+    Lcg, brute_distance, inside_by_parity, ray_hits, real_jumpsuit, shipped_bodies, triangle_distance,
+};
 
 /// Each collision's quality and what it reused.
 #[derive(Default)]
@@ -171,6 +173,81 @@ fn warm_started_and_capped_queries_agree_with_a_brute_force_on_every_body() {
     }
 }
 
+/// On every shipped body, segments between the jumpsuit's M0 vertices moved onto the body
+/// and perturbed (edges of 0.5 to 6 cm, as M0's and M1's are, many of them through the
+/// skin): the index's segment test (the nearest-point tree picks the triangles, the exact
+/// predicate decides) agrees with a Möller-Trumbore test of every shell triangle written in
+/// the test (segments whose ends lie within a micrometre of a triangle's plane hit are left
+/// out: there the rounded test cannot tell). And each partition's nearest point agrees with
+/// a brute-force distance over that partition's triangles.
+#[test]
+fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_brute_force_on_every_body() {
+    let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
+    let mut rng = Lcg(17);
+    for path in &shipped_bodies() {
+        let body = body(path);
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let (shell, shift) = shell_and_shift(&body, &index);
+        let (mut hits, mut misses) = (0, 0);
+        for p in garment.iter().step_by(5) {
+            let a = *p + shift + 0.04 * DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5);
+            // Every other segment aimed at the skin (the index only aims it).
+            let mut dir = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5);
+            if rng.next() < 0.5
+                && let Some(n) = index.nearest(a, f64::INFINITY)
+            {
+                dir = 0.3 * dir + (n.foot - a).normalize_or_zero();
+            }
+            let b = a + dir.normalize() * (0.005 + 0.055 * rng.next());
+            let ts: Vec<f64> = ray_hits(&shell, a, b - a).collect();
+            if ts
+                .iter()
+                .any(|t| (t - 1.0).abs() * a.distance(b) < 1e-6 || *t * a.distance(b) < 1e-6)
+            {
+                continue;
+            }
+            let truth = ts.iter().any(|&t| t < 1.0);
+            assert_eq!(index.segment_hits(a, b), truth, "{}: {a} -> {b}", path.display());
+            if truth {
+                hits += 1;
+            } else {
+                misses += 1;
+            }
+        }
+        assert!(
+            hits > 30 && misses > 30,
+            "{}: {hits} hits, {misses} misses",
+            path.display()
+        );
+        let mesh = &body.mesh.mesh;
+        for (k, part) in index.partitions.iter().enumerate() {
+            let mut tested = 0;
+            for p in garment.iter().step_by(23) {
+                let q = *p + shift + 0.06 * DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5);
+                if index.partition_at(q.y) != Some(k) {
+                    continue;
+                }
+                let brute = part
+                    .triangles
+                    .iter()
+                    .map(|&t| triangle_distance(q, mesh.corners(t as usize)))
+                    .fold(f64::INFINITY, f64::min);
+                let n = index
+                    .nearest_in_partition(k, q, f64::INFINITY)
+                    .expect("a nearest point");
+                assert!(
+                    (n.distance - brute).abs() < 1e-12,
+                    "{}: partition {k}, {q}",
+                    path.display()
+                );
+                assert!(part.triangles.binary_search(&n.triangle).is_ok());
+                tested += 1;
+            }
+            assert!(tested > 0, "{}: partition {k} untested", path.display());
+        }
+    }
+}
+
 /// On every shipped body, the jumpsuit's M0 moved onto it and perturbed (up to 3 cm each
 /// way): the edge rounds give the same lifts, rounds and positions, bit for bit, whether the
 /// first round casts a ray along every edge or skips those the measured distances of their
@@ -316,8 +393,7 @@ fn the_selection_reading_the_quality_checks_nearest_triangles_selects_the_same_p
             let p = c.mesh.positions[v];
             let t = c.quality.nearest[v];
             let truth = brute_distance(&shell, p);
-            let found =
-                super::common::triangle_distance(p, mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]));
+            let found = triangle_distance(p, mesh.triangles[t as usize].map(|i| mesh.positions[i as usize]));
             assert!(
                 (found - truth).abs() < 1e-12,
                 "seed {seed}, vertex {v}: {found} vs {truth}"
