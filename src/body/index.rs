@@ -341,6 +341,12 @@ impl BodyIndex {
         if self.has_all {
             self.all = trees.next();
         }
+        // The nearest-point trees are stored without their triangles' corners.
+        let corners = |t: u32| self.triangles[t as usize].map(|i| self.positions[i as usize]);
+        self.near.restore(corners);
+        for p in &mut self.partitions {
+            p.tree.restore(corners);
+        }
         true
     }
 

@@ -44,7 +44,8 @@ pub struct NearTree {
     nodes: Vec<Node>,
     /// Triangle of each leaf slot.
     triangles: Vec<u32>,
-    /// Corners of each leaf slot's triangle, m.
+    /// Corners of each leaf slot's triangle, m (not stored: [`Self::restore`] makes them again).
+    #[serde(skip)]
     corners: Vec<[DVec3; 3]>,
 }
 
@@ -106,6 +107,12 @@ impl NearTree {
         let (left, right) = items.split_at_mut(mid);
         self.split(first, left, base);
         self.split(first + 1, right, base + mid);
+    }
+
+    /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
+    /// `t`'s corners, as given to [`Self::new`]).
+    pub fn restore(&mut self, corners: impl Fn(u32) -> [DVec3; 3]) {
+        self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
     }
 
     /// Whether the tree holds no triangle.
@@ -315,24 +322,13 @@ fn sah_split(items: &mut [Item]) -> usize {
         return median(items);
     }
     let cut = best.1;
-    // A stable partition by bin keeps the order deterministic.
-    let (mut l, mut r): (Vec<Item>, Vec<Item>) = (Vec::new(), Vec::new());
-    for i in items.iter() {
-        let it = Item {
-            triangle: i.triangle,
-            lo: i.lo,
-            hi: i.hi,
-            centre: i.centre,
-        };
-        if bin_of(i.centre[axis]) < cut {
-            l.push(it);
-        } else {
-            r.push(it);
+    // In place, the same way every time (so the tree is the same for the same input).
+    let mut mid = 0;
+    for j in 0..items.len() {
+        if bin_of(items[j].centre[axis]) < cut {
+            items.swap(mid, j);
+            mid += 1;
         }
-    }
-    let mid = l.len();
-    for (slot, it) in items.iter_mut().zip(l.into_iter().chain(r)) {
-        *slot = it;
     }
     mid
 }
