@@ -115,6 +115,12 @@ impl NearTree {
         self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
     }
 
+    /// The triangles of leaf `node`, with their corners.
+    fn leaf(&self, node: Node) -> impl Iterator<Item = (u32, &[DVec3; 3])> {
+        let slots = node.first as usize..(node.first + node.count) as usize;
+        self.triangles[slots.clone()].iter().copied().zip(&self.corners[slots])
+    }
+
     /// Whether the tree holds no triangle.
     pub fn is_empty(&self) -> bool {
         self.nodes.is_empty()
@@ -137,9 +143,8 @@ impl NearTree {
         loop {
             let node = self.nodes[at];
             if node.count > 0 {
-                let first = node.first as usize;
-                for k in first..first + node.count as usize {
-                    if let Some(b) = leaf(self.triangles[k], &self.corners[k]) {
+                for (t, corners) in self.leaf(node) {
+                    if let Some(b) = leaf(t, corners) {
                         bound = bound.min(b);
                     }
                 }
@@ -212,11 +217,8 @@ impl NearTree {
         loop {
             let node = self.nodes[at];
             if node.count > 0 {
-                let first = node.first as usize;
-                for k in first..first + node.count as usize {
-                    if test(self.triangles[k], &self.corners[k]) {
-                        return true;
-                    }
+                if self.leaf(node).any(|(t, corners)| test(t, corners)) {
+                    return true;
                 }
             } else {
                 let c = node.first as usize;
@@ -246,8 +248,7 @@ impl NearTree {
     fn any_below(&self, at: usize, test: &mut impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
         let node = self.nodes[at];
         if node.count > 0 {
-            let first = node.first as usize;
-            return (first..first + node.count as usize).any(|k| test(self.triangles[k], &self.corners[k]));
+            return self.leaf(node).any(|(t, corners)| test(t, corners));
         }
         let c = node.first as usize;
         self.any_below(c, test) || self.any_below(c + 1, test)
