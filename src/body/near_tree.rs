@@ -10,7 +10,7 @@
 //! are the callers' boxes, widened against `f32` rounding) and the bound is never below the
 //! best distance.
 
-use glam::{DVec3, Vec3};
+use glam::{DVec3, Vec3, Vec3A};
 
 /// Most triangles in a leaf.
 const LEAF: usize = 2;
@@ -20,7 +20,7 @@ const BINS: usize = 12;
 /// A node: its box, and either its two children (`count == 0`: at `first` and `first + 1`)
 /// or its triangles (`first..first + count` in leaf order).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
-#[repr(C, align(32))]
+#[repr(C)]
 struct Node {
     lo: [f32; 3],
     first: u32,
@@ -28,20 +28,27 @@ struct Node {
     count: u32,
 }
 
+/// Two sibling nodes in one cache line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[repr(C, align(64))]
+struct Pair([Node; 2]);
+
 impl Node {
     /// Squared distance from `q` to the box (zero inside).
     #[inline(always)]
-    fn distance_squared(&self, q: Vec3) -> f32 {
-        let lo = Vec3::from_array(self.lo);
-        let hi = Vec3::from_array(self.hi);
-        (lo - q).max(q - hi).max(Vec3::ZERO).length_squared()
+    fn distance_squared(&self, q: Vec3A) -> f32 {
+        let lo = Vec3A::from_array(self.lo);
+        let hi = Vec3A::from_array(self.hi);
+        (lo - q).max(q - hi).max(Vec3A::ZERO).length_squared()
     }
 }
 
 /// The tree over a set of triangles.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NearTree {
-    nodes: Vec<Node>,
+    /// Nodes by pairs of siblings: node `i` is `pairs[i / 2].0[i % 2]`; the root is node 0
+    /// (node 1 is unused), so every pair of children starts at an even node.
+    pairs: Vec<Pair>,
     /// Triangle of each leaf slot.
     triangles: Vec<u32>,
     /// Corners of each leaf slot's triangle, m (not stored: [`Self::restore`] makes them again).
@@ -77,7 +84,7 @@ impl NearTree {
         if items.is_empty() {
             return tree;
         }
-        tree.nodes.push(Node::default());
+        tree.pairs.push(Pair::default());
         tree.split(0, &mut items, 0);
         tree.corners = tree.triangles.iter().map(|&t| corners(t)).collect();
         tree
@@ -90,20 +97,22 @@ impl NearTree {
             .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), i| {
                 (lo.min(i.lo), hi.max(i.hi))
             });
-        self.nodes[at].lo = lo.to_array();
-        self.nodes[at].hi = hi.to_array();
+        let node = self.node_mut(at);
+        node.lo = lo.to_array();
+        node.hi = hi.to_array();
         if items.len() <= LEAF {
-            self.nodes[at].first = base as u32;
-            self.nodes[at].count = items.len() as u32;
+            let node = self.node_mut(at);
+            node.first = base as u32;
+            node.count = items.len() as u32;
             self.triangles.extend(items.iter().map(|i| i.triangle));
             return;
         }
         let mid = sah_split(items);
-        let first = self.nodes.len();
-        self.nodes.push(Node::default());
-        self.nodes.push(Node::default());
-        self.nodes[at].first = first as u32;
-        self.nodes[at].count = 0;
+        let first = 2 * self.pairs.len();
+        self.pairs.push(Pair::default());
+        let node = self.node_mut(at);
+        node.first = first as u32;
+        node.count = 0;
         let (left, right) = items.split_at_mut(mid);
         self.split(first, left, base);
         self.split(first + 1, right, base + mid);
@@ -123,7 +132,17 @@ impl NearTree {
 
     /// Whether the tree holds no triangle.
     pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        self.pairs.is_empty()
+    }
+
+    /// Node `i`.
+    #[inline(always)]
+    fn node(&self, i: usize) -> &Node {
+        &self.pairs[i >> 1].0[i & 1]
+    }
+
+    fn node_mut(&mut self, i: usize) -> &mut Node {
+        &mut self.pairs[i >> 1].0[i & 1]
     }
 
     /// Visits the triangles whose boxes lie nearer `q` than the bound: `bound` (squared,
@@ -131,7 +150,8 @@ impl NearTree {
     /// (`None`: the bound stands). Nearer children first.
     #[inline]
     pub fn nearest(&self, q: Vec3, mut bound: f32, mut leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
-        let Some(root) = self.nodes.first() else {
+        let q = Vec3A::from(q);
+        let Some(root) = self.pairs.first().map(|p| &p.0[0]) else {
             return;
         };
         if root.distance_squared(q) >= bound {
@@ -141,7 +161,7 @@ impl NearTree {
         let mut depth = 0usize;
         let mut at = 0usize;
         loop {
-            let node = self.nodes[at];
+            let node = *self.node(at);
             if node.count > 0 {
                 for (t, corners) in self.leaf(node) {
                     if let Some(b) = leaf(t, corners) {
@@ -150,7 +170,8 @@ impl NearTree {
                 }
             } else {
                 let c = node.first as usize;
-                let (da, db) = (self.nodes[c].distance_squared(q), self.nodes[c + 1].distance_squared(q));
+                let [a, b] = &self.pairs[c >> 1].0;
+                let (da, db) = (a.distance_squared(q), b.distance_squared(q));
                 let (near, dn, far, df) = if da <= db {
                     (c, da, c + 1, db)
                 } else {
@@ -186,43 +207,41 @@ impl NearTree {
     /// `a..b` meets: the boxes are tested in `f32` over the parameter range
     /// `[-pad, 1 + pad]`, so that rounding never drops a box the segment passes through.
     pub fn any_on_segment(&self, a: DVec3, b: DVec3, pad: f64, mut test: impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
-        if self.nodes.is_empty() {
+        if self.pairs.is_empty() {
             return false;
         }
-        let o = a.as_vec3();
-        let d = (b - a).as_vec3();
-        let inv = Vec3::ONE / d;
+        let o = Vec3A::from(a.as_vec3());
+        // A zero component made the least positive one: no 0 * infinity below, and the
+        // box test along that axis is unchanged (the segment stays inside or outside it).
+        let d = Vec3A::from(
+            (b - a)
+                .as_vec3()
+                .to_array()
+                .map(|x| if x == 0.0 { f32::MIN_POSITIVE } else { x }),
+        );
+        let inv = Vec3A::ONE / d;
         let (t0, t1) = (-pad as f32, 1.0 + pad as f32);
         let meets = |n: &Node| {
-            let (mut lo, mut hi) = (t0, t1);
-            for k in 0..3 {
-                if d[k] == 0.0 {
-                    if o[k] < n.lo[k] || o[k] > n.hi[k] {
-                        return false;
-                    }
-                    continue;
-                }
-                let (s, e) = ((n.lo[k] - o[k]) * inv[k], (n.hi[k] - o[k]) * inv[k]);
-                lo = lo.max(s.min(e));
-                hi = hi.min(s.max(e));
-            }
-            lo <= hi
+            let s = (Vec3A::from_array(n.lo) - o) * inv;
+            let e = (Vec3A::from_array(n.hi) - o) * inv;
+            s.min(e).max_element().max(t0) <= s.max(e).min_element().min(t1)
         };
         let mut stack = [0u32; 64];
         let mut depth = 0usize;
-        if !meets(&self.nodes[0]) {
+        if !meets(self.node(0)) {
             return false;
         }
         let mut at = 0usize;
         loop {
-            let node = self.nodes[at];
+            let node = *self.node(at);
             if node.count > 0 {
                 if self.leaf(node).any(|(t, corners)| test(t, corners)) {
                     return true;
                 }
             } else {
                 let c = node.first as usize;
-                let (ma, mb) = (meets(&self.nodes[c]), meets(&self.nodes[c + 1]));
+                let [a, b] = &self.pairs[c >> 1].0;
+                let (ma, mb) = (meets(a), meets(b));
                 if ma || mb {
                     if ma && mb {
                         if depth == stack.len() {
@@ -246,7 +265,7 @@ impl NearTree {
 
     /// Whether `test` holds for any triangle below node `at` (every one, no box test).
     fn any_below(&self, at: usize, test: &mut impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
-        let node = self.nodes[at];
+        let node = *self.node(at);
         if node.count > 0 {
             return self.leaf(node).any(|(t, corners)| test(t, corners));
         }
