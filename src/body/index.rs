@@ -560,12 +560,21 @@ impl BodyIndex {
     }
 
     /// The first body triangle the ray `origin + t dir` meets with `t` in `(t_min, t_max]`:
-    /// `(t, triangle)`. Best-first over the BVH (parry's ray traversal); each triangle is
+    /// `(t, triangle)`. Best-first over the BVH (parry's ray traversal) where the walk of the
+    /// nearest-point tree along the ray finds a triangle met at all; each triangle is
     /// intersected in `f64`.
     pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
-        let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
         let len = dir.length().max(f64::MIN_POSITIVE);
         let pad = self.slack / len;
+        // Most rays meet nothing: the nearest-point tree's walk along the ray says so sooner
+        // than parry's search. Where a triangle is met, parry's best-first search picks the
+        // hit as it always has (of two hits that round to the same f32 parameter, the one
+        // its order meets first), so the answer is the same bit for bit.
+        let meets = |_: u32, c: &[DVec3; 3]| ray_triangle(origin, dir, *c, t_min, t_max).is_some();
+        if !self.near.any_on_ray(origin, dir, [t_min - pad, t_max + pad], meets) {
+            return None;
+        }
+        let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
         let (leaf, _) = self.whole.cast_ray(&ray, (t_max + pad) as f32, |leaf, _| {
             ray_triangle(origin, dir, self.corners(self.leaves[leaf as usize]), t_min, t_max).map(|t| t as f32)
         })?;

@@ -206,7 +206,20 @@ impl NearTree {
     /// Whether `test(triangle, corners)` holds for any triangle whose box the segment
     /// `a..b` meets: the boxes are tested in `f32` over the parameter range
     /// `[-pad, 1 + pad]`, so that rounding never drops a box the segment passes through.
-    pub fn any_on_segment(&self, a: DVec3, b: DVec3, pad: f64, mut test: impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
+    pub fn any_on_segment(&self, a: DVec3, b: DVec3, pad: f64, test: impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
+        self.any_on_ray(a, b - a, [-pad, 1.0 + pad], test)
+    }
+
+    /// Whether `test(triangle, corners)` holds for any triangle whose box the ray
+    /// `a + t d` meets with `t` in `range` (tested in `f32`: widen the range by what
+    /// rounding may take).
+    pub fn any_on_ray(
+        &self,
+        a: DVec3,
+        d: DVec3,
+        range: [f64; 2],
+        mut test: impl FnMut(u32, &[DVec3; 3]) -> bool,
+    ) -> bool {
         if self.pairs.is_empty() {
             return false;
         }
@@ -214,13 +227,12 @@ impl NearTree {
         // A zero component made the least positive one: no 0 * infinity below, and the
         // box test along that axis is unchanged (the segment stays inside or outside it).
         let d = Vec3A::from(
-            (b - a)
-                .as_vec3()
+            d.as_vec3()
                 .to_array()
                 .map(|x| if x == 0.0 { f32::MIN_POSITIVE } else { x }),
         );
         let inv = Vec3A::ONE / d;
-        let (t0, t1) = (-pad as f32, 1.0 + pad as f32);
+        let (t0, t1) = (range[0] as f32, range[1] as f32);
         let meets = |n: &Node| {
             let s = (Vec3A::from_array(n.lo) - o) * inv;
             let e = (Vec3A::from_array(n.hi) - o) * inv;

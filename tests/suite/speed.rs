@@ -176,8 +176,8 @@ fn warm_started_and_capped_queries_agree_with_a_brute_force_on_every_body() {
 /// On every shipped body, segments between the jumpsuit's M0 vertices moved onto the body
 /// and perturbed (edges of 0.5 to 6 cm, as M0's and M1's are, many of them through the
 /// skin): the index's segment test (the nearest-point tree picks the triangles, the exact
-/// predicate decides) agrees with a Möller-Trumbore test of every shell triangle written in
-/// the test (segments whose ends lie within a micrometre of a triangle's plane hit are left
+/// predicate decides) and its ray cast along the segment (the tree's walk rules out the
+/// misses) agree with a Möller-Trumbore test of every shell triangle written in the test (segments whose ends lie within a micrometre of a triangle's plane hit are left
 /// out: there the rounded test cannot tell). And each partition's nearest point agrees with
 /// a brute-force distance over that partition's triangles.
 #[test]
@@ -208,6 +208,20 @@ fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_bru
             }
             let truth = ts.iter().any(|&t| t < 1.0);
             assert_eq!(index.segment_hits(a, b), truth, "{}: {a} -> {b}", path.display());
+            // The ray along it: met exactly where a triangle is, at the first hit.
+            let first = ts.iter().copied().filter(|&t| t < 1.0).fold(f64::INFINITY, f64::min);
+            match index.cast_ray(a, b - a, 0.0, 1.0) {
+                Some((t, _)) => assert!(
+                    (t - first).abs() < 1e-9,
+                    "{}: {a} -> {b}: {t} vs {first}",
+                    path.display()
+                ),
+                None => assert!(
+                    !truth,
+                    "{}: {a} -> {b}: the ray missed a hit at {first}",
+                    path.display()
+                ),
+            }
             if truth {
                 hits += 1;
             } else {
