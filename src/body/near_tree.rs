@@ -1,30 +1,43 @@
-//! A flat bounding-volume tree for the body's nearest-point queries: binned-SAH splits,
-//! the two children of a node side by side (one cache line holds both boxes), a few
-//! triangles a leaf with their corners stored in leaf order (no lookup through the mesh),
-//! and a depth-first descent, nearer child first, that drops a deferred node when it is
-//! taken back off the stack if the best distance found meanwhile has passed it.
+//! A flat bounding-volume tree for the body's nearest-point queries and its walks along
+//! rays and segments: binned-SAH splits (at the median below a depth, so that no descent
+//! outgrows its stack), two triangles a leaf with their corners stored in leaf order (no
+//! lookup through the mesh), laid out twice. The nearest-point descent reads it binary (two
+//! siblings in one cache line), goes down the nearer side at once and drops a deferred node
+//! when it is taken back off the stack if the best distance found meanwhile has passed it.
+//! The walks, which look at every box they pass, read it four lanes wide: each node's four
+//! children's boxes are tested against the ray in one pass of four-lane arithmetic.
 //!
 //! The tree only decides which triangles are looked at: the caller measures each one and
-//! returns the bound (squared, `f32`) that prunes the rest, so a query gives exactly the
-//! answer of a scan over every triangle as long as the boxes hold their triangles (they
-//! are the callers' boxes, widened against `f32` rounding) and the bound is never below the
-//! best distance.
+//! returns the bound (squared, `f32`) that prunes the rest, or says whether the ray meets
+//! it, so a query gives exactly the answer of a scan over every triangle as long as the
+//! boxes hold their triangles (they are the callers' boxes, widened against `f32`
+//! rounding) and the bound is never below the best distance.
 
-use glam::{DVec3, Vec3, Vec3A};
+use glam::{DVec3, Vec3, Vec3A, Vec4};
 
 /// Most triangles in a leaf.
 const LEAF: usize = 2;
 /// Bins of a split.
 const BINS: usize = 12;
+/// Below this depth of the binary build, splits are at the median (at most `log2 n` more
+/// levels), so that no descent is deeper than its stack.
+const MEDIAN_BELOW: usize = 48;
+/// Stack of a descent: up to three deferred children a level.
+const STACK: usize = 256;
+/// A child that is a leaf: this bit, its first slot times 4 and its count less one.
+const LEAF_BIT: u32 = 1 << 31;
+/// No child.
+const NONE: u32 = u32::MAX;
 
-/// A node: its box, and either its two children (`count == 0`: at `first` and `first + 1`)
-/// or its triangles (`first..first + count` in leaf order).
+/// A node of the binary tree: its box, and either its two children (`count == 0`: at
+/// `first` and `first + 1`, an even index) or its triangles (`first..first + count` in leaf
+/// order).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 #[repr(C)]
 struct Node {
-    lo: [f32; 3],
+    lo: Vec3,
     first: u32,
-    hi: [f32; 3],
+    hi: Vec3,
     count: u32,
 }
 
@@ -37,18 +50,34 @@ impl Node {
     /// Squared distance from `q` to the box (zero inside).
     #[inline(always)]
     fn distance_squared(&self, q: Vec3A) -> f32 {
-        let lo = Vec3A::from_array(self.lo);
-        let hi = Vec3A::from_array(self.hi);
-        (lo - q).max(q - hi).max(Vec3A::ZERO).length_squared()
+        (Vec3A::from(self.lo) - q)
+            .max(q - Vec3A::from(self.hi))
+            .max(Vec3A::ZERO)
+            .length_squared()
     }
 }
 
-/// The tree over a set of triangles.
+/// A node of the tree: the boxes of up to four children, lane by lane (`lo[axis]`,
+/// `hi[axis]`), and each child (a node's index, a leaf with [`LEAF_BIT`], or [`NONE`],
+/// whose box is empty: `lo` infinite, `hi` minus infinite).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[repr(C, align(64))]
+struct Wide {
+    lo: [Vec4; 3],
+    hi: [Vec4; 3],
+    child: [u32; 4],
+}
+
+/// The tree over a set of triangles, laid out twice: binary for the nearest-point descent
+/// (which goes down the nearer side at once, testing its leaves as it meets them), four
+/// lanes wide for the walks along rays and segments (which look at every box they pass).
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NearTree {
-    /// Nodes by pairs of siblings: node `i` is `pairs[i / 2].0[i % 2]`; the root is node 0
-    /// (node 1 is unused), so every pair of children starts at an even node.
+    /// The binary nodes by pairs of siblings: node `i` is `pairs[i / 2].0[i % 2]`; the root
+    /// is node 0 (node 1 is unused).
     pairs: Vec<Pair>,
+    /// The wide nodes; the root is the first.
+    nodes: Vec<Wide>,
     /// Triangle of each leaf slot.
     triangles: Vec<u32>,
     /// Corners of each leaf slot's triangle, m (not stored: [`Self::restore`] makes them again).
@@ -62,6 +91,46 @@ struct Item {
     lo: Vec3,
     hi: Vec3,
     centre: Vec3,
+}
+
+/// The binary build: nodes, and the triangles in leaf order.
+#[derive(Default)]
+struct Binary {
+    nodes: Vec<Node>,
+    triangles: Vec<u32>,
+}
+
+impl Binary {
+    /// Fills node `at` with `items` (whose first leaf slot is `base`), `depth` levels down.
+    fn split(&mut self, at: usize, items: &mut [Item], base: usize, depth: usize) {
+        let (lo, hi) = items
+            .iter()
+            .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), i| {
+                (lo.min(i.lo), hi.max(i.hi))
+            });
+        self.nodes[at].lo = lo;
+        self.nodes[at].hi = hi;
+        if items.len() <= LEAF {
+            self.nodes[at].first = base as u32;
+            self.nodes[at].count = items.len() as u32;
+            self.triangles.extend(items.iter().map(|i| i.triangle));
+            return;
+        }
+        let mid = sah_split(items, depth >= MEDIAN_BELOW);
+        let first = self.nodes.len();
+        self.nodes.push(Node::default());
+        self.nodes.push(Node::default());
+        self.nodes[at].first = first as u32;
+        let (left, right) = items.split_at_mut(mid);
+        self.split(first, left, base, depth + 1);
+        self.split(first + 1, right, base + mid, depth + 1);
+    }
+
+    /// Half the surface area of node `i`'s box.
+    fn area(&self, i: usize) -> f32 {
+        let d = (self.nodes[i].hi - self.nodes[i].lo).max(Vec3::ZERO);
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
 }
 
 impl NearTree {
@@ -84,38 +153,69 @@ impl NearTree {
         if items.is_empty() {
             return tree;
         }
-        tree.pairs.push(Pair::default());
-        tree.split(0, &mut items, 0);
+        let mut binary = Binary {
+            // Node 1 unused: every pair of children starts at an even index.
+            nodes: vec![Node::default(); 2],
+            triangles: Vec::with_capacity(items.len()),
+        };
+        binary.split(0, &mut items, 0, 0);
+        tree.triangles = std::mem::take(&mut binary.triangles);
+        if binary.nodes[0].count > 0 {
+            // A single leaf: a root with one child.
+            tree.nodes.push(Self::empty());
+            tree.set_lane(0, 0, &binary, 0);
+        } else {
+            tree.collapse(&binary, 0);
+        }
+        tree.pairs = binary.nodes.chunks(2).map(|c| Pair([c[0], c[1]])).collect();
         tree.corners = tree.triangles.iter().map(|&t| corners(t)).collect();
         tree
     }
 
-    /// Fills node `at` with `items` (whose first leaf slot is `base`).
-    fn split(&mut self, at: usize, items: &mut [Item], base: usize) {
-        let (lo, hi) = items
-            .iter()
-            .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), i| {
-                (lo.min(i.lo), hi.max(i.hi))
-            });
-        let node = self.node_mut(at);
-        node.lo = lo.to_array();
-        node.hi = hi.to_array();
-        if items.len() <= LEAF {
-            let node = self.node_mut(at);
-            node.first = base as u32;
-            node.count = items.len() as u32;
-            self.triangles.extend(items.iter().map(|i| i.triangle));
-            return;
+    fn empty() -> Wide {
+        Wide {
+            lo: [Vec4::INFINITY; 3],
+            hi: [Vec4::NEG_INFINITY; 3],
+            child: [NONE; 4],
         }
-        let mid = sah_split(items);
-        let first = 2 * self.pairs.len();
-        self.pairs.push(Pair::default());
-        let node = self.node_mut(at);
-        node.first = first as u32;
-        node.count = 0;
-        let (left, right) = items.split_at_mut(mid);
-        self.split(first, left, base);
-        self.split(first + 1, right, base + mid);
+    }
+
+    /// Lane `k` of node `w` holds binary node `b` (a leaf, or a node made for it).
+    fn set_lane(&mut self, w: usize, k: usize, binary: &Binary, b: usize) {
+        let n = binary.nodes[b];
+        for axis in 0..3 {
+            self.nodes[w].lo[axis][k] = n.lo[axis];
+            self.nodes[w].hi[axis][k] = n.hi[axis];
+        }
+        self.nodes[w].child[k] = if n.count > 0 {
+            LEAF_BIT | (n.first << 2) | (n.count - 1)
+        } else {
+            self.collapse(binary, b) as u32
+        };
+    }
+
+    /// A node for the binary interior node `b`: its two children, the largest of the
+    /// interior ones opened into its own two while there is room for four.
+    fn collapse(&mut self, binary: &Binary, b: usize) -> usize {
+        let mut lanes = vec![binary.nodes[b].first as usize, binary.nodes[b].first as usize + 1];
+        while lanes.len() < 4 {
+            let open = lanes
+                .iter()
+                .enumerate()
+                .filter(|(_, i)| binary.nodes[**i].count == 0)
+                .max_by(|a, b| binary.area(*a.1).total_cmp(&binary.area(*b.1)))
+                .map(|(k, _)| k);
+            let Some(k) = open else { break };
+            let first = binary.nodes[lanes[k]].first as usize;
+            lanes[k] = first;
+            lanes.insert(k + 1, first + 1);
+        }
+        let w = self.nodes.len();
+        self.nodes.push(Self::empty());
+        for (k, &lane) in lanes.iter().enumerate() {
+            self.set_lane(w, k, binary, lane);
+        }
+        w
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
@@ -124,30 +224,29 @@ impl NearTree {
         self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
     }
 
-    /// The triangles of leaf `node`, with their corners.
-    fn leaf(&self, node: Node) -> impl Iterator<Item = (u32, &[DVec3; 3])> {
-        let slots = node.first as usize..(node.first + node.count) as usize;
+    /// Whether the tree holds no triangle.
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty()
+    }
+
+    /// The triangles of leaf `child` (a child with [`LEAF_BIT`]), with their corners.
+    #[inline(always)]
+    fn leaf(&self, child: u32) -> impl Iterator<Item = (u32, &[DVec3; 3])> {
+        let first = ((child & !LEAF_BIT) >> 2) as usize;
+        let slots = first..first + (child & 3) as usize + 1;
         self.triangles[slots.clone()].iter().copied().zip(&self.corners[slots])
     }
 
-    /// Whether the tree holds no triangle.
-    pub fn is_empty(&self) -> bool {
-        self.pairs.is_empty()
-    }
-
-    /// Node `i`.
+    /// Node `i` of the binary layout.
     #[inline(always)]
     fn node(&self, i: usize) -> &Node {
         &self.pairs[i >> 1].0[i & 1]
     }
 
-    fn node_mut(&mut self, i: usize) -> &mut Node {
-        &mut self.pairs[i >> 1].0[i & 1]
-    }
-
     /// Visits the triangles whose boxes lie nearer `q` than the bound: `bound` (squared,
     /// `f32`) to start with, then the least that `leaf(triangle, corners)` returned so far
-    /// (`None`: the bound stands). Nearer children first.
+    /// (`None`: the bound stands). Nearer children first; a deferred child is dropped when
+    /// it is taken off the stack if the bound has passed it.
     #[inline]
     pub fn nearest(&self, q: Vec3, mut bound: f32, mut leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
         let q = Vec3A::from(q);
@@ -157,13 +256,15 @@ impl NearTree {
         if root.distance_squared(q) >= bound {
             return;
         }
-        let mut stack = [(0u32, 0f32); 64];
+        let mut stack = [(0u32, 0f32); STACK];
         let mut depth = 0usize;
         let mut at = 0usize;
         loop {
             let node = *self.node(at);
             if node.count > 0 {
-                for (t, corners) in self.leaf(node) {
+                let first = node.first as usize;
+                let slots = first..first + node.count as usize;
+                for (&t, corners) in self.triangles[slots.clone()].iter().zip(&self.corners[slots]) {
                     if let Some(b) = leaf(t, corners) {
                         bound = bound.min(b);
                     }
@@ -178,7 +279,7 @@ impl NearTree {
                     (c + 1, db, c, da)
                 };
                 if dn < bound {
-                    if df < bound && depth < stack.len() {
+                    if df < bound {
                         stack[depth] = (far as u32, df);
                         depth += 1;
                     }
@@ -220,75 +321,52 @@ impl NearTree {
         range: [f64; 2],
         mut test: impl FnMut(u32, &[DVec3; 3]) -> bool,
     ) -> bool {
-        if self.pairs.is_empty() {
+        if self.nodes.is_empty() {
             return false;
         }
-        let o = Vec3A::from(a.as_vec3());
+        let o = a.as_vec3();
         // A zero component made the least positive one: no 0 * infinity below, and the
         // box test along that axis is unchanged (the segment stays inside or outside it).
-        let d = Vec3A::from(
-            d.as_vec3()
-                .to_array()
-                .map(|x| if x == 0.0 { f32::MIN_POSITIVE } else { x }),
-        );
-        let inv = Vec3A::ONE / d;
-        let (t0, t1) = (range[0] as f32, range[1] as f32);
-        let meets = |n: &Node| {
-            let s = (Vec3A::from_array(n.lo) - o) * inv;
-            let e = (Vec3A::from_array(n.hi) - o) * inv;
-            s.min(e).max_element().max(t0) <= s.max(e).min_element().min(t1)
-        };
-        let mut stack = [0u32; 64];
-        let mut depth = 0usize;
-        if !meets(self.node(0)) {
-            return false;
-        }
-        let mut at = 0usize;
-        loop {
-            let node = *self.node(at);
-            if node.count > 0 {
-                if self.leaf(node).any(|(t, corners)| test(t, corners)) {
+        let inv = d
+            .as_vec3()
+            .to_array()
+            .map(|x| 1.0 / if x == 0.0 { f32::MIN_POSITIVE } else { x });
+        let (o, inv) = (o.to_array().map(Vec4::splat), inv.map(Vec4::splat));
+        let (t0, t1) = (Vec4::splat(range[0] as f32), Vec4::splat(range[1] as f32));
+        let mut stack = [0u32; STACK];
+        let mut depth = 1usize;
+        while depth > 0 {
+            depth -= 1;
+            let child = stack[depth];
+            if child & LEAF_BIT != 0 {
+                if self.leaf(child).any(|(t, corners)| test(t, corners)) {
                     return true;
                 }
-            } else {
-                let c = node.first as usize;
-                let [a, b] = &self.pairs[c >> 1].0;
-                let (ma, mb) = (meets(a), meets(b));
-                if ma || mb {
-                    if ma && mb {
-                        if depth == stack.len() {
-                            // Deeper than any tree built here; test the rest plainly.
-                            return self.any_below(c + 1, &mut test) || self.any_below(c, &mut test);
-                        }
-                        stack[depth] = (c + 1) as u32;
-                        depth += 1;
-                    }
-                    at = if ma { c } else { c + 1 };
-                    continue;
+                continue;
+            }
+            let w = &self.nodes[child as usize];
+            let (mut lo, mut hi) = (t0, t1);
+            for axis in 0..3 {
+                let s = (w.lo[axis] - o[axis]) * inv[axis];
+                let e = (w.hi[axis] - o[axis]) * inv[axis];
+                lo = lo.max(s.min(e));
+                hi = hi.min(s.max(e));
+            }
+            let meets = lo.cmple(hi).bitmask();
+            for k in 0..4 {
+                if meets & (1 << k) != 0 && w.child[k] != NONE {
+                    stack[depth] = w.child[k];
+                    depth += 1;
                 }
             }
-            if depth == 0 {
-                return false;
-            }
-            depth -= 1;
-            at = stack[depth] as usize;
         }
-    }
-
-    /// Whether `test` holds for any triangle below node `at` (every one, no box test).
-    fn any_below(&self, at: usize, test: &mut impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
-        let node = *self.node(at);
-        if node.count > 0 {
-            return self.leaf(node).any(|(t, corners)| test(t, corners));
-        }
-        let c = node.first as usize;
-        self.any_below(c, test) || self.any_below(c + 1, test)
+        false
     }
 }
 
 /// Sorts `items` into two non-empty runs by the cheapest binned surface-area split along
 /// the longest axis of their centres (the median where the centres coincide); the split.
-fn sah_split(items: &mut [Item]) -> usize {
+fn sah_split(items: &mut [Item], median_only: bool) -> usize {
     let (clo, chi) = items
         .iter()
         .fold((Vec3::splat(f32::MAX), Vec3::splat(f32::MIN)), |(lo, hi), i| {
@@ -311,7 +389,7 @@ fn sah_split(items: &mut [Item]) -> usize {
         });
         mid
     };
-    if extent[axis] <= 0.0 {
+    if median_only || extent[axis] <= 0.0 {
         return median(items);
     }
     let bin_of = |c: f32| (((c - clo[axis]) / extent[axis] * BINS as f32) as usize).min(BINS - 1);
