@@ -32,7 +32,7 @@ const NONE: u32 = u32::MAX;
 /// A node of the binary tree: its box, and either its two children (`count == 0`: at
 /// `first` and `first + 1`, an even index) or its triangles (`first..first + count` in leaf
 /// order).
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C)]
 struct Node {
     lo: Vec3,
@@ -42,7 +42,7 @@ struct Node {
 }
 
 /// Two sibling nodes in one cache line.
-#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 #[repr(C, align(64))]
 struct Pair([Node; 2]);
 
@@ -60,7 +60,7 @@ impl Node {
 /// A node of the tree: the boxes of up to four children, lane by lane (`lo[axis]`,
 /// `hi[axis]`), and each child (a node's index, a leaf with [`LEAF_BIT`], or [`NONE`],
 /// whose box is empty: `lo` infinite, `hi` minus infinite).
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(64))]
 struct Wide {
     lo: [Vec4; 3],
@@ -74,9 +74,11 @@ struct Wide {
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct NearTree {
     /// The binary nodes by pairs of siblings: node `i` is `pairs[i / 2].0[i % 2]`; the root
-    /// is node 0 (node 1 is unused).
+    /// is node 0 (node 1 is unused). Stored as their 32-bit words (see [`words`]).
+    #[serde(with = "words")]
     pairs: Vec<Pair>,
-    /// The wide nodes; the root is the first.
+    /// The wide nodes; the root is the first. Stored as their 32-bit words.
+    #[serde(with = "words")]
     nodes: Vec<Wide>,
     /// Triangle of each leaf slot.
     triangles: Vec<u32>,
@@ -125,12 +127,6 @@ impl Binary {
         self.split(first, left, base, depth + 1);
         self.split(first + 1, right, base + mid, depth + 1);
     }
-
-    /// Half the surface area of node `i`'s box.
-    fn area(&self, i: usize) -> f32 {
-        let d = (self.nodes[i].hi - self.nodes[i].lo).max(Vec3::ZERO);
-        d.x * d.y + d.y * d.z + d.z * d.x
-    }
 }
 
 impl NearTree {
@@ -160,62 +156,10 @@ impl NearTree {
         };
         binary.split(0, &mut items, 0, 0);
         tree.triangles = std::mem::take(&mut binary.triangles);
-        if binary.nodes[0].count > 0 {
-            // A single leaf: a root with one child.
-            tree.nodes.push(Self::empty());
-            tree.set_lane(0, 0, &binary, 0);
-        } else {
-            tree.collapse(&binary, 0);
-        }
+        tree.nodes = widen(&binary.nodes);
         tree.pairs = binary.nodes.chunks(2).map(|c| Pair([c[0], c[1]])).collect();
         tree.corners = tree.triangles.iter().map(|&t| corners(t)).collect();
         tree
-    }
-
-    fn empty() -> Wide {
-        Wide {
-            lo: [Vec4::INFINITY; 3],
-            hi: [Vec4::NEG_INFINITY; 3],
-            child: [NONE; 4],
-        }
-    }
-
-    /// Lane `k` of node `w` holds binary node `b` (a leaf, or a node made for it).
-    fn set_lane(&mut self, w: usize, k: usize, binary: &Binary, b: usize) {
-        let n = binary.nodes[b];
-        for axis in 0..3 {
-            self.nodes[w].lo[axis][k] = n.lo[axis];
-            self.nodes[w].hi[axis][k] = n.hi[axis];
-        }
-        self.nodes[w].child[k] = if n.count > 0 {
-            LEAF_BIT | (n.first << 2) | (n.count - 1)
-        } else {
-            self.collapse(binary, b) as u32
-        };
-    }
-
-    /// A node for the binary interior node `b`: its two children, the largest of the
-    /// interior ones opened into its own two while there is room for four.
-    fn collapse(&mut self, binary: &Binary, b: usize) -> usize {
-        let mut lanes = vec![binary.nodes[b].first as usize, binary.nodes[b].first as usize + 1];
-        while lanes.len() < 4 {
-            let open = lanes
-                .iter()
-                .enumerate()
-                .filter(|(_, i)| binary.nodes[**i].count == 0)
-                .max_by(|a, b| binary.area(*a.1).total_cmp(&binary.area(*b.1)))
-                .map(|(k, _)| k);
-            let Some(k) = open else { break };
-            let first = binary.nodes[lanes[k]].first as usize;
-            lanes[k] = first;
-            lanes.insert(k + 1, first + 1);
-        }
-        let w = self.nodes.len();
-        self.nodes.push(Self::empty());
-        for (k, &lane) in lanes.iter().enumerate() {
-            self.set_lane(w, k, binary, lane);
-        }
-        w
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
@@ -362,6 +306,189 @@ impl NearTree {
         }
         false
     }
+}
+
+/// Nodes stored as one byte string of their 32-bit words (little-endian), so that reading
+/// them back is a copy, not a decode of every field.
+mod words {
+    use glam::{Vec3, Vec4};
+    use serde::de::{Error, SeqAccess, Visitor};
+    use serde::{Deserializer, Serializer};
+
+    use super::{Node, Pair, Wide};
+
+    /// A node as a fixed number of words.
+    pub trait Words: Sized {
+        /// How many.
+        const N: usize;
+        /// Its words.
+        fn put(&self, out: &mut Vec<u32>);
+        /// From its words (`w.len() == N`).
+        fn take(w: &[u32]) -> Self;
+    }
+
+    fn f(w: u32) -> f32 {
+        f32::from_bits(w)
+    }
+
+    impl Words for Pair {
+        const N: usize = 16;
+        fn put(&self, out: &mut Vec<u32>) {
+            for n in &self.0 {
+                out.extend(n.lo.to_array().map(f32::to_bits));
+                out.push(n.first);
+                out.extend(n.hi.to_array().map(f32::to_bits));
+                out.push(n.count);
+            }
+        }
+        fn take(w: &[u32]) -> Self {
+            let node = |w: &[u32]| Node {
+                lo: Vec3::new(f(w[0]), f(w[1]), f(w[2])),
+                first: w[3],
+                hi: Vec3::new(f(w[4]), f(w[5]), f(w[6])),
+                count: w[7],
+            };
+            Pair([node(&w[..8]), node(&w[8..])])
+        }
+    }
+
+    impl Words for Wide {
+        const N: usize = 28;
+        fn put(&self, out: &mut Vec<u32>) {
+            for v in self.lo.iter().chain(&self.hi) {
+                out.extend(v.to_array().map(f32::to_bits));
+            }
+            out.extend(self.child);
+        }
+        fn take(w: &[u32]) -> Self {
+            let v = |k: usize| Vec4::new(f(w[4 * k]), f(w[4 * k + 1]), f(w[4 * k + 2]), f(w[4 * k + 3]));
+            Wide {
+                lo: [v(0), v(1), v(2)],
+                hi: [v(3), v(4), v(5)],
+                child: [w[24], w[25], w[26], w[27]],
+            }
+        }
+    }
+
+    pub fn serialize<T: Words, S: Serializer>(nodes: &[T], s: S) -> Result<S::Ok, S::Error> {
+        let mut w = Vec::with_capacity(nodes.len() * T::N);
+        for n in nodes {
+            n.put(&mut w);
+        }
+        let bytes: Vec<u8> = w.into_iter().flat_map(u32::to_le_bytes).collect();
+        s.serialize_bytes(&bytes)
+    }
+
+    /// Decodes the nodes straight from the byte string (one allocation: the nodes').
+    struct Nodes<T>(std::marker::PhantomData<T>);
+
+    fn decode<T: Words, E: Error>(bytes: &[u8]) -> Result<Vec<T>, E> {
+        if bytes.len() % (4 * T::N) != 0 {
+            return Err(E::custom(format!("{} bytes of tree nodes", bytes.len())));
+        }
+        let mut w = vec![0u32; T::N];
+        Ok(bytes
+            .chunks_exact(4 * T::N)
+            .map(|node| {
+                for (x, b) in w.iter_mut().zip(node.chunks_exact(4)) {
+                    *x = u32::from_le_bytes([b[0], b[1], b[2], b[3]]);
+                }
+                T::take(&w)
+            })
+            .collect())
+    }
+
+    impl<'de, T: Words> Visitor<'de> for Nodes<T> {
+        type Value = Vec<T>;
+        fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+            f.write_str("a byte string of tree nodes")
+        }
+        fn visit_bytes<E: Error>(self, v: &[u8]) -> Result<Vec<T>, E> {
+            decode(v)
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let mut bytes = Vec::new();
+            while let Some(b) = seq.next_element()? {
+                bytes.push(b);
+            }
+            decode(&bytes)
+        }
+    }
+
+    pub fn deserialize<'de, T: Words, D: Deserializer<'de>>(d: D) -> Result<Vec<T>, D::Error> {
+        d.deserialize_bytes(Nodes(std::marker::PhantomData))
+    }
+}
+
+/// The wide nodes of the binary tree `nodes` (root 0, children at even indices).
+fn widen(nodes: &[Node]) -> Vec<Wide> {
+    let mut out = Vec::new();
+    if nodes.is_empty() {
+        return out;
+    }
+    if nodes[0].count > 0 {
+        // A single leaf: a root with one child.
+        out.push(empty());
+        set_lane(&mut out, 0, 0, nodes, 0);
+    } else {
+        collapse(&mut out, nodes, 0);
+    }
+    out
+}
+
+/// A wide node with no child.
+fn empty() -> Wide {
+    Wide {
+        lo: [Vec4::INFINITY; 3],
+        hi: [Vec4::NEG_INFINITY; 3],
+        child: [NONE; 4],
+    }
+}
+
+/// Half the surface area of binary node `n`'s box.
+fn area(n: &Node) -> f32 {
+    let d = (n.hi - n.lo).max(Vec3::ZERO);
+    d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+/// Lane `k` of wide node `w` holds binary node `b` (a leaf, or a wide node made for it).
+fn set_lane(out: &mut Vec<Wide>, w: usize, k: usize, nodes: &[Node], b: usize) {
+    let n = nodes[b];
+    for axis in 0..3 {
+        out[w].lo[axis][k] = n.lo[axis];
+        out[w].hi[axis][k] = n.hi[axis];
+    }
+    out[w].child[k] = if n.count > 0 {
+        LEAF_BIT | (n.first << 2) | (n.count - 1)
+    } else {
+        collapse(out, nodes, b) as u32
+    };
+}
+
+/// A wide node for the binary interior node `b`: its two children, the largest of the
+/// interior ones opened into its own two while there is room for four; its index.
+fn collapse(out: &mut Vec<Wide>, nodes: &[Node], b: usize) -> usize {
+    let mut lanes = [0usize; 4];
+    lanes[0] = nodes[b].first as usize;
+    lanes[1] = lanes[0] + 1;
+    let mut n = 2;
+    while n < 4 {
+        let open = (0..n)
+            .filter(|&k| nodes[lanes[k]].count == 0)
+            .max_by(|&a, &c| area(&nodes[lanes[a]]).total_cmp(&area(&nodes[lanes[c]])));
+        let Some(k) = open else { break };
+        let first = nodes[lanes[k]].first as usize;
+        lanes.copy_within(k + 1..n, k + 2);
+        lanes[k] = first;
+        lanes[k + 1] = first + 1;
+        n += 1;
+    }
+    let w = out.len();
+    out.push(empty());
+    for (k, &lane) in lanes[..n].iter().enumerate() {
+        set_lane(out, w, k, nodes, lane);
+    }
+    w
 }
 
 /// Sorts `items` into two non-empty runs by the cheapest binned surface-area split along
