@@ -1,8 +1,8 @@
 //! The body prepared for distance, inside and ray queries, built once per body and shared
 //! by the garment (curve clearance) and the collision: `f64` triangles with face, edge and
 //! vertex pseudo-normals (Bærentzen and Aanæs 2005: angle-weighted at vertices, the two
-//! faces' sum on edges), one parry3d BVH for nearest points and rays and one per partition
-//! A-G (detection), all over the body's outer shell (the triangles of a self-crossing body
+//! faces' sum on edges), one tree ([`NearTree`]) for nearest points, segments and rays and
+//! one per partition A-G (detection), all over the body's outer shell (the triangles of a self-crossing body
 //! that lie inside another part left out, see [`super::shell`]), and the horizontal slice
 //! stack the line-line test and the ring-centre response read.
 
@@ -92,22 +92,17 @@ pub struct BodyIndex {
     /// Which triangles lie inside another part of the body (see [`super::shell`]); the
     /// nearest-point and ray queries see only the others.
     pub shell: Shell,
-    /// The trees are stored apart by the cache (see [`Self::trees`]).
-    #[serde(skip)]
-    whole: Bvh,
     /// Triangle of each leaf of `whole`.
     leaves: Vec<u32>,
     /// Per triangle: it shares a vertex with a triangle where the surface crosses itself, so
     /// its pseudo-normals may point the wrong way; the sign of a point nearest to it is
     /// counted along rays instead.
     tangled: Vec<bool>,
-    /// Every triangle (buried ones too), for those counts; only on a body with buried triangles.
-    #[serde(skip)]
-    all: Option<Bvh>,
-    /// Whether `all` is there (kept with the rest when the trees are stored apart).
-    has_all: bool,
+    /// Every triangle's tree (buried ones too), for those counts; only on a body with
+    /// buried triangles (else the shell's tree holds every triangle).
+    all: Option<NearTree>,
     slack: f64,
-    /// The shell's nearest-point and segment tree (parry's `whole` casts the rays).
+    /// The shell's tree: nearest points, segments and rays.
     near: NearTree,
 }
 
@@ -240,7 +235,8 @@ impl BodyIndex {
             .iter()
             .map(|t| aabb_of(t.map(|i| positions[i as usize]), slack))
             .collect();
-        let whole = Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes);
+        let bounds = |t: u32| (boxes[t as usize].mins, boxes[t as usize].maxs);
+        let leaves: Vec<u32> = (0..boxes.len() as u32).collect();
         let mut index = Self {
             positions,
             triangles,
@@ -251,20 +247,22 @@ impl BodyIndex {
             slices,
             height,
             shell: Shell::default(),
-            whole,
-            leaves: (0..boxes.len() as u32).collect(),
+            near: NearTree::default(),
             tangled: Vec::new(),
             all: None,
-            has_all: false,
             slack: 1e-5 * height,
-            near: NearTree::default(),
+            leaves,
         };
+        index.near = NearTree::new(&index.leaves, |t| index.corners(t), bounds);
+        // The box-overlapping triangle pairs, from parry3d's self-test of a tree over every
+        // triangle (kept only for it).
         let mut overlapping = Vec::new();
-        index
-            .whole
-            .traverse_bvtt_single_tree::<false>(&mut BvhWorkspace::default(), &mut |a, b| {
+        Bvh::from_leaves(BvhBuildStrategy::Binned, &boxes).traverse_bvtt_single_tree::<false>(
+            &mut BvhWorkspace::default(),
+            &mut |a, b| {
                 overlapping.push((a, b));
-            });
+            },
+        );
         index.shell = find_shell(mesh, neighbours, height, &overlapping, |p| index.winding(p));
         if index.shell.crossing > 0 {
             let mut near_crossing = vec![false; index.positions.len()];
@@ -284,29 +282,19 @@ impl BodyIndex {
             // triangle): then it would be the whole tree again, leaf for leaf.
             if index.shell.buried.contains(&true) {
                 index.leaves.retain(|&t| !index.shell.buried[t as usize]);
-                let kept: Vec<Aabb> = index.leaves.iter().map(|&t| boxes[t as usize]).collect();
-                let shell = Bvh::from_leaves(BvhBuildStrategy::Binned, &kept);
-                index.all = Some(std::mem::replace(&mut index.whole, shell));
-                index.has_all = true;
+                let shell = NearTree::new(&index.leaves, |t| index.corners(t), bounds);
+                index.all = Some(std::mem::replace(&mut index.near, shell));
                 for p in &mut partitions {
                     p.triangles.retain(|&t| !index.shell.buried[t as usize]);
                 }
             }
         }
-        // The shell's nearest-point tree, and each partition's (on the worker threads: the
-        // trees do not depend on how many there are).
+        // Each partition's tree (on the worker threads: the trees do not depend on how many
+        // there are).
         let corners = |t: u32| index.corners(t);
-        let bounds = |t: u32| (boxes[t as usize].mins, boxes[t as usize].maxs);
-        let mut trees = crate::par::par_map_from(partitions.len() + 1, 2, |i| {
-            let triangles = if i == 0 {
-                &index.leaves
-            } else {
-                &partitions[i - 1].triangles
-            };
-            NearTree::new(triangles, corners, bounds)
-        })
-        .into_iter();
-        index.near = trees.next().unwrap_or_default();
+        let trees = crate::par::par_map_from(partitions.len(), 2, |i| {
+            NearTree::new(&partitions[i].triangles, corners, bounds)
+        });
         for (p, tree) in partitions.iter_mut().zip(trees) {
             p.tree = tree;
         }
@@ -314,36 +302,27 @@ impl BodyIndex {
         index
     }
 
-    /// Every parry tree of the index, in a fixed order (the shell's, then every triangle's
-    /// when some are buried): the cache stores them apart from the rest, which serializes
-    /// without them.
+    /// Every parry tree of the index: none (the cache's tree sections stay for its format).
     pub(super) fn trees(&self) -> Vec<&Bvh> {
-        let mut out = vec![&self.whole];
-        out.extend(self.all.as_ref());
-        out
+        Vec::new()
     }
 
     /// How many trees [`Self::trees`] gives.
     pub(super) fn tree_count(&self) -> usize {
-        1 + usize::from(self.has_all)
+        0
     }
 
-    /// Puts back the trees of an index deserialized without them, in the order of
-    /// [`Self::trees`]; `false` (and the index unchanged) if their count is wrong.
+    /// Finishes an index deserialized: the trees' corners made again (`trees` must be
+    /// empty; `false`, and the index unchanged, if not).
     pub(super) fn set_trees(&mut self, trees: Vec<Bvh>) -> bool {
-        if trees.len() != self.tree_count() {
+        if !trees.is_empty() {
             return false;
         }
-        let mut trees = trees.into_iter();
-        if let Some(whole) = trees.next() {
-            self.whole = whole;
-        }
-        if self.has_all {
-            self.all = trees.next();
-        }
-        // The nearest-point trees are stored without their triangles' corners.
         let corners = |t: u32| self.triangles[t as usize].map(|i| self.positions[i as usize]);
         self.near.restore(corners);
+        if let Some(all) = &mut self.all {
+            all.restore(corners);
+        }
         for p in &mut self.partitions {
             p.tree.restore(corners);
         }
@@ -435,24 +414,21 @@ impl BodyIndex {
     /// the signed crossings of a ray (leaving the body +1, entering -1); the median of
     /// three rays in fixed directions, so that one ray grazing an edge cannot decide.
     pub fn winding(&self, p: DVec3) -> i32 {
-        let bvh = self.all.as_ref().unwrap_or(&self.whole);
+        let tree = self.all.as_ref().unwrap_or(&self.near);
         let reach = 4.0 * self.height + p.length();
         let mut counts = WINDING_RAYS.map(|dir| {
-            let ray = parry3d::query::Ray::new(p.as_vec3(), dir.as_vec3());
-            bvh.leaves(|node| node.cast_ray(&ray, reach as f32) < f32::MAX)
-                .map(|leaf| {
-                    let t = if self.all.is_some() {
-                        leaf
-                    } else {
-                        self.leaves[leaf as usize]
-                    };
-                    match ray_triangle(p, dir, self.corners(t), 0.0, reach) {
-                        Some(_) if dir.dot(self.face_normals[t as usize]) > 0.0 => 1,
-                        Some(_) => -1,
-                        None => 0,
-                    }
-                })
-                .sum::<i32>()
+            let pad = self.slack / dir.length();
+            let mut count = 0;
+            // Every triangle along the ray, counted by the side it is crossed from.
+            tree.any_on_ray(p, dir, [-pad, reach + pad], |t, corners| {
+                count += match ray_triangle(p, dir, *corners, 0.0, reach) {
+                    Some(_) if dir.dot(self.face_normals[t as usize]) > 0.0 => 1,
+                    Some(_) => -1,
+                    None => 0,
+                };
+                false
+            });
+            count
         });
         counts.sort_unstable();
         counts[1]
@@ -560,26 +536,14 @@ impl BodyIndex {
     }
 
     /// The first body triangle the ray `origin + t dir` meets with `t` in `(t_min, t_max]`:
-    /// `(t, triangle)`. Best-first over the BVH (parry's ray traversal) where the walk of the
-    /// nearest-point tree along the ray finds a triangle met at all; each triangle is
-    /// intersected in `f64`.
+    /// `(t, triangle)`: the least `t` (the lowest triangle among equals), each triangle
+    /// intersected in `f64` ([`NearTree::first_on_ray`], nearest box first).
     pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
-        let len = dir.length().max(f64::MIN_POSITIVE);
-        let pad = self.slack / len;
-        // Most rays meet nothing: the nearest-point tree's walk along the ray says so sooner
-        // than parry's search. Where a triangle is met, parry's best-first search picks the
-        // hit as it always has (of two hits that round to the same f32 parameter, the one
-        // its order meets first), so the answer is the same bit for bit.
-        let meets = |_: u32, c: &[DVec3; 3]| ray_triangle(origin, dir, *c, t_min, t_max).is_some();
-        if !self.near.any_on_ray(origin, dir, [t_min - pad, t_max + pad], meets) {
-            return None;
-        }
-        let ray = parry3d::query::Ray::new(origin.as_vec3(), dir.as_vec3());
-        let (leaf, _) = self.whole.cast_ray(&ray, (t_max + pad) as f32, |leaf, _| {
-            ray_triangle(origin, dir, self.corners(self.leaves[leaf as usize]), t_min, t_max).map(|t| t as f32)
-        })?;
-        let triangle = self.leaves[leaf as usize];
-        ray_triangle(origin, dir, self.corners(triangle), t_min, t_max).map(|hit| (hit, triangle))
+        let pad = self.slack / dir.length().max(f64::MIN_POSITIVE);
+        self.near
+            .first_on_ray(origin, dir, [t_min - pad, t_max + pad], pad, |_, c| {
+                ray_triangle(origin, dir, *c, t_min, t_max)
+            })
     }
 
     /// Whether the segment `a..b` passes through the body surface (its ends strictly on

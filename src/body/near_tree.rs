@@ -268,14 +268,7 @@ impl NearTree {
         if self.nodes.is_empty() {
             return false;
         }
-        let o = a.as_vec3();
-        // A zero component made the least positive one: no 0 * infinity below, and the
-        // box test along that axis is unchanged (the segment stays inside or outside it).
-        let inv = d
-            .as_vec3()
-            .to_array()
-            .map(|x| 1.0 / if x == 0.0 { f32::MIN_POSITIVE } else { x });
-        let (o, inv) = (o.to_array().map(Vec4::splat), inv.map(Vec4::splat));
+        let (o, inv) = ray_lanes(a, d);
         let (t0, t1) = (Vec4::splat(range[0] as f32), Vec4::splat(range[1] as f32));
         let mut stack = [0u32; STACK];
         let mut depth = 1usize;
@@ -289,13 +282,7 @@ impl NearTree {
                 continue;
             }
             let w = &self.nodes[child as usize];
-            let (mut lo, mut hi) = (t0, t1);
-            for axis in 0..3 {
-                let s = (w.lo[axis] - o[axis]) * inv[axis];
-                let e = (w.hi[axis] - o[axis]) * inv[axis];
-                lo = lo.max(s.min(e));
-                hi = hi.min(s.max(e));
-            }
+            let (lo, hi) = slabs(w, o, inv, t0, t1);
             let meets = lo.cmple(hi).bitmask();
             for k in 0..4 {
                 if meets & (1 << k) != 0 && w.child[k] != NONE {
@@ -306,6 +293,98 @@ impl NearTree {
         }
         false
     }
+}
+
+impl NearTree {
+    /// The first hit along the ray `a + t d`, `t` in `range`: `hit(triangle, corners)` gives
+    /// a triangle's parameter where the ray meets it; the least parameter wins, the lowest
+    /// triangle among equals. Boxes are tested in `f32` over `range` and let through while
+    /// they begin no later than the best parameter so far plus `pad` (widen both by what
+    /// rounding may take); the nearest box first.
+    pub fn first_on_ray(
+        &self,
+        a: DVec3,
+        d: DVec3,
+        range: [f64; 2],
+        pad: f64,
+        corners_hit: impl FnMut(u32, &[DVec3; 3]) -> Option<f64>,
+    ) -> Option<(f64, u32)> {
+        let mut hit = corners_hit;
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let (o, inv) = ray_lanes(a, d);
+        let (t0, t1) = (Vec4::splat(range[0] as f32), Vec4::splat(range[1] as f32));
+        let mut best: Option<(f64, u32)> = None;
+        let limit = |best: Option<(f64, u32)>| best.map_or(f32::INFINITY, |(t, _)| (t + pad) as f32);
+        let mut stack = [(0u32, 0f32); STACK];
+        let mut depth = 1usize;
+        stack[0] = (0, range[0] as f32);
+        while depth > 0 {
+            depth -= 1;
+            let (child, entry) = stack[depth];
+            if entry > limit(best) {
+                continue;
+            }
+            if child & LEAF_BIT != 0 {
+                for (t, corners) in self.leaf(child) {
+                    if let Some(at) = hit(t, corners) {
+                        let better = best.is_none_or(|(bt, bi)| at < bt || (at == bt && t < bi));
+                        if better {
+                            best = Some((at, t));
+                        }
+                    }
+                }
+                continue;
+            }
+            let w = &self.nodes[child as usize];
+            let (lo, hi) = slabs(w, o, inv, t0, t1);
+            let meets = lo.cmple(hi).bitmask();
+            let lo = lo.to_array();
+            // The lanes met, the farthest first onto the stack.
+            let mut met = [(0u32, 0f32); 4];
+            let mut n = 0;
+            for (k, (&child, &entry)) in w.child.iter().zip(&lo).enumerate() {
+                if meets & (1 << k) != 0 && child != NONE && entry <= limit(best) {
+                    let mut at = n;
+                    while at > 0 && met[at - 1].1 < entry {
+                        met[at] = met[at - 1];
+                        at -= 1;
+                    }
+                    met[at] = (child, entry);
+                    n += 1;
+                }
+            }
+            stack[depth..depth + n].copy_from_slice(&met[..n]);
+            depth += n;
+        }
+        best
+    }
+}
+
+/// The ray's origin and inverse direction, each coordinate in four lanes (a zero direction
+/// component made the least positive float: no 0 x infinity in the slab tests, and the box
+/// test along that axis is unchanged, the ray staying inside or outside the slab).
+fn ray_lanes(a: DVec3, d: DVec3) -> ([Vec4; 3], [Vec4; 3]) {
+    let inv = d
+        .as_vec3()
+        .to_array()
+        .map(|x| 1.0 / if x == 0.0 { f32::MIN_POSITIVE } else { x });
+    (a.as_vec3().to_array().map(Vec4::splat), inv.map(Vec4::splat))
+}
+
+/// Where the ray enters and leaves each of `w`'s four boxes, clipped to `[t0, t1]` (met
+/// where entry <= exit).
+#[inline(always)]
+fn slabs(w: &Wide, o: [Vec4; 3], inv: [Vec4; 3], t0: Vec4, t1: Vec4) -> (Vec4, Vec4) {
+    let (mut lo, mut hi) = (t0, t1);
+    for axis in 0..3 {
+        let s = (w.lo[axis] - o[axis]) * inv[axis];
+        let e = (w.hi[axis] - o[axis]) * inv[axis];
+        lo = lo.max(s.min(e));
+        hi = hi.min(s.max(e));
+    }
+    (lo, hi)
 }
 
 /// Nodes stored as one byte string of their 32-bit words (little-endian), so that reading
@@ -383,7 +462,7 @@ mod words {
     struct Nodes<T>(std::marker::PhantomData<T>);
 
     fn decode<T: Words, E: Error>(bytes: &[u8]) -> Result<Vec<T>, E> {
-        if bytes.len() % (4 * T::N) != 0 {
+        if !bytes.len().is_multiple_of(4 * T::N) {
             return Err(E::custom(format!("{} bytes of tree nodes", bytes.len())));
         }
         let mut w = vec![0u32; T::N];

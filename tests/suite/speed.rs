@@ -233,6 +233,31 @@ fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_bru
             "{}: {hits} hits, {misses} misses",
             path.display()
         );
+        // Long rays across the body (in at one side, out at the other, often through an arm
+        // or the other leg too): the first of several hits.
+        let (lo, hi) = body.mesh.mesh.bounds().expect("a body");
+        let centre = 0.5 * (lo + hi);
+        let mut through = 0;
+        for p in garment.iter().step_by(37) {
+            let a = *p + shift;
+            let aim = DVec3::new(centre.x, a.y, centre.z) + 0.1 * DVec3::new(rng.next() - 0.5, 0.0, rng.next() - 0.5);
+            let d = (aim - a).normalize_or_zero() * 1.2;
+            let ts: Vec<f64> = ray_hits(&shell, a, d).filter(|&t| t <= 1.0).collect();
+            if ts.iter().any(|t| *t * 1.2 < 1e-6 || (t - 1.0).abs() * 1.2 < 1e-6) {
+                continue;
+            }
+            let first = ts.iter().copied().fold(f64::INFINITY, f64::min);
+            match index.cast_ray(a, d, 0.0, 1.0) {
+                Some((t, _)) => assert!(
+                    (t - first).abs() < 1e-9,
+                    "{}: {a} along {d}: {t} vs {first}",
+                    path.display()
+                ),
+                None => assert!(ts.is_empty(), "{}: {a} along {d}: missed {first}", path.display()),
+            }
+            through += usize::from(ts.len() >= 2);
+        }
+        assert!(through > 20, "{}: {through} rays crossed the body", path.display());
         let mesh = &body.mesh.mesh;
         for (k, part) in index.partitions.iter().enumerate() {
             let mut tested = 0;
