@@ -540,10 +540,15 @@ impl BodyIndex {
     /// intersected in `f64` ([`NearTree::first_on_ray`], nearest box first).
     pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
         let pad = self.slack / dir.length().max(f64::MIN_POSITIVE);
-        self.near
-            .first_on_ray(origin, dir, [t_min - pad, t_max + pad], pad, |_, c| {
-                ray_triangle(origin, dir, *c, t_min, t_max)
-            })
+        let range = [t_min - pad, t_max + pad];
+        // Most rays meet nothing: a plain walk along the ray (no ordering) says so sooner.
+        let meets = |_: u32, c: &[DVec3; 3]| ray_triangle(origin, dir, *c, t_min, t_max).is_some();
+        if !self.near.any_on_ray(origin, dir, range, meets) {
+            return None;
+        }
+        self.near.first_on_ray(origin, dir, range, pad, |_, c| {
+            ray_triangle(origin, dir, *c, t_min, t_max)
+        })
     }
 
     /// Whether the segment `a..b` passes through the body surface (its ends strictly on
