@@ -92,7 +92,7 @@ pub struct BodyIndex {
     /// Which triangles lie inside another part of the body (see [`super::shell`]); the
     /// nearest-point and ray queries see only the others.
     pub shell: Shell,
-    /// Triangle of each leaf of `whole`.
+    /// The shell's triangles (every triangle not buried), ascending.
     leaves: Vec<u32>,
     /// Per triangle: it shares a vertex with a triangle where the surface crosses itself, so
     /// its pseudo-normals may point the wrong way; the sign of a point nearest to it is
@@ -302,31 +302,19 @@ impl BodyIndex {
         index
     }
 
-    /// Every parry tree of the index: none (the cache's tree sections stay for its format).
-    pub(super) fn trees(&self) -> Vec<&Bvh> {
-        Vec::new()
-    }
-
-    /// How many trees [`Self::trees`] gives.
-    pub(super) fn tree_count(&self) -> usize {
-        0
-    }
-
-    /// Finishes an index deserialized: the trees' corners made again (`trees` must be
-    /// empty; `false`, and the index unchanged, if not).
-    pub(super) fn set_trees(&mut self, trees: Vec<Bvh>) -> bool {
-        if !trees.is_empty() {
+    /// Finishes an index read back from the cache file, which stores its trees without their
+    /// triangles' corners: makes those again; `false` if the index does not hold together
+    /// (a triangle's corner, or a tree's triangle, out of range).
+    pub(super) fn restore(&mut self) -> bool {
+        let (count, vertices) = (self.triangles.len(), self.positions.len());
+        if self.triangles.iter().flatten().any(|&i| i as usize >= vertices) {
             return false;
         }
-        let corners = |t: u32| self.triangles[t as usize].map(|i| self.positions[i as usize]);
-        self.near.restore(corners);
-        if let Some(all) = &mut self.all {
-            all.restore(corners);
-        }
-        for p in &mut self.partitions {
-            p.tree.restore(corners);
-        }
-        true
+        let (triangles, positions) = (&self.triangles, &self.positions);
+        let corners = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
+        self.near.restore(count, corners)
+            && self.all.as_mut().is_none_or(|all| all.restore(count, corners))
+            && self.partitions.iter_mut().all(|p| p.tree.restore(count, corners))
     }
 
     /// The corners of triangle `t`.
@@ -357,6 +345,12 @@ impl BodyIndex {
     /// of a search, the winner gets its side afterwards.
     fn candidate(&self, p: DVec3, t: u32) -> Nearest {
         let (foot, feature) = closest_on_triangle(p, self.corners(t));
+        self.at_feature(t, foot, feature, p.distance(foot))
+    }
+
+    /// The candidate of triangle `t` whose nearest point `foot` (at `distance`) lies on
+    /// `feature`, with that feature's pseudo-normal.
+    fn at_feature(&self, t: u32, foot: DVec3, feature: Feature, distance: f64) -> Nearest {
         let normal = match feature {
             Feature::Face => self.face_normals[t as usize],
             Feature::Edge(k) => self.edge_normals[t as usize][k as usize],
@@ -366,7 +360,7 @@ impl BodyIndex {
             triangle: t,
             foot,
             feature,
-            distance: p.distance(foot),
+            distance,
             normal,
             behind: None,
         }
@@ -434,11 +428,11 @@ impl BodyIndex {
         counts[1]
     }
 
-    /// The nearest point within `reach` of `p` in a BVH whose leaf `i` is triangle `map(i)`,
-    /// among the triangles `member` accepts (those the BVH holds).
+    /// The nearest point within `reach` of `p` among the triangles of `tree` (those `member`
+    /// accepts).
     ///
-    /// One depth-first pass, nearer child first (parry's `find_best`), pruned in `f32` by the
-    /// best distance so far plus the boxes' slack, so that no triangle as near as the winner
+    /// One depth-first pass, nearer child first ([`NearTree::nearest`]), pruned in `f32` by
+    /// the best distance so far plus the boxes' slack, so that no triangle as near as the winner
     /// is ever pruned; the winner is picked in `f64` (ties: the lowest triangle index). The
     /// search starts from `hint` (a triangle found for a point nearby): its distance is the
     /// first bound, which only prunes, so the answer is the same with any hint or none. (A
@@ -466,19 +460,8 @@ impl BodyIndex {
             let distance = p.distance(foot);
             let better = best.is_none_or(|b| distance < b.distance || (distance == b.distance && t < b.triangle));
             if distance <= reach && better {
-                let normal = match feature {
-                    Feature::Face => self.face_normals[t as usize],
-                    Feature::Edge(k) => self.edge_normals[t as usize][k as usize],
-                    Feature::Vertex(k) => self.vertex_normals[self.triangles[t as usize][k as usize] as usize],
-                };
-                best = Some(Nearest {
-                    triangle: t,
-                    foot,
-                    feature,
-                    distance,
-                    normal,
-                    behind: None,
-                });
+                // The pseudo-normal is looked up for the candidates that win only.
+                best = Some(self.at_feature(t, foot, feature, distance));
             }
             let cost = distance + slack;
             Some((cost * cost) as f32)
@@ -537,11 +520,13 @@ impl BodyIndex {
 
     /// The first body triangle the ray `origin + t dir` meets with `t` in `(t_min, t_max]`:
     /// `(t, triangle)`: the least `t` (the lowest triangle among equals), each triangle
-    /// intersected in `f64` ([`NearTree::first_on_ray`], nearest box first).
+    /// intersected in `f64` ([`NearTree::first_on_ray`]).
     pub fn cast_ray(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, u32)> {
         let pad = self.slack / dir.length().max(f64::MIN_POSITIVE);
         let range = [t_min - pad, t_max + pad];
-        // Most rays meet nothing: a plain walk along the ray (no ordering) says so sooner.
+        // Most rays meet nothing: a plain walk says so in about half the time of the search
+        // for the first hit (0.09 against 0.17 us a garment edge, one core), which then runs
+        // only for the rays that meet the body.
         let meets = |_: u32, c: &[DVec3; 3]| ray_triangle(origin, dir, *c, t_min, t_max).is_some();
         if !self.near.any_on_ray(origin, dir, range, meets) {
             return None;

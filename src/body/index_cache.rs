@@ -1,5 +1,5 @@
 //! The body index kept between runs: one file per body, so that the second session on a body
-//! reads its [`BodyIndex`] instead of building it again (pseudo-normals, eight BVHs, the
+//! reads its [`BodyIndex`] instead of building it again (pseudo-normals, eight trees, the
 //! shell's self-test, the slices: tens of milliseconds on a 27,000-triangle body).
 //!
 //! A file is named by a key, a 64-bit xxHash of everything the build reads: the mesh
@@ -32,8 +32,9 @@ use super::slices::SliceOptions;
 
 /// The first bytes of every index file.
 const MAGIC: &[u8; 8] = b"DRAPEIDX";
-/// The file format; a reader refuses any other.
-const FORMAT: u32 = 1;
+/// The file format; a reader refuses any other (2: one section, the index with its own
+/// trees; 1 stored parry3d's trees in sections of their own).
+const FORMAT: u32 = 2;
 /// Magic, format, key, payload length, payload checksum.
 const HEADER: usize = 8 + 4 + 8 + 8 + 8;
 /// The sources' fingerprint (see `build.rs`).
@@ -242,9 +243,9 @@ impl Feed {
 
 /// The index in `path` if it is there and usable for `body` (whose key is `key`).
 ///
-/// The payload is a run of sections (the index without its trees, then each tree), each
-/// its length then its postcard bytes; they are read one at a time into one buffer, which
-/// spares the memory (and the page faults) of the whole file at once.
+/// The payload is a run of sections (now one: the index), each its length then its postcard
+/// bytes; they are read one at a time into one buffer, which spares the memory (and the
+/// page faults) of the whole file at once.
 fn read(path: &Path, key: u64, body: &Body) -> Result<Option<BodyIndex>, CacheError> {
     let mut file = match File::open(path) {
         Ok(f) => f,
@@ -289,10 +290,6 @@ fn read(path: &Path, key: u64, body: &Body) -> Result<Option<BodyIndex>, CacheEr
     };
     let decode_error = |e: postcard::Error| unusable(format!("cannot be decoded: {e}"));
     let mut index: BodyIndex = postcard::from_bytes(sections.next().map_err(unusable)?).map_err(decode_error)?;
-    let mut trees = Vec::new();
-    for _ in 0..index.tree_count() {
-        trees.push(postcard::from_bytes(sections.next().map_err(unusable)?).map_err(decode_error)?);
-    }
     if sections.left != 0 {
         return Err(unusable(format!("{} bytes after the last section", sections.left)));
     }
@@ -300,7 +297,7 @@ fn read(path: &Path, key: u64, body: &Body) -> Result<Option<BodyIndex>, CacheEr
         return Err(unusable("damaged (checksum mismatch)".into()));
     }
     let mesh = &body.mesh.mesh;
-    if !index.set_trees(trees)
+    if !index.restore()
         || index.positions.len() != mesh.positions.len()
         || index.triangles.len() != mesh.triangles.len()
         || index.partitions.len() != body.partitions.len()
@@ -356,9 +353,6 @@ fn write(dir: &Path, path: &Path, key: u64, index: &BodyIndex) -> Result<(), Cac
     bytes.extend_from_slice(&key.to_le_bytes());
     bytes.resize(HEADER, 0);
     append_section(&mut bytes, index)?;
-    for tree in index.trees() {
-        append_section(&mut bytes, tree)?;
-    }
     let payload = (bytes.len() - HEADER) as u64;
     let checksum = xxh64(&bytes[HEADER..], 0);
     bytes[20..28].copy_from_slice(&payload.to_le_bytes());

@@ -163,14 +163,39 @@ impl NearTree {
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
-    /// `t`'s corners, as given to [`Self::new`]).
-    pub fn restore(&mut self, corners: impl Fn(u32) -> [DVec3; 3]) {
+    /// `t`'s corners, as given to [`Self::new`], for `t` below `count`); `false`, and the
+    /// tree unchanged, if the tree read back does not hold together (a child or a leaf
+    /// outside its arrays or not after its parent, a triangle not below `count`), so that no
+    /// query can index out of bounds or loop.
+    pub fn restore(&mut self, count: usize, corners: impl Fn(u32) -> [DVec3; 3]) -> bool {
+        let slots = self.triangles.len();
+        let leaf_fits = |first: usize, count: usize| count >= 1 && first + count <= slots;
+        let binary = self.pairs.iter().flat_map(|p| p.0).enumerate().all(|(i, n)| {
+            i == 1
+                || if n.count > 0 {
+                    leaf_fits(n.first as usize, n.count as usize)
+                } else {
+                    // Children after their parent: no descent can loop.
+                    n.first % 2 == 0 && n.first as usize > i && (n.first as usize) < 2 * self.pairs.len()
+                }
+        });
+        let wide = self.nodes.iter().enumerate().all(|(i, w)| {
+            w.child.iter().all(|&c| {
+                c == NONE
+                    || if c & LEAF_BIT != 0 {
+                        leaf_fits(((c & !LEAF_BIT) >> 2) as usize, (c & 3) as usize + 1)
+                    } else {
+                        c as usize > i && (c as usize) < self.nodes.len()
+                    }
+            })
+        });
+        let empty = self.pairs.is_empty() && self.nodes.is_empty();
+        let rooted = empty || (!self.pairs.is_empty() && !self.nodes.is_empty());
+        if !(binary && wide && rooted && self.triangles.iter().all(|&t| (t as usize) < count)) {
+            return false;
+        }
         self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
-    }
-
-    /// Whether the tree holds no triangle.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
+        true
     }
 
     /// The triangles of leaf `child` (a child with [`LEAF_BIT`]), with their corners.
@@ -300,7 +325,9 @@ impl NearTree {
     /// a triangle's parameter where the ray meets it; the least parameter wins, the lowest
     /// triangle among equals. Boxes are tested in `f32` over `range` and let through while
     /// they begin no later than the best parameter so far plus `pad` (widen both by what
-    /// rounding may take); the nearest box first.
+    /// rounding may take), in lane order: sorting the lanes by where the ray enters them
+    /// was measured slower (0.37 against 0.28 µs a ray that meets the body, behind the
+    /// plain walk of [`BodyIndex::cast_ray`](super::index::BodyIndex::cast_ray)).
     pub fn first_on_ray(
         &self,
         a: DVec3,
@@ -341,22 +368,14 @@ impl NearTree {
             let (lo, hi) = slabs(w, o, inv, t0, t1);
             let meets = lo.cmple(hi).bitmask();
             let lo = lo.to_array();
-            // The lanes met, the farthest first onto the stack.
-            let mut met = [(0u32, 0f32); 4];
-            let mut n = 0;
+            // The lanes met, in lane order: no sorting, which would cost every ray (most meet
+            // nothing) more than it saves the few that meet the body.
             for (k, (&child, &entry)) in w.child.iter().zip(&lo).enumerate() {
                 if meets & (1 << k) != 0 && child != NONE && entry <= limit(best) {
-                    let mut at = n;
-                    while at > 0 && met[at - 1].1 < entry {
-                        met[at] = met[at - 1];
-                        at -= 1;
-                    }
-                    met[at] = (child, entry);
-                    n += 1;
+                    stack[depth] = (child, entry);
+                    depth += 1;
                 }
             }
-            stack[depth..depth + n].copy_from_slice(&met[..n]);
-            depth += n;
         }
         best
     }
@@ -795,5 +814,36 @@ mod tests {
             }
             assert!(hits >= 10, "soup {k}: {hits} segments met a triangle");
         }
+    }
+
+    /// A tree read back holds together or is refused: intact it is restored; a wide child
+    /// pointing back at its parent, a binary child before its parent, a leaf past the
+    /// slots or a triangle past the count are refused (each would loop or index out of
+    /// bounds in a query).
+    #[test]
+    fn a_tree_read_back_that_does_not_hold_together_is_refused() {
+        let soup: Vec<[DVec3; 3]> = (0..50)
+            .map(|k| {
+                let c = DVec3::new(k as f64, 0.0, 0.0);
+                [c, c + DVec3::X * 0.5, c + DVec3::Y]
+            })
+            .collect();
+        let ids: Vec<u32> = (0..50).collect();
+        let corners = |t: u32| soup[t as usize];
+        let tree = NearTree::new(&ids, corners, |t| {
+            let [a, b, c] = soup[t as usize];
+            (a.min(b).min(c).as_vec3(), a.max(b).max(c).as_vec3())
+        });
+        assert!(tree.clone().restore(50, corners));
+        let mut looped = tree.clone();
+        looped.nodes[0].child[0] = 0;
+        assert!(!looped.restore(50, corners));
+        let mut back = tree.clone();
+        back.pairs[1].0[0].first = 0;
+        assert!(!back.restore(50, corners));
+        let mut past = tree.clone();
+        past.triangles.pop();
+        assert!(!past.restore(50, corners));
+        assert!(!tree.clone().restore(49, corners));
     }
 }
