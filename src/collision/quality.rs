@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::response::Response;
 use super::reuse::{Reuse, Reused};
-use crate::body::index::BodyIndex;
+use crate::body::index::{BodyIndex, Nearest};
 use crate::par::par_map;
 
 /// Quality figures of a garment mesh against the body.
@@ -108,19 +108,33 @@ impl Measured {
     }
 }
 
+/// How far the quality check looks for the body: a fifth of its height.
+fn check_reach(index: &BodyIndex) -> f64 {
+    0.2 * index.height
+}
+
+impl VertexDistance {
+    /// The quality check's distance of `p`, whose nearest body point `nearest` was found
+    /// looking at least as far as the check does ([`BodyIndex::nearest`] answers the same
+    /// with any reach that holds the winner).
+    pub fn from_nearest(index: &BodyIndex, p: DVec3, nearest: Option<&Nearest>) -> Self {
+        let reach = check_reach(index);
+        match nearest {
+            Some(n) if n.distance <= reach => Self {
+                signed: n.signed(p),
+                triangle: n.triangle,
+            },
+            _ => Self {
+                signed: reach,
+                triangle: NO_TRIANGLE,
+            },
+        }
+    }
+}
+
 /// The quality check's distance of `p` (within a fifth of the body's height).
 fn distance_at(index: &BodyIndex, p: DVec3) -> VertexDistance {
-    let reach = 0.2 * index.height;
-    index.nearest(p, reach).map_or(
-        VertexDistance {
-            signed: reach,
-            triangle: NO_TRIANGLE,
-        },
-        |n| VertexDistance {
-            signed: n.signed(p),
-            triangle: n.triangle,
-        },
-    )
+    VertexDistance::from_nearest(index, p, index.nearest(p, check_reach(index)).as_ref())
 }
 
 /// Every vertex's distance at `positions`, as the quality check measures it; those `reuse`
@@ -212,7 +226,7 @@ fn measure(
     mut reuse: Option<(&mut Reuse, &mut Reused)>,
     measured: Option<&Measured>,
 ) -> Quality {
-    let reach = 0.2 * index.height;
+    let reach = check_reach(index);
     let surface = 1e-12 * index.height;
     let mut q = Quality::default();
     let mut depth_sum = 0.0;

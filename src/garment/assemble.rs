@@ -8,11 +8,14 @@
 //! (it would be recomputed bit for bit the same): only the changed patches are re-surfaced.
 //! What the lines and patches are is the template's business ([`super::template`]).
 
+use glam::DVec3;
+
 use super::m0::{M0, PatchGrid, stitch};
 use super::model::{FeatureLine, Framework, FrameworkError};
 use super::probe::BodyProbe;
 use super::surface::Surfacer;
 use super::template;
+use crate::body::index::Nearest;
 
 /// What an assembly produced.
 #[derive(Clone, Debug)]
@@ -25,6 +28,9 @@ pub struct Assembled {
     pub m0: M0,
     /// Names of the patches surfaced anew (all of them without a previous framework).
     pub resurfaced: Vec<String>,
+    /// The body's nearest point to the interior samples of the patches surfaced anew,
+    /// where they stand: measured while clearing them off the body.
+    pub measured: Vec<(DVec3, Nearest)>,
 }
 
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
@@ -34,12 +40,13 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
     let lines = spec.lines(fw, probe)?;
     let mut s = Surfacer::new(fw, &lines, probe, previous);
     spec.patches(&mut s, &lines)?;
-    let (patches, resurfaced) = s.finish();
+    let (patches, resurfaced, measured) = s.finish();
     let m0 = stitch(&patches, fw.layout.weld);
     Ok(Assembled {
         lines,
         patches,
         m0,
         resurfaced,
+        measured,
     })
 }

@@ -6,7 +6,7 @@
 use glam::DVec3;
 
 use crate::body::Body;
-use crate::body::index::BodyIndex;
+use crate::body::index::{BodyIndex, Nearest};
 use crate::body::slices::SliceOptions;
 use crate::convergence::{Stop, record};
 
@@ -52,13 +52,23 @@ impl BodyProbe {
     /// point along the way out. A few passes settle points near concave creases. Points
     /// already `gap` away are returned unchanged (bit for bit).
     pub fn clear(&self, p: DVec3, gap: f64) -> DVec3 {
+        self.clear_measuring(p, gap).0
+    }
+
+    /// [`Self::clear`], with the body's nearest point to the point returned (every pass
+    /// measures where it stands, the last one where it stops): `None` for a body with no
+    /// triangles.
+    pub fn clear_measuring(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>) {
         let mut q = p;
         let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
+        let mut last = None;
         for pass in 0..=CLEAR_PASSES {
-            let Some((foot, d, normal)) = self.nearest(q) else {
+            last = self.index.nearest(q, f64::INFINITY);
+            let Some(n) = last else {
                 stop = (Stop::Converged, pass, 0.0);
                 break;
             };
+            let d = n.signed(q);
             if d >= gap * (1.0 - 1e-9) {
                 stop = (Stop::Converged, pass, 0.0);
                 break;
@@ -67,15 +77,15 @@ impl BodyProbe {
                 stop.2 = gap - d;
                 break;
             }
-            let mut out = (q - foot) * d.signum();
+            let mut out = (q - n.foot) * d.signum();
             if out.length_squared() <= 1e-24 {
-                out = normal;
+                out = n.normal;
             }
-            q = foot + out.normalize_or_zero() * gap;
+            q = n.foot + out.normalize_or_zero() * gap;
         }
         if stop.1 > 0 {
             record("garment.probe.clear", stop.0, stop.1, stop.2);
         }
-        q
+        (q, last)
     }
 }

@@ -13,6 +13,7 @@ use super::model::{FeatureLine, Framework, FrameworkError, Layout};
 use super::open_curve::OpenCurve;
 use super::probe::BodyProbe;
 use super::ring::GarmentRing;
+use crate::body::index::Nearest;
 use crate::par::par_map_from;
 
 /// A framework error: `what` is wrong with curve `curve`.
@@ -107,8 +108,12 @@ pub struct Surfacer<'a> {
     shapes: BTreeMap<String, Vec<DVec3>>,
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
-    /// Patches surfaced anew whose interior the clearing moved: (index, samples moved).
-    to_relax: Vec<(usize, Vec<bool>)>,
+    /// Patches surfaced anew whose interior the clearing moved: (index, samples moved, the
+    /// body's nearest point to each interior sample).
+    to_relax: Vec<(usize, Vec<bool>, Vec<Option<Nearest>>)>,
+    /// The body's nearest point to the interior samples of the patches surfaced anew, where
+    /// they stand.
+    measured: Vec<(DVec3, Nearest)>,
 }
 
 impl<'a> Surfacer<'a> {
@@ -129,6 +134,7 @@ impl<'a> Surfacer<'a> {
             patches: Vec::new(),
             resurfaced: Vec::new(),
             to_relax: Vec::new(),
+            measured: Vec::new(),
         }
     }
 
@@ -142,22 +148,26 @@ impl<'a> Surfacer<'a> {
         self.layout
     }
 
-    /// The patches made (or kept), and the names of those surfaced anew; the cleared ones
-    /// relaxed (on all cores: each patch on its own).
-    pub fn finish(mut self) -> (Vec<PatchGrid>, Vec<String>) {
+    /// The patches made (or kept), the names of those surfaced anew, and the body's nearest
+    /// point to the interior samples of those, where they stand (the clearing measured
+    /// them: the collision need not measure them again); the cleared ones relaxed (on all
+    /// cores: each patch on its own).
+    pub fn finish(mut self) -> (Vec<PatchGrid>, Vec<String>, Vec<(DVec3, Nearest)>) {
         let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
         let patches = &self.patches;
         let jobs = &self.to_relax;
         let relaxed = par_map_from(jobs.len(), 2, |k| {
-            let (i, moved) = &jobs[k];
+            let (i, moved, found) = &jobs[k];
             let mut grid = patches[*i].clone();
-            relax(&mut grid, moved, probe, gap, scale);
-            grid
+            let mut found = found.clone();
+            relax(&mut grid, moved, &mut found, probe, gap, scale);
+            (grid, found)
         });
-        for ((i, _), grid) in self.to_relax.iter().zip(relaxed) {
+        for ((i, _, _), (grid, found)) in self.to_relax.iter().zip(relaxed) {
+            self.measured.extend(sampled(&grid.points, &found));
             self.patches[*i] = grid;
         }
-        (self.patches, self.resurfaced)
+        (self.patches, self.resurfaced, self.measured)
     }
 
     /// Samples of contour `name` from its point on ring `from` up to the next one, inner
@@ -191,9 +201,11 @@ impl<'a> Surfacer<'a> {
         // The blend of four boundaries that stand off the body can still dip into it where
         // the body bulges between them (the inner thigh and the belly over a tall crotch
         // junction): interior samples stand the clearance off, as contour spans do.
-        let moved = clear_interior(&mut grid, self.probe, self.layout.clearance);
+        let (moved, found) = clear_interior(&mut grid, self.probe, self.layout.clearance);
         if moved.contains(&true) {
-            self.to_relax.push((self.patches.len(), moved));
+            self.to_relax.push((self.patches.len(), moved, found));
+        } else {
+            self.measured.extend(sampled(&grid.points, &found));
         }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
@@ -229,19 +241,27 @@ pub fn curve_shapes(fw: &Framework, lines: &[FeatureLine]) -> BTreeMap<String, V
     out
 }
 
-/// Clears every interior sample of `grid` off the body by `gap` (m); which ones moved.
-fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> Vec<bool> {
+/// The samples at `points` whose nearest body point is `found`.
+fn sampled<'p>(points: &'p [DVec3], found: &'p [Option<Nearest>]) -> impl Iterator<Item = (DVec3, Nearest)> + 'p {
+    points.iter().zip(found).filter_map(|(&p, n)| n.map(|n| (p, n)))
+}
+
+/// Clears every interior sample of `grid` off the body by `gap` (m); which ones moved, and
+/// the body's nearest point to each interior sample where it ends.
+fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> (Vec<bool>, Vec<Option<Nearest>>) {
     let (nu, nv) = (grid.nu, grid.nv);
     let mut moved = vec![false; grid.points.len()];
+    let mut found = vec![None; grid.points.len()];
     for j in 1..nv {
         for i in 1..nu {
             let k = j * (nu + 1) + i;
-            let p = probe.clear(grid.points[k], gap);
+            let (p, n) = probe.clear_measuring(grid.points[k], gap);
             moved[k] = p != grid.points[k];
             grid.points[k] = p;
+            found[k] = n;
         }
     }
-    moved
+    (moved, found)
 }
 
 /// Most rounds of relaxation of a cleared patch.
@@ -252,8 +272,9 @@ pub const RELAX_ROUNDS: usize = 12;
 /// moves every moved sample half way to its four neighbours' mean, within the patch's
 /// tangent plane there (so the patch does not flatten), and clears it again; the samples
 /// the clearing left alone keep the Coons blend and hold the rest in place. Stops early
-/// once no sample moves more than 1e-4 of `scale` (m) in a round.
-fn relax(grid: &mut PatchGrid, moved: &[bool], probe: &BodyProbe, gap: f64, scale: f64) {
+/// once no sample moves more than 1e-4 of `scale` (m) in a round. `found` follows the
+/// body's nearest point to each sample moved.
+fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], probe: &BodyProbe, gap: f64, scale: f64) {
     let (nu, nv) = (grid.nu, grid.nv);
     let at = |i: usize, j: usize| j * (nu + 1) + i;
     for _ in 0..RELAX_ROUNDS {
@@ -274,9 +295,10 @@ fn relax(grid: &mut PatchGrid, moved: &[bool], probe: &BodyProbe, gap: f64, scal
                 let n = (r - l).cross(u - d).normalize_or_zero();
                 let lap = 0.25 * (l + r + d + u) - p;
                 let tangential = lap - n * lap.dot(n);
-                let q = probe.clear(p + 0.5 * tangential, gap);
+                let (q, n) = probe.clear_measuring(p + 0.5 * tangential, gap);
                 most = most.max(q.distance(p));
                 grid.points[at(i, j)] = q;
+                found[at(i, j)] = n;
             }
         }
         if most <= 1e-4 * scale {

@@ -187,6 +187,8 @@ fn drag(
         after.patches.len(),
     ));
     let mut next = state.clone();
+    next.detect
+        .remember_nearest(probe.index(), &after.m0.mesh.positions, &built.measured);
     next.framework = Some(after);
     next.collision = None;
     next.edits.push(edit.clone());
