@@ -59,11 +59,20 @@ impl BodyProbe {
     /// measures where it stands, the last one where it stops): `None` for a body with no
     /// triangles.
     pub fn clear_measuring(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>) {
+        self.clear_from(p, gap, None)
+    }
+
+    /// [`Self::clear_measuring`], the first search warm-started from triangle `hint` (the
+    /// nearest to the point where it stood before): the same answer with any hint or none.
+    pub fn clear_from(&self, p: DVec3, gap: f64, hint: Option<u32>) -> (DVec3, Option<Nearest>) {
         let mut q = p;
         let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
         let mut last = None;
         for pass in 0..=CLEAR_PASSES {
-            last = self.index.nearest(q, f64::INFINITY);
+            last = match (pass, hint) {
+                (0, Some(t)) => self.index.nearest_from(q, f64::INFINITY, Some(t)),
+                _ => self.index.nearest(q, f64::INFINITY),
+            };
             let Some(n) = last else {
                 stop = (Stop::Converged, pass, 0.0);
                 break;

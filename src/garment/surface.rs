@@ -295,7 +295,8 @@ fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], pr
                 let n = (r - l).cross(u - d).normalize_or_zero();
                 let lap = 0.25 * (l + r + d + u) - p;
                 let tangential = lap - n * lap.dot(n);
-                let (q, n) = probe.clear_measuring(p + 0.5 * tangential, gap);
+                let hint = found[at(i, j)].map(|n| n.triangle);
+                let (q, n) = probe.clear_from(p + 0.5 * tangential, gap, hint);
                 most = most.max(q.distance(p));
                 grid.points[at(i, j)] = q;
                 found[at(i, j)] = n;
