@@ -101,9 +101,11 @@ pub struct BodyIndex {
     /// Every triangle's tree (buried ones too), for those counts; only on a body with
     /// buried triangles (else the shell's tree holds every triangle).
     all: Option<NearTree>,
-    slack: f64,
+    /// How far the boxes of the trees reach past their triangles, m (room for `f32`
+    /// rounding).
+    pub(super) slack: f64,
     /// The shell's tree: nearest points, segments and rays.
-    near: NearTree,
+    pub(super) near: NearTree,
 }
 
 thread_local! {
@@ -350,7 +352,7 @@ impl BodyIndex {
 
     /// The candidate of triangle `t` whose nearest point `foot` (at `distance`) lies on
     /// `feature`, with that feature's pseudo-normal.
-    fn at_feature(&self, t: u32, foot: DVec3, feature: Feature, distance: f64) -> Nearest {
+    pub(super) fn at_feature(&self, t: u32, foot: DVec3, feature: Feature, distance: f64) -> Nearest {
         let normal = match feature {
             Feature::Face => self.face_normals[t as usize],
             Feature::Edge(k) => self.edge_normals[t as usize][k as usize],
@@ -394,7 +396,7 @@ impl BodyIndex {
 
     /// `n` with a normal that gives `p` its true side where the pseudo-normals cannot be
     /// trusted (next to a self-crossing): the side counted along rays.
-    fn settle(&self, p: DVec3, n: Nearest) -> Nearest {
+    pub(super) fn settle(&self, p: DVec3, n: Nearest) -> Nearest {
         let mut n = self.exact_side(p, n);
         if n.distance > 0.0 && self.tangled.get(n.triangle as usize).copied().unwrap_or(false) {
             let away = (p - n.foot) / n.distance;

@@ -4,6 +4,7 @@ pub mod index;
 pub mod index_cache;
 pub mod landmarks;
 pub mod near_tree;
+pub mod nearby;
 pub mod partition;
 pub mod profile;
 pub mod rings;

@@ -7,11 +7,15 @@ use glam::DVec3;
 
 use crate::body::Body;
 use crate::body::index::{BodyIndex, Nearest};
+use crate::body::nearby::Nearby;
 use crate::body::slices::SliceOptions;
 use crate::convergence::{Stop, record};
 
 /// Most passes of [`BodyProbe::clear`].
 const CLEAR_PASSES: usize = 4;
+
+/// The radius of [`BodyProbe::clear_near`]'s ball, in clearances.
+const NEARBY_ROOM: f64 = 0.5;
 
 /// A body prepared for clearance queries: it owns the body's one [`BodyIndex`].
 #[derive(Debug)]
@@ -59,20 +63,32 @@ impl BodyProbe {
     /// measures where it stands, the last one where it stops): `None` for a body with no
     /// triangles.
     pub fn clear_measuring(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>) {
-        self.clear_from(p, gap, None)
+        self.clear_with(p, gap, |q| self.index.nearest(q, f64::INFINITY))
     }
 
-    /// [`Self::clear_measuring`], the first search warm-started from triangle `hint` (the
-    /// nearest to the point where it stood before): the same answer with any hint or none.
-    pub fn clear_from(&self, p: DVec3, gap: f64, hint: Option<u32>) -> (DVec3, Option<Nearest>) {
+    /// [`Self::clear_measuring`] for a point that moves a little between calls (a sample
+    /// being relaxed): `near` keeps the triangles that can be nearest within a ball about
+    /// where it last stood ([`Nearby`]), gathered again wherever it leaves the ball; the
+    /// same answers as the full search.
+    pub fn clear_near(&self, p: DVec3, gap: f64, near: &mut Option<Nearby>) -> (DVec3, Option<Nearest>) {
+        let room = NEARBY_ROOM * gap;
+        self.clear_with(p, gap, |q| {
+            if let Some(n) = near.as_ref().and_then(|b| self.index.nearest_nearby(b, q)) {
+                return Some(n);
+            }
+            let n = self.index.nearest(q, f64::INFINITY)?;
+            *near = Some(self.index.nearby(q, &n, room));
+            Some(n)
+        })
+    }
+
+    /// [`Self::clear`], each pass's nearest point found by `search`.
+    fn clear_with(&self, p: DVec3, gap: f64, mut search: impl FnMut(DVec3) -> Option<Nearest>) -> (DVec3, Option<Nearest>) {
         let mut q = p;
         let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
         let mut last = None;
         for pass in 0..=CLEAR_PASSES {
-            last = match (pass, hint) {
-                (0, Some(t)) => self.index.nearest_from(q, f64::INFINITY, Some(t)),
-                _ => self.index.nearest(q, f64::INFINITY),
-            };
+            last = search(q);
             let Some(n) = last else {
                 stop = (Stop::Converged, pass, 0.0);
                 break;

@@ -14,6 +14,7 @@ use super::open_curve::OpenCurve;
 use super::probe::BodyProbe;
 use super::ring::GarmentRing;
 use crate::body::index::Nearest;
+use crate::body::nearby::Nearby;
 use crate::par::par_map_from;
 
 /// A framework error: `what` is wrong with curve `curve`.
@@ -277,6 +278,7 @@ pub const RELAX_ROUNDS: usize = 12;
 fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], probe: &BodyProbe, gap: f64, scale: f64) {
     let (nu, nv) = (grid.nu, grid.nv);
     let at = |i: usize, j: usize| j * (nu + 1) + i;
+    let mut near: Vec<Option<Nearby>> = vec![None; grid.points.len()];
     for _ in 0..RELAX_ROUNDS {
         let before = grid.points.clone();
         let mut most: f64 = 0.0;
@@ -295,8 +297,7 @@ fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], pr
                 let n = (r - l).cross(u - d).normalize_or_zero();
                 let lap = 0.25 * (l + r + d + u) - p;
                 let tangential = lap - n * lap.dot(n);
-                let hint = found[at(i, j)].map(|n| n.triangle);
-                let (q, n) = probe.clear_from(p + 0.5 * tangential, gap, hint);
+                let (q, n) = probe.clear_near(p + 0.5 * tangential, gap, &mut near[at(i, j)]);
                 most = most.max(q.distance(p));
                 grid.points[at(i, j)] = q;
                 found[at(i, j)] = n;
