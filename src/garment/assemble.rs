@@ -13,7 +13,7 @@ use glam::DVec3;
 use super::m0::{M0, PatchGrid, stitch};
 use super::model::{FeatureLine, Framework, FrameworkError};
 use super::probe::BodyProbe;
-use super::surface::Surfacer;
+use super::surface::{Spans, Surfaced, Surfacer};
 use super::template;
 use crate::body::index::Nearest;
 
@@ -31,6 +31,8 @@ pub struct Assembled {
     /// The body's nearest point to the interior samples of the patches surfaced anew,
     /// where they stand: measured while clearing them off the body.
     pub measured: Vec<(DVec3, Nearest)>,
+    /// The contour spans the patches were surfaced from.
+    pub spans: Spans,
 }
 
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
@@ -40,7 +42,12 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
     let lines = spec.lines(fw, probe)?;
     let mut s = Surfacer::new(fw, &lines, probe, previous);
     spec.patches(&mut s, &lines)?;
-    let (patches, resurfaced, measured) = s.finish();
+    let Surfaced {
+        patches,
+        resurfaced,
+        measured,
+        spans,
+    } = s.finish();
     let m0 = stitch(&patches, fw.layout.weld);
     Ok(Assembled {
         lines,
@@ -48,5 +55,6 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
         m0,
         resurfaced,
         measured,
+        spans,
     })
 }

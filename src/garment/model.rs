@@ -185,6 +185,8 @@ pub struct Framework {
     pub patches: Vec<PatchGrid>,
     /// The stitched mesh.
     pub m0: M0,
+    /// The cleared contour spans its patches were surfaced from.
+    pub spans: super::surface::Spans,
     /// Dimensions reached.
     pub dimensions: Vec<DimensionValue>,
     /// Sample counts of the patches and lines (fixed for the garment's life).

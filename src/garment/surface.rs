@@ -3,6 +3,7 @@
 //! like the contour spans, kept from the previous framework when none of its boundary curves
 //! changed; and the lookups a template's patches use.
 
+use std::cell::RefCell;
 use std::collections::BTreeMap;
 
 use glam::DVec3;
@@ -115,6 +116,26 @@ pub struct Surfacer<'a> {
     /// The body's nearest point to the interior samples of the patches surfaced anew, where
     /// they stand.
     measured: Vec<(DVec3, Nearest)>,
+    /// The contour spans cleared so far (a span bounds two patches).
+    spans: RefCell<Spans>,
+}
+
+/// Cleared contour spans by (contour, span from its control point `k`, segments): the
+/// spans a framework's patches were surfaced from, kept with it so that the next assembly
+/// takes those of the contours that did not change instead of clearing them again.
+pub type Spans = BTreeMap<(String, usize, usize), Vec<DVec3>>;
+
+/// What a [`Surfacer`] made.
+pub struct Surfaced {
+    /// The patches made (or kept).
+    pub patches: Vec<PatchGrid>,
+    /// The names of those surfaced anew.
+    pub resurfaced: Vec<String>,
+    /// The body's nearest point to the interior samples of those, where they stand (the
+    /// clearing measured them: the collision need not measure them again).
+    pub measured: Vec<(DVec3, Nearest)>,
+    /// The contour spans the patches were surfaced from.
+    pub spans: Spans,
 }
 
 impl<'a> Surfacer<'a> {
@@ -136,6 +157,7 @@ impl<'a> Surfacer<'a> {
             resurfaced: Vec::new(),
             to_relax: Vec::new(),
             measured: Vec::new(),
+            spans: RefCell::new(Spans::new()),
         }
     }
 
@@ -149,11 +171,9 @@ impl<'a> Surfacer<'a> {
         self.layout
     }
 
-    /// The patches made (or kept), the names of those surfaced anew, and the body's nearest
-    /// point to the interior samples of those, where they stand (the clearing measured
-    /// them: the collision need not measure them again); the cleared ones relaxed (on all
-    /// cores: each patch on its own).
-    pub fn finish(mut self) -> (Vec<PatchGrid>, Vec<String>, Vec<(DVec3, Nearest)>) {
+    /// What was made ([`Surfaced`]); the cleared patches relaxed (on all cores: each patch
+    /// on its own).
+    pub fn finish(mut self) -> Surfaced {
         let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
         let patches = &self.patches;
         let jobs = &self.to_relax;
@@ -168,14 +188,36 @@ impl<'a> Surfacer<'a> {
             self.measured.extend(sampled(&grid.points, &found));
             self.patches[*i] = grid;
         }
-        (self.patches, self.resurfaced, self.measured)
+        Surfaced {
+            patches: self.patches,
+            resurfaced: self.resurfaced,
+            measured: self.measured,
+            spans: self.spans.into_inner(),
+        }
     }
 
     /// Samples of contour `name` from its point on ring `from` up to the next one, inner
     /// samples cleared off the body.
+    ///
+    /// A span is cleared once an assembly (it bounds two patches), and taken from the
+    /// previous framework when the contour's shape and the clearance are the same: the same
+    /// samples, as clearing depends on nothing else.
     pub fn span(&self, name: &str, from: &str, n: usize) -> Result<Vec<DVec3>, FrameworkError> {
         let c = contour(self.fw, name)?;
-        Ok(c.span(through_at(c, from)?, n, Some((self.probe, self.layout.clearance))))
+        let key = (name.to_string(), through_at(c, from)?, n);
+        if let Some(span) = self.spans.borrow().get(&key) {
+            return Ok(span.clone());
+        }
+        let kept = self.previous.as_ref().and_then(|(old, shapes)| {
+            let same = old.layout.clearance == self.layout.clearance && shapes.get(name) == self.shapes.get(name);
+            same.then(|| old.spans.get(&key)).flatten()
+        });
+        let span = match kept {
+            Some(span) => span.clone(),
+            None => c.span(key.1, n, Some((self.probe, self.layout.clearance))),
+        };
+        self.spans.borrow_mut().insert(key, span.clone());
+        Ok(span)
     }
 
     /// The control points of contour `name` that shape its span from ring `from`.

@@ -123,6 +123,7 @@ fn finish(ctx: &BuildCtx<'_>, template: TemplateKind, fit: Fit, parts: Parts) ->
         straightened: parts.straightened,
         patches: Vec::new(),
         m0: M0::default(),
+        spans: Default::default(),
         dimensions: Vec::new(),
         layout: parts.layout,
     };
@@ -130,5 +131,6 @@ fn finish(ctx: &BuildCtx<'_>, template: TemplateKind, fit: Fit, parts: Parts) ->
     fw.lines = built.lines;
     fw.patches = built.patches;
     fw.m0 = built.m0;
+    fw.spans = built.spans;
     Ok(fw)
 }

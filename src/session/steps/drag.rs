@@ -180,6 +180,7 @@ fn drag(
     after.lines = built.lines;
     after.patches = built.patches;
     after.m0 = built.m0;
+    after.spans = built.spans;
     scope.record(&SolveFigures::new(
         net,
         &solution,
