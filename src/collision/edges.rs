@@ -299,12 +299,16 @@ pub fn respond_edges(
         for r in &moved {
             positions[r.vertex as usize] = r.to;
         }
-        let ends: std::collections::BTreeSet<u32> = moved.iter().map(|r| r.vertex).collect();
+        let mut ends = vec![false; positions.len()];
+        for r in &moved {
+            ends[r.vertex as usize] = true;
+        }
         check = (0..edges.len())
-            .filter(|&e| ends.contains(&edges[e][0]) || ends.contains(&edges[e][1]))
+            .filter(|&e| edges[e].iter().any(|&v| ends[v as usize]))
             .collect();
+        let none_moved = moved.is_empty();
         all.extend(moved);
-        if ends.is_empty() {
+        if none_moved {
             break;
         }
     }
