@@ -118,4 +118,24 @@ impl GarmentState {
             sculpted: None,
         }
     }
+
+    /// The same garment on the new `framework`, not yet collided: everything else kept (the
+    /// old framework and collision are not copied).
+    pub(crate) fn on_framework(&self, framework: Framework) -> Self {
+        Self {
+            template: self.template,
+            options: self.options,
+            dims: self.dims.clone(),
+            framework: Some(framework),
+            detect: self.detect.clone(),
+            collision: None,
+            net: self.net.clone(),
+            edits: self.edits.clone(),
+            standard: self.standard.clone(),
+            m1: self.m1.clone(),
+            cuts: self.cuts.clone(),
+            sculpts: self.sculpts.clone(),
+            sculpted: self.sculpted.clone(),
+        }
+    }
 }

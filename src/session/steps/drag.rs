@@ -187,11 +187,11 @@ fn drag(
         built.resurfaced.len(),
         after.patches.len(),
     ));
-    let mut next = state.clone();
-    next.detect
-        .remember_nearest(probe.index(), &after.m0.mesh.positions, &built.measured);
-    next.framework = Some(after);
-    next.collision = None;
+    let mut next = state.on_framework(after);
+    if let Some(fw) = &next.framework {
+        next.detect
+            .remember_nearest(probe.index(), &fw.m0.mesh.positions, &built.measured);
+    }
     next.edits.push(edit.clone());
     Ok((next, solution))
 }
