@@ -587,3 +587,102 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
         "{compared} compared, {inside} inside"
     );
 }
+
+/// On every shipped body, a search scanning the triangles gathered about a point
+/// ([`BodyIndex::nearby`], as the relaxation of a patch's samples makes them) from points
+/// moved anywhere within the ball gives the whole tree's answer, field for field, and the
+/// distance of a scan of every shell triangle written in the test; outside the ball it
+/// declines. Balls of 2 mm and 2 cm (the clearance of a tight garment and more), about
+/// garment points near and through the skin.
+#[test]
+fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_on_every_body() {
+    let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
+    let mut rng = Lcg(29);
+    let unit = |rng: &mut Lcg| loop {
+        let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0;
+        if v.length_squared() <= 1.0 {
+            return v;
+        }
+    };
+    for path in &shipped_bodies() {
+        let body = body(path);
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let (shell, shift) = shell_and_shift(&body, &index);
+        let (mut scanned, mut declined) = (0, 0);
+        for p in garment.iter().step_by(23) {
+            let centre = *p + shift + 0.03 * unit(&mut rng);
+            let found = index.nearest(centre, f64::INFINITY).expect("a nearest point");
+            for room in [0.002, 0.02] {
+                let near = index.nearby(centre, &found, room);
+                for _ in 0..3 {
+                    let q = centre + room * unit(&mut rng);
+                    let got = index.nearest_nearby(&near, q).expect("within the ball");
+                    let tree = index.nearest(q, f64::INFINITY).expect("a nearest point");
+                    assert_eq!(got, tree, "{}: {q} in a ball of {room} m about {centre}", path.display());
+                    let truth = brute_distance(&shell, q);
+                    assert!((got.distance - truth).abs() < 1e-12, "{q}: {} vs {truth}", got.distance);
+                    scanned += 1;
+                }
+                let away = centre + 1.01 * room * unit(&mut rng).normalize_or(DVec3::X);
+                assert!(index.nearest_nearby(&near, away).is_none(), "{away}: outside the ball");
+                declined += 1;
+            }
+        }
+        assert!(scanned > 300 && declined > 100, "{scanned} scanned, {declined} declined");
+    }
+}
+
+/// The body's nearest points the assembly hands to the collision (found while clearing the
+/// patches' samples off the body) are the nearest points where the samples end: their
+/// distances agree with a scan of every shell triangle written in the test, their sides
+/// with ray parity, on the jumpsuit on the shipped body.
+#[test]
+fn the_assemblys_measured_nearest_points_agree_with_a_brute_force() {
+    let fw = real_jumpsuit();
+    let probe = super::common::real_probe();
+    let body = super::common::real_body();
+    let built = drape::garment::assemble::assemble(fw, probe, None).expect("assembles");
+    let shell = TriMesh {
+        positions: body.mesh.mesh.positions.clone(),
+        triangles: probe.index().shell_triangles().map(|t| body.mesh.mesh.triangles[t as usize]).collect(),
+    };
+    // Every sample measured is a vertex of M0.
+    let vertices: std::collections::BTreeSet<[u64; 3]> =
+        built.m0.mesh.positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect();
+    assert!(built.measured.len() > built.m0.mesh.positions.len() / 2, "{} measured", built.measured.len());
+    for (p, n) in built.measured.iter().step_by(7) {
+        assert!(vertices.contains(&p.to_array().map(f64::to_bits)), "{p}: not a vertex of M0");
+        let truth = brute_distance(&shell, *p);
+        assert!((n.distance - truth).abs() < 1e-12, "{p}: {} vs {truth}", n.distance);
+        if truth > 1e-6 {
+            assert_eq!(n.signed(*p) < 0.0, inside_by_parity(&body.mesh.mesh, *p), "{p}: side");
+        }
+    }
+}
+
+/// An assembly that takes the unchanged contours' cleared spans (and patches) from the
+/// framework before gives what an assembly from nothing gives, sample for sample, after one
+/// contour's shape changed (a clamped end slope where it was natural): and it did take some.
+#[test]
+fn an_assembly_reusing_the_last_frameworks_spans_equals_one_from_nothing() {
+    let before = real_jumpsuit();
+    let probe = super::common::real_probe();
+    let mut after = before.clone();
+    let contour = after
+        .contours
+        .iter_mut()
+        .find(|c| c.tangents[0].is_none())
+        .expect("a contour with a natural end");
+    let slope = (contour.end_tangent(0) + DVec3::new(0.15, 0.0, 0.1)).normalize();
+    let name = contour.name.clone();
+    contour.refit(contour.points.clone(), [Some(slope), contour.tangents[1]]).expect("refits");
+    let reused = drape::garment::assemble::assemble(&after, probe, Some(before)).expect("assembles");
+    let fresh = drape::garment::assemble::assemble(&after, probe, None).expect("assembles");
+    assert!(reused.resurfaced.len() < fresh.resurfaced.len(), "{name}: every patch surfaced again");
+    assert!(!reused.resurfaced.is_empty(), "{name}: no patch surfaced again");
+    assert_eq!(reused.spans, fresh.spans, "{name}: spans");
+    assert_eq!(reused.patches, fresh.patches, "{name}: patches");
+    assert_eq!(reused.m0.mesh, fresh.m0.mesh, "{name}: M0");
+    let changed = reused.spans.keys().filter(|k| k.0 == name).count();
+    assert!(changed > 0 && changed < reused.spans.len(), "{changed} of {} spans on {name}", reused.spans.len());
+}
