@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use super::m0::{M0, PatchGrid, stitch};
+use super::m0::{M0, PatchGrid, restitch};
 use super::model::{FeatureLine, Framework, FrameworkError};
 use super::probe::BodyProbe;
 use super::surface::{Spans, Surfaced, Surfacer};
@@ -48,7 +48,7 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
         measured,
         spans,
     } = s.finish();
-    let m0 = stitch(&patches, fw.layout.weld);
+    let m0 = restitch(&patches, fw.layout.weld, previous.map(|p| (p.patches.as_slice(), &p.m0)));
     Ok(Assembled {
         lines,
         patches,

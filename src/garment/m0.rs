@@ -169,6 +169,8 @@ pub struct M0 {
     pub edges: Vec<[u32; 2]>,
     /// What stitching did.
     pub report: StitchReport,
+    /// The vertex each patch sample became (the patches' samples in order).
+    pub welds: Vec<u32>,
 }
 
 fn find(parent: &mut [u32], i: u32) -> u32 {
@@ -227,18 +229,46 @@ pub fn weld(points: &[DVec3], threshold: f64) -> (Vec<u32>, usize) {
 /// within `threshold` (m), renumber the faces, drop degenerate and duplicate faces, build
 /// the directed and undirected edge lists).
 pub fn stitch(patches: &[PatchGrid], threshold: f64) -> M0 {
-    let mut points = Vec::new();
-    let mut faces: Vec<([u32; 3], u32)> = Vec::new();
-    for (p, patch) in patches.iter().enumerate() {
-        let base = points.len() as u32;
-        points.extend_from_slice(&patch.points);
-        faces.extend(patch.triangles().into_iter().map(|t| (t.map(|i| i + base), p as u32)));
-    }
+    restitch(patches, threshold, None)
+}
+
+/// [`stitch`], given the patches and M0 of the framework before an edit: where the new
+/// patches have the same names and grids and the welding joins the same samples, M0's
+/// faces and edges are those of before (they depend on nothing else) and only its
+/// positions are new.
+pub fn restitch(patches: &[PatchGrid], threshold: f64, before: Option<(&[PatchGrid], &M0)>) -> M0 {
+    let points: Vec<DVec3> = patches.iter().flat_map(|p| p.points.iter().copied()).collect();
     let (map, count) = weld(&points, threshold);
     let mut positions = vec![DVec3::ZERO; count];
     for (i, &m) in map.iter().enumerate().rev() {
         // The group's first point gives the position.
         positions[m as usize] = points[i];
+    }
+    let same_grids = |old: &[PatchGrid]| {
+        old.len() == patches.len()
+            && old
+                .iter()
+                .zip(patches)
+                .all(|(a, b)| a.name == b.name && a.nu == b.nu && a.nv == b.nv)
+    };
+    if let Some((old, m0)) = before
+        && m0.welds == map
+        && same_grids(old)
+    {
+        return M0 {
+            mesh: TriMesh {
+                positions,
+                triangles: m0.mesh.triangles.clone(),
+            },
+            welds: map,
+            ..m0.clone_topology()
+        };
+    }
+    let mut faces: Vec<([u32; 3], u32)> = Vec::new();
+    let mut base = 0u32;
+    for (p, patch) in patches.iter().enumerate() {
+        faces.extend(patch.triangles().into_iter().map(|t| (t.map(|i| i + base), p as u32)));
+        base += patch.points.len() as u32;
     }
     let mut report = StitchReport {
         input_vertices: points.len(),
@@ -272,5 +302,21 @@ pub fn stitch(patches: &[PatchGrid], threshold: f64) -> M0 {
         directed_edges,
         edges,
         report,
+        welds: map,
+    }
+}
+
+impl M0 {
+    /// Its faces' patches, names, edges and report, without the mesh and welds.
+    fn clone_topology(&self) -> Self {
+        Self {
+            mesh: TriMesh::default(),
+            face_patch: self.face_patch.clone(),
+            patch_names: self.patch_names.clone(),
+            directed_edges: self.directed_edges.clone(),
+            edges: self.edges.clone(),
+            report: self.report.clone(),
+            welds: Vec::new(),
+        }
     }
 }
