@@ -119,8 +119,8 @@ impl GarmentState {
         }
     }
 
-    /// The same garment on the new `framework`, not yet collided: everything else kept (the
-    /// old framework and collision are not copied).
+    /// The same garment on the new `framework`, not yet collided: no collision, M1 or
+    /// sculpted mesh (the collision makes them again), everything else kept.
     pub(crate) fn on_framework(&self, framework: Framework) -> Self {
         Self {
             template: self.template,
@@ -132,10 +132,10 @@ impl GarmentState {
             net: self.net.clone(),
             edits: self.edits.clone(),
             standard: self.standard.clone(),
-            m1: self.m1.clone(),
+            m1: None,
             cuts: self.cuts.clone(),
             sculpts: self.sculpts.clone(),
-            sculpted: self.sculpted.clone(),
+            sculpted: None,
         }
     }
 }
