@@ -102,6 +102,14 @@ fn body(path: &std::path::Path) -> Body {
     Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("the body analyses")
 }
 
+/// The body of `path`, its index, its shell and the shift that moves the jumpsuit onto it.
+fn on_body(path: &std::path::Path) -> (Body, BodyIndex, TriMesh, DVec3) {
+    let body = body(path);
+    let index = BodyIndex::new(&body, &SliceOptions::default());
+    let (shell, shift) = shell_and_shift(&body, &index);
+    (body, index, shell, shift)
+}
+
 /// The surface the queries see, the body's outer shell (on a body that crosses itself, the
 /// triangles buried inside another part are left out), and the shift that moves the
 /// jumpsuit onto the body (its bounding box centre onto the body's).
@@ -185,9 +193,7 @@ fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_bru
     let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
     let mut rng = Lcg(17);
     for path in &shipped_bodies() {
-        let body = body(path);
-        let index = BodyIndex::new(&body, &SliceOptions::default());
-        let (shell, shift) = shell_and_shift(&body, &index);
+        let (body, index, shell, shift) = on_body(path);
         let (mut hits, mut misses) = (0, 0);
         for p in garment.iter().step_by(5) {
             let a = *p + shift + 0.04 * DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5);
@@ -605,9 +611,7 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
         }
     };
     for path in &shipped_bodies() {
-        let body = body(path);
-        let index = BodyIndex::new(&body, &SliceOptions::default());
-        let (shell, shift) = shell_and_shift(&body, &index);
+        let (_, index, shell, shift) = on_body(path);
         let (mut scanned, mut declined) = (0, 0);
         for p in garment.iter().step_by(23) {
             let centre = *p + shift + 0.03 * unit(&mut rng);
