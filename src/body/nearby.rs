@@ -46,11 +46,12 @@ impl BodyIndex {
         let reach = (found.distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
         let mut triangles = Vec::new();
         // Every box within the reach: the bound never tightens.
-        self.near.nearest(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
-            let (foot, _) = closest_on_triangle(centre, *corners);
-            triangles.push((centre.distance(foot), t, *corners));
-            None
-        });
+        self.near
+            .nearest(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
+                let (foot, _) = closest_on_triangle(centre, *corners);
+                triangles.push((centre.distance(foot), t, *corners));
+                None
+            });
         triangles.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         Nearby {
             centre,

@@ -19,8 +19,8 @@ use glam::DVec3;
 
 use super::line_line::line_line;
 use super::point_face::{Reach, Search, point_face};
-use crate::body::DetectionMethod;
 use super::quality::VertexDistance;
+use crate::body::DetectionMethod;
 use crate::body::index::{BodyIndex, Nearest};
 use crate::garment::CurveRef;
 use crate::par::par_map;

@@ -48,7 +48,11 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
         measured,
         spans,
     } = s.finish();
-    let m0 = restitch(&patches, fw.layout.weld, previous.map(|p| (p.patches.as_slice(), &p.m0)));
+    let m0 = restitch(
+        &patches,
+        fw.layout.weld,
+        previous.map(|p| (p.patches.as_slice(), &p.m0)),
+    );
     Ok(Assembled {
         lines,
         patches,

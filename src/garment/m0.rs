@@ -315,7 +315,7 @@ impl M0 {
             patch_names: self.patch_names.clone(),
             directed_edges: self.directed_edges.clone(),
             edges: self.edges.clone(),
-            report: self.report.clone(),
+            report: self.report,
             welds: Vec::new(),
         }
     }

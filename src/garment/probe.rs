@@ -83,7 +83,12 @@ impl BodyProbe {
     }
 
     /// [`Self::clear`], each pass's nearest point found by `search`.
-    fn clear_with(&self, p: DVec3, gap: f64, mut search: impl FnMut(DVec3) -> Option<Nearest>) -> (DVec3, Option<Nearest>) {
+    fn clear_with(
+        &self,
+        p: DVec3,
+        gap: f64,
+        mut search: impl FnMut(DVec3) -> Option<Nearest>,
+    ) -> (DVec3, Option<Nearest>) {
         let mut q = p;
         let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
         let mut last = None;

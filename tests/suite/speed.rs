@@ -622,7 +622,12 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
                     let q = centre + room * unit(&mut rng);
                     let got = index.nearest_nearby(&near, q).expect("within the ball");
                     let tree = index.nearest(q, f64::INFINITY).expect("a nearest point");
-                    assert_eq!(got, tree, "{}: {q} in a ball of {room} m about {centre}", path.display());
+                    assert_eq!(
+                        got,
+                        tree,
+                        "{}: {q} in a ball of {room} m about {centre}",
+                        path.display()
+                    );
                     let truth = brute_distance(&shell, q);
                     assert!((got.distance - truth).abs() < 1e-12, "{q}: {} vs {truth}", got.distance);
                     scanned += 1;
@@ -632,7 +637,10 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
                 declined += 1;
             }
         }
-        assert!(scanned > 300 && declined > 100, "{scanned} scanned, {declined} declined");
+        assert!(
+            scanned > 300 && declined > 100,
+            "{scanned} scanned, {declined} declined"
+        );
     }
 }
 
@@ -648,14 +656,30 @@ fn the_assemblys_measured_nearest_points_agree_with_a_brute_force() {
     let built = drape::garment::assemble::assemble(fw, probe, None).expect("assembles");
     let shell = TriMesh {
         positions: body.mesh.mesh.positions.clone(),
-        triangles: probe.index().shell_triangles().map(|t| body.mesh.mesh.triangles[t as usize]).collect(),
+        triangles: probe
+            .index()
+            .shell_triangles()
+            .map(|t| body.mesh.mesh.triangles[t as usize])
+            .collect(),
     };
     // Every sample measured is a vertex of M0.
-    let vertices: std::collections::BTreeSet<[u64; 3]> =
-        built.m0.mesh.positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect();
-    assert!(built.measured.len() > built.m0.mesh.positions.len() / 2, "{} measured", built.measured.len());
+    let vertices: std::collections::BTreeSet<[u64; 3]> = built
+        .m0
+        .mesh
+        .positions
+        .iter()
+        .map(|p| p.to_array().map(f64::to_bits))
+        .collect();
+    assert!(
+        built.measured.len() > built.m0.mesh.positions.len() / 2,
+        "{} measured",
+        built.measured.len()
+    );
     for (p, n) in built.measured.iter().step_by(7) {
-        assert!(vertices.contains(&p.to_array().map(f64::to_bits)), "{p}: not a vertex of M0");
+        assert!(
+            vertices.contains(&p.to_array().map(f64::to_bits)),
+            "{p}: not a vertex of M0"
+        );
         let truth = brute_distance(&shell, *p);
         assert!((n.distance - truth).abs() < 1e-12, "{p}: {} vs {truth}", n.distance);
         if truth > 1e-6 {
@@ -680,15 +704,24 @@ fn an_assembly_reusing_the_last_frameworks_spans_equals_one_from_nothing() {
         .expect("a contour with a natural end");
     let slope = (contour.end_tangent(0) + DVec3::new(0.15, 0.0, 0.1)).normalize();
     let name = contour.name.clone();
-    contour.refit(contour.points.clone(), [Some(slope), contour.tangents[1]]).expect("refits");
+    contour
+        .refit(contour.points.clone(), [Some(slope), contour.tangents[1]])
+        .expect("refits");
     let reused = drape::garment::assemble::assemble(&after, probe, Some(before)).expect("assembles");
     let fresh = drape::garment::assemble::assemble(&after, probe, None).expect("assembles");
-    assert!(reused.resurfaced.len() < fresh.resurfaced.len(), "{name}: every patch surfaced again");
+    assert!(
+        reused.resurfaced.len() < fresh.resurfaced.len(),
+        "{name}: every patch surfaced again"
+    );
     assert!(!reused.resurfaced.is_empty(), "{name}: no patch surfaced again");
     assert_eq!(reused.spans, fresh.spans, "{name}: spans");
     assert_eq!(reused.patches, fresh.patches, "{name}: patches");
     // M0 whole: positions, faces, edges, welds (the faces and edges taken from before).
     assert_eq!(reused.m0, fresh.m0, "{name}: M0");
     let changed = reused.spans.keys().filter(|k| k.0 == name).count();
-    assert!(changed > 0 && changed < reused.spans.len(), "{changed} of {} spans on {name}", reused.spans.len());
+    assert!(
+        changed > 0 && changed < reused.spans.len(),
+        "{changed} of {} spans on {name}",
+        reused.spans.len()
+    );
 }
