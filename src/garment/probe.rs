@@ -82,6 +82,12 @@ impl BodyProbe {
         })
     }
 
+    /// The ball [`Self::clear_near`] keeps about `p`, whose nearest point `found` is (for a
+    /// sample cleared before it is relaxed).
+    pub fn nearby(&self, p: DVec3, found: &Nearest, gap: f64) -> Nearby {
+        self.index.nearby(p, found, NEARBY_ROOM * gap)
+    }
+
     /// [`Self::clear`], each pass's nearest point found by `search`.
     fn clear_with(
         &self,

@@ -320,7 +320,13 @@ pub const RELAX_ROUNDS: usize = 12;
 fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], probe: &BodyProbe, gap: f64, scale: f64) {
     let (nu, nv) = (grid.nu, grid.nv);
     let at = |i: usize, j: usize| j * (nu + 1) + i;
-    let mut near: Vec<Option<Nearby>> = vec![None; grid.points.len()];
+    // Each moved sample's ball, about where the clearing left it.
+    let mut near: Vec<Option<Nearby>> = (0..grid.points.len())
+        .map(|k| {
+            let n = found[k].as_ref().filter(|_| moved[k])?;
+            Some(probe.nearby(grid.points[k], n, gap))
+        })
+        .collect();
     for _ in 0..RELAX_ROUNDS {
         let before = grid.points.clone();
         let mut most: f64 = 0.0;
