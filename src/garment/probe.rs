@@ -82,6 +82,22 @@ impl BodyProbe {
         })
     }
 
+    /// The triangles a search from anywhere within `room` (m) of `centre` needs
+    /// ([`Nearby`], after one full search at the centre); `None` for a body with no
+    /// triangles.
+    pub fn ball(&self, centre: DVec3, room: f64) -> Option<Nearby> {
+        let found = self.index.nearest(centre, f64::INFINITY)?;
+        Some(self.index.nearby(centre, &found, room))
+    }
+
+    /// [`Self::signed_distance`], scanning the triangles of `near` where `p` lies within
+    /// its ball (the same answer).
+    pub fn signed_distance_near(&self, p: DVec3, near: Option<&Nearby>) -> f64 {
+        near.and_then(|b| self.index.nearest_nearby(b, p))
+            .or_else(|| self.index.nearest(p, f64::INFINITY))
+            .map_or(f64::INFINITY, |n| n.signed(p))
+    }
+
     /// The ball [`Self::clear_near`] keeps about `p`, whose nearest point `found` is (for a
     /// sample cleared before it is relaxed).
     pub fn nearby(&self, p: DVec3, found: &Nearest, gap: f64) -> Nearby {

@@ -39,6 +39,12 @@ impl Run<'_> {
             hi *= 2.0;
             grow += 1;
         }
+        // The bisection's points lie within half the bracket of its middle: their searches
+        // scan the triangles gathered for that ball (the same answers).
+        let ball = self
+            .probe
+            .ball(p + u * (0.5 * (lo + hi)), 0.5 * (hi - lo) * (1.0 + 1e-9));
+        let sd = |t: f64| self.probe.signed_distance_near(p + u * t, ball.as_ref());
         let (_, hi) = Bisection {
             name: "constraint.layers.push_out",
             steps: 80,
