@@ -182,23 +182,15 @@ pub struct DetectState {
 }
 
 impl DetectState {
-    /// Remembers the body's nearest points found at `measured` (positions, m, each with its
-    /// nearest point, found with no limit on the distance: by the garment's assembly, which
-    /// clears its samples off the body) for the vertices at `positions` that stand at one
-    /// of them, bit for bit: the edge rounds and the quality check take those distances
-    /// instead of measuring the vertices again. The answers are the same, as a nearest
-    /// point depends on the position alone.
-    pub fn remember_nearest(&mut self, index: &BodyIndex, positions: &[DVec3], measured: &[(DVec3, Nearest)]) {
-        let bits = |p: DVec3| p.to_array().map(f64::to_bits);
-        let mut sorted: Vec<([u64; 3], usize)> = measured.iter().enumerate().map(|(k, (p, _))| (bits(*p), k)).collect();
-        sorted.sort_unstable();
-        for (v, &p) in positions.iter().enumerate() {
-            if self.reuse.distance(v, p).is_some() {
-                continue;
-            }
-            let key = bits(p);
-            if let Ok(at) = sorted.binary_search_by(|(b, _)| b.cmp(&key)) {
-                let n = &measured[sorted[at].1].1;
+    /// Remembers the body's nearest points `measured` (vertex, its nearest point where it
+    /// stands in `positions`, found with no limit on the distance: by the garment's
+    /// assembly, which clears its samples off the body): the edge rounds and the quality
+    /// check take those distances instead of measuring the vertices again. The answers are
+    /// the same, as a nearest point depends on the position alone.
+    pub fn remember_nearest(&mut self, index: &BodyIndex, positions: &[DVec3], measured: &[(u32, Nearest)]) {
+        for (v, n) in measured {
+            let (v, p) = (*v as usize, positions[*v as usize]);
+            if self.reuse.distance(v, p).is_none() {
                 let d = VertexDistance::from_nearest(index, p, Some(n));
                 self.reuse.set_distance(positions.len(), v, p, d);
             }

@@ -8,8 +8,6 @@
 //! (it would be recomputed bit for bit the same): only the changed patches are re-surfaced.
 //! What the lines and patches are is the template's business ([`super::template`]).
 
-use glam::DVec3;
-
 use super::m0::{M0, PatchGrid, restitch};
 use super::model::{FeatureLine, Framework, FrameworkError};
 use super::probe::BodyProbe;
@@ -28,9 +26,10 @@ pub struct Assembled {
     pub m0: M0,
     /// Names of the patches surfaced anew (all of them without a previous framework).
     pub resurfaced: Vec<String>,
-    /// The body's nearest point to the interior samples of the patches surfaced anew,
-    /// where they stand: measured while clearing them off the body.
-    pub measured: Vec<(DVec3, Nearest)>,
+    /// The body's nearest point to the M0 vertices that are interior samples of the
+    /// patches surfaced anew, where they stand (vertex, nearest point): measured while
+    /// clearing them off the body.
+    pub measured: Vec<(u32, Nearest)>,
     /// The contour spans the patches were surfaced from.
     pub spans: Spans,
 }
@@ -53,6 +52,7 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
         fw.layout.weld,
         previous.map(|p| (p.patches.as_slice(), &p.m0)),
     );
+    let measured = at_vertices(&patches, &m0, measured);
     Ok(Assembled {
         lines,
         patches,
@@ -61,4 +61,23 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
         measured,
         spans,
     })
+}
+
+/// The samples' nearest points (patch, sample, nearest point) by the M0 vertex each sample
+/// became, where the vertex stands where the sample does (a sample welded onto an earlier,
+/// not identical one is left out).
+fn at_vertices(patches: &[PatchGrid], m0: &M0, measured: Vec<(usize, usize, Nearest)>) -> Vec<(u32, Nearest)> {
+    let mut first = Vec::with_capacity(patches.len());
+    let mut base = 0;
+    for p in patches {
+        first.push(base);
+        base += p.points.len();
+    }
+    measured
+        .into_iter()
+        .filter_map(|(i, k, n)| {
+            let v = *m0.welds.get(first[i] + k)?;
+            (m0.mesh.positions.get(v as usize) == Some(&patches[i].points[k])).then_some((v, n))
+        })
+        .collect()
 }

@@ -114,8 +114,8 @@ pub struct Surfacer<'a> {
     /// body's nearest point to each interior sample).
     to_relax: Vec<(usize, Vec<bool>, Vec<Option<Nearest>>)>,
     /// The body's nearest point to the interior samples of the patches surfaced anew, where
-    /// they stand.
-    measured: Vec<(DVec3, Nearest)>,
+    /// they stand: (patch, sample, nearest point).
+    measured: Vec<(usize, usize, Nearest)>,
     /// The contour spans cleared so far (a span bounds two patches).
     spans: RefCell<Spans>,
 }
@@ -133,7 +133,8 @@ pub struct Surfaced {
     pub resurfaced: Vec<String>,
     /// The body's nearest point to the interior samples of those, where they stand (the
     /// clearing measured them: the collision need not measure them again).
-    pub measured: Vec<(DVec3, Nearest)>,
+    /// (patch, sample, nearest point).
+    pub measured: Vec<(usize, usize, Nearest)>,
     /// The contour spans the patches were surfaced from.
     pub spans: Spans,
 }
@@ -185,7 +186,7 @@ impl<'a> Surfacer<'a> {
             (grid, found)
         });
         for ((i, _, _), (grid, found)) in self.to_relax.iter().zip(relaxed) {
-            self.measured.extend(sampled(&grid.points, &found));
+            self.measured.extend(sampled(*i, &found));
             self.patches[*i] = grid;
         }
         Surfaced {
@@ -248,7 +249,7 @@ impl<'a> Surfacer<'a> {
         if moved.contains(&true) {
             self.to_relax.push((self.patches.len(), moved, found));
         } else {
-            self.measured.extend(sampled(&grid.points, &found));
+            self.measured.extend(sampled(self.patches.len(), &found));
         }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
@@ -284,9 +285,13 @@ pub fn curve_shapes(fw: &Framework, lines: &[FeatureLine]) -> BTreeMap<String, V
     out
 }
 
-/// The samples at `points` whose nearest body point is `found`.
-fn sampled<'p>(points: &'p [DVec3], found: &'p [Option<Nearest>]) -> impl Iterator<Item = (DVec3, Nearest)> + 'p {
-    points.iter().zip(found).filter_map(|(&p, n)| n.map(|n| (p, n)))
+/// The samples of patch `patch` whose nearest body point `found` holds: (patch, sample,
+/// nearest point).
+fn sampled(patch: usize, found: &[Option<Nearest>]) -> impl Iterator<Item = (usize, usize, Nearest)> + '_ {
+    found
+        .iter()
+        .enumerate()
+        .filter_map(move |(k, n)| n.map(|n| (patch, k, n)))
 }
 
 /// Clears every interior sample of `grid` off the body by `gap` (m); which ones moved, and
