@@ -131,6 +131,13 @@ impl std::fmt::Debug for BodyIndex {
     }
 }
 
+/// A squared distance beyond which the square root, rounded, lies strictly above `d` (m):
+/// `d²` widened by a relative 1e-12, thousands of times the rounding of the product and
+/// the square root.
+fn beyond(d: f64) -> f64 {
+    d * d * (1.0 + 1e-12)
+}
+
 fn aabb_of(corners: [DVec3; 3], slack: f64) -> Aabb {
     let lo = corners[0].min(corners[1]).min(corners[2]) - DVec3::splat(slack);
     let hi = corners[0].max(corners[1]).max(corners[2]) + DVec3::splat(slack);
@@ -456,14 +463,23 @@ impl BodyIndex {
         let mut best = start;
         let limit = start.map_or(reach, |n| n.distance) + self.slack;
         let slack = self.slack;
+        // A candidate whose squared distance lies beyond this is farther than the best so
+        // far (or the reach) even once its square root is rounded: it can neither win nor
+        // tie, and its bound would not lower the least so far. No square root for it.
+        let mut past = beyond(start.map_or(reach, |n| n.distance));
         // Costs are squared distances (no square root per box).
         tree.nearest(p.as_vec3(), (limit * limit) as f32, |t, corners| {
             let (foot, feature) = closest_on_triangle(p, *corners);
-            let distance = p.distance(foot);
+            let distance2 = p.distance_squared(foot);
+            if distance2 > past {
+                return None;
+            }
+            let distance = distance2.sqrt();
             let better = best.is_none_or(|b| distance < b.distance || (distance == b.distance && t < b.triangle));
             if distance <= reach && better {
                 // The pseudo-normal is looked up for the candidates that win only.
                 best = Some(self.at_feature(t, foot, feature, distance));
+                past = beyond(distance);
             }
             let cost = distance + slack;
             Some((cost * cost) as f32)

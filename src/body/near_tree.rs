@@ -22,8 +22,13 @@ const BINS: usize = 12;
 /// Below this depth of the binary build, splits are at the median (at most `log2 n` more
 /// levels), so that no descent is deeper than its stack.
 const MEDIAN_BELOW: usize = 48;
-/// Stack of a descent: up to three deferred children a level.
+/// Stack of a four-wide walk: up to three deferred children a level.
 const STACK: usize = 256;
+/// Stack of the binary nearest-point descent: one deferred child a level. A built tree is
+/// at most `MEDIAN_BELOW` levels of SAH splits and then 31 of median splits deep (2^32
+/// triangles halved down to leaves of two); a tree read back deeper is refused. (A smaller
+/// stack is less to clear a query.)
+const NEAREST_STACK: usize = MEDIAN_BELOW + 32;
 /// A child that is a leaf: this bit, its first slot times 4 and its count less one.
 const LEAF_BIT: u32 = 1 << 31;
 /// No child.
@@ -191,11 +196,42 @@ impl NearTree {
         });
         let empty = self.pairs.is_empty() && self.nodes.is_empty();
         let rooted = empty || (!self.pairs.is_empty() && !self.nodes.is_empty());
-        if !(binary && wide && rooted && self.triangles.iter().all(|&t| (t as usize) < count)) {
+        let fits = binary && self.binary_depth() <= NEAREST_STACK && wide && self.wide_depth() * 3 + 4 <= STACK;
+        if !(fits && rooted && self.triangles.iter().all(|&t| (t as usize) < count)) {
             return false;
         }
         self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
         true
+    }
+
+    /// The depth of the binary layout's deepest node (children after their parents).
+    fn binary_depth(&self) -> usize {
+        let nodes: Vec<Node> = self.pairs.iter().flat_map(|p| p.0).collect();
+        let mut depth = vec![0usize; nodes.len()];
+        for (i, n) in nodes.iter().enumerate() {
+            if i != 1 && n.count == 0 {
+                let below = depth[i] + 1;
+                for c in [n.first as usize, n.first as usize + 1] {
+                    if let Some(d) = depth.get_mut(c) {
+                        *d = below;
+                    }
+                }
+            }
+        }
+        depth.into_iter().max().unwrap_or(0)
+    }
+
+    /// The depth of the four-wide layout's deepest node (children after their parents).
+    fn wide_depth(&self) -> usize {
+        let mut depth = vec![0usize; self.nodes.len()];
+        for (i, w) in self.nodes.iter().enumerate() {
+            for &c in &w.child {
+                if c != NONE && c & LEAF_BIT == 0 && (c as usize) < depth.len() {
+                    depth[c as usize] = depth[i] + 1;
+                }
+            }
+        }
+        depth.into_iter().max().unwrap_or(0)
     }
 
     /// The triangles of leaf `child` (a child with [`LEAF_BIT`]), with their corners.
@@ -225,7 +261,7 @@ impl NearTree {
         if root.distance_squared(q) >= bound {
             return;
         }
-        let mut stack = [(0u32, 0f32); STACK];
+        let mut stack = [(0u32, 0f32); NEAREST_STACK];
         let mut depth = 0usize;
         let mut at = 0usize;
         loop {
@@ -670,9 +706,9 @@ fn sah_split(items: &mut [Item], median_only: bool) -> usize {
 
 #[cfg(test)]
 mod tests {
-    use glam::DVec3;
+    use glam::{DVec3, Vec3};
 
-    use super::NearTree;
+    use super::{NEAREST_STACK, NearTree, Node, Pair};
 
     /// Whether segment `ab` meets triangle `t` (Möller-Trumbore, parameter in `[0, 1]`).
     fn crosses(a: DVec3, b: DVec3, [p, q, r]: [DVec3; 3]) -> bool {
@@ -845,5 +881,47 @@ mod tests {
         past.triangles.pop();
         assert!(!past.restore(50, corners));
         assert!(!tree.clone().restore(49, corners));
+    }
+
+    /// A binary chain `levels` deep over 200 triangles: every internal node's first child
+    /// goes on down, its second is a one-triangle leaf; every box holds everything.
+    fn chain(levels: usize) -> NearTree {
+        let soup: Vec<[DVec3; 3]> = (0..200)
+            .map(|k| [DVec3::X * k as f64, DVec3::new(k as f64, 1.0, 0.0), DVec3::new(k as f64, 0.0, 1.0)])
+            .collect();
+        let ids: Vec<u32> = (0..200).collect();
+        let mut tree = NearTree::new(&ids, |t| soup[t as usize], |_| (Vec3::splat(-1e3), Vec3::splat(1e3)));
+        let node = |first: usize, count: u32| Node {
+            lo: Vec3::splat(-1e3),
+            first: first as u32,
+            hi: Vec3::splat(1e3),
+            count,
+        };
+        tree.pairs = (0..=levels)
+            .map(|k| match k {
+                0 => Pair([node(2, 0), node(0, 0)]),
+                k if k == levels => Pair([node(k, 1), node(k + 100, 1)]),
+                k => Pair([node(2 * k + 2, 0), node(k, 1)]),
+            })
+            .collect();
+        tree
+    }
+
+    /// A tree read back deeper than the nearest-point descent's stack is refused; one level
+    /// less is taken, and a descent that defers a child at every level (every box holds the
+    /// point) runs through it.
+    #[test]
+    fn a_tree_read_back_too_deep_for_the_descent_is_refused() {
+        let corners = |t: u32| [DVec3::X * t as f64, DVec3::new(t as f64, 1.0, 0.0), DVec3::new(t as f64, 0.0, 1.0)];
+        assert!(!chain(NEAREST_STACK + 1).restore(200, corners));
+        let mut deepest = chain(NEAREST_STACK);
+        assert_eq!(deepest.binary_depth(), NEAREST_STACK);
+        assert!(deepest.restore(200, corners));
+        let mut seen = 0;
+        deepest.nearest(Vec3::ZERO, f32::INFINITY, |_, _| {
+            seen += 1;
+            None
+        });
+        assert_eq!(seen, NEAREST_STACK + 1);
     }
 }

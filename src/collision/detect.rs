@@ -334,18 +334,20 @@ pub fn detect(
         };
     }
     let reach = options.reach(index.height);
-    let edge = mean_edge(garment.positions, garment.edges);
     if state.memo.len() != n {
         state.memo.clear();
         state.controls.clear();
     }
+    let fresh = state.memo.is_empty();
+    // The skipping thresholds' unit (a fresh state tests every vertex: no need of it).
+    let edge = if fresh { 0.0 } else { mean_edge(garment.positions, garment.edges) };
     // Patches whose curves did not move.
     let patch_still: Vec<bool> = garment
         .patch_curves
         .iter()
         .map(|curves| {
             options.patch_skipping
-                && !state.memo.is_empty()
+                && !fresh
                 && !curves.is_empty()
                 && curves.iter().all(|r| {
                     max_move(state.controls.get(&r.curve), garment.controls.get(&r.curve), r)
@@ -364,7 +366,6 @@ pub fn detect(
         patches_skipped: patch_still.iter().filter(|s| **s).count(),
         by_method: [0, 0],
     };
-    let fresh = state.memo.is_empty();
     if fresh {
         state.memo.reserve_exact(n);
     }

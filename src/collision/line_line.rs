@@ -63,9 +63,16 @@ fn box_distance2(p: DVec2, [lo, hi]: [DVec2; 2]) -> f64 {
     (lo - p).max(p - hi).max(DVec2::ZERO).length_squared()
 }
 
-/// Whether the line through `p` along the unit `d` meets the box `[lo, hi]`: its corners do
-/// not all lie strictly on one side.
-fn line_meets_box(p: DVec2, d: DVec2, [lo, hi]: [DVec2; 2]) -> bool {
+/// Whether the part `t` in `[t0, t1]` of the line `p + t d` (`d` a unit vector) can meet
+/// the box `[lo, hi]`: the part's own box overlaps it and the box's corners do not all lie
+/// strictly on one side of the line. Callers widen `[t0, t1]` by far more than rounding,
+/// so that no crossing inside the range is ever passed by.
+fn line_meets_box(p: DVec2, d: DVec2, [t0, t1]: [f64; 2], [lo, hi]: [DVec2; 2]) -> bool {
+    let (a, b) = (p + d * t0, p + d * t1);
+    let (from, to) = (a.min(b), a.max(b));
+    if from.x > hi.x || to.x < lo.x || from.y > hi.y || to.y < lo.y {
+        return false;
+    }
     let sides = [lo, hi, DVec2::new(lo.x, hi.y), DVec2::new(hi.x, lo.y)].map(|c| (c - p).perp_dot(d));
     !(sides.iter().all(|&s| s > 0.0) || sides.iter().all(|&s| s < 0.0))
 }
@@ -125,31 +132,26 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
                 .map(|(_, j, c)| (j, c))
         });
     let mut near2 = f64::INFINITY;
-    CNT[2].fetch_add(usize::from(last_key == key), std::sync::atomic::Ordering::Relaxed);
-    CNT[4].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut nearest = seed;
     if let Some((j, c)) = seed {
         for (_, a, b) in run(&slice.loops[j], c) {
             near2 = near2.min(segment_distance2(q, a, b));
         }
     }
+    // The crossings that count lie at `t` in `[-w2, w1]` along the line: boxes are tested
+    // against that part of it, widened by a millionth of its length.
+    let pad = 1e-6 * (reach.inside + reach.outside);
+    let along = [-reach.outside - pad, reach.inside + pad];
     let mut best: Option<(f64, DVec2)> = None;
     for (j, l) in slice.loops.iter().enumerate() {
-        if box_distance2(q, l.bounds()) > near2 && !line_meets_box(q, d, l.bounds()) {
+        if box_distance2(q, l.bounds()) > near2 && !line_meets_box(q, d, along, l.bounds()) {
             continue;
         }
-        CNT[3].fetch_add(l.chunks().len(), std::sync::atomic::Ordering::Relaxed);
         for (c, &bounds) in l.chunks().iter().enumerate() {
             let near = box_distance2(q, bounds) <= near2;
-            let crossing = line_meets_box(q, d, bounds);
+            let crossing = line_meets_box(q, d, along, bounds);
             if !near && !crossing {
                 continue;
-            }
-            if near {
-                CNT[0].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            }
-            if crossing {
-                CNT[1].fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             }
             for (i, a, b) in run(l, c) {
                 if near {
@@ -203,6 +205,3 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
         },
     }
 }
-
-/// debug
-pub static CNT: [std::sync::atomic::AtomicUsize; 5] = [const { std::sync::atomic::AtomicUsize::new(0) }; 5];

@@ -536,7 +536,8 @@ fn line_line_by_scan(
 /// bit for bit: for the jumpsuit moved onto the body and perturbed (up to 3 cm each way)
 /// with random normals, also flat or vertical ones, visited in garment order and shuffled
 /// (the hint from the last vertex changes), and for points on ring corners aimed through
-/// other corners (ties between edges).
+/// other corners (ties between edges), and for points standing off an edge by just the
+/// reach along its normal (a crossing at either end of the part of the line read).
 #[test]
 fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_on_every_body() {
     let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
@@ -569,6 +570,19 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
                 let (a, y) = (corners[j], stack.y0 + k as f64 * stack.dy);
                 let d = other - a;
                 cases.push((DVec3::new(a.x, y, a.y), DVec3::new(d.x, 0.0, d.y)));
+            }
+            // Points standing off an edge's midpoint along its outward normal by just the
+            // reach, aimed along it: the crossing there lies at an end of the part of the
+            // line read (`t` = `w1` inside, `-w2` outside).
+            for l in &slice.loops {
+                let points = l.points();
+                for j in (0..points.len()).step_by(3) {
+                    let m = 0.5 * (points[j] + points[(j + 1) % points.len()]);
+                    let n = l.edge_normal(j);
+                    for b in [m - n * reach.inside, m + n * reach.outside] {
+                        cases.push((DVec3::new(b.x, stack.y0 + k as f64 * stack.dy, b.y), DVec3::new(n.x, 0.0, n.y)));
+                    }
+                }
             }
         }
         let shuffled: Vec<usize> = {
