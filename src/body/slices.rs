@@ -290,6 +290,11 @@ impl SliceStack {
 
     /// The slice nearest to height `y`, if `y` lies within half a spacing of the stack.
     pub fn at(&self, y: f64) -> Option<&Slice> {
+        self.nearest(y).map(|(_, s)| s)
+    }
+
+    /// [`Self::at`], with the slice's index.
+    pub fn nearest(&self, y: f64) -> Option<(usize, &Slice)> {
         if self.slices.is_empty() || self.dy <= 0.0 {
             return None;
         }
@@ -297,7 +302,8 @@ impl SliceStack {
         if k < -0.5 || k > self.slices.len() as f64 - 0.5 {
             return None;
         }
-        self.slices.get(k as usize)
+        let k = k as usize;
+        self.slices.get(k).map(|s| (k, s))
     }
 }
 

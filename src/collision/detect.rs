@@ -258,10 +258,7 @@ fn test_vertex(
 ) -> (Option<Box<Hit>>, Memo) {
     let method = options.method_override.unwrap_or(index.partitions[partition].method);
     let slice = match method {
-        DetectionMethod::LineLine => {
-            let k = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
-            index.slices.at(p.y).map(|s| (k.max(0.0) as usize, s))
-        }
+        DetectionMethod::LineLine => index.slices.nearest(p.y),
         DetectionMethod::PointFace => None,
     };
     let memo = |clearance: f64, slice: Option<usize>| Memo {

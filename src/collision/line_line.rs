@@ -148,7 +148,8 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
             continue;
         }
         for (c, &bounds) in l.chunks().iter().enumerate() {
-            let near = box_distance2(q, bounds) <= near2;
+            // The seed run's edges are in `near2` already.
+            let near = seed != Some((j, c)) && box_distance2(q, bounds) <= near2;
             let crossing = line_meets_box(q, d, along, bounds);
             if !near && !crossing {
                 continue;
