@@ -456,10 +456,8 @@ impl BodyIndex {
         reach: f64,
         hint: Option<u32>,
     ) -> Option<Nearest> {
-        let start = hint
-            .filter(|&t| (t as usize) < self.triangles.len() && member(t))
-            .map(|t| self.candidate(p, t))
-            .filter(|n| n.distance <= reach);
+        let hint = hint.filter(|&t| (t as usize) < self.triangles.len() && member(t));
+        let start = hint.map(|t| self.candidate(p, t)).filter(|n| n.distance <= reach);
         let mut best = start;
         let limit = start.map_or(reach, |n| n.distance) + self.slack;
         let slack = self.slack;
@@ -468,7 +466,7 @@ impl BodyIndex {
         // tie, and its bound would not lower the least so far. No square root for it.
         let mut past = beyond(start.map_or(reach, |n| n.distance));
         // Costs are squared distances (no square root per box).
-        tree.nearest(p.as_vec3(), (limit * limit) as f32, |t, corners| {
+        tree.nearest_from(p.as_vec3(), (limit * limit) as f32, hint, |t, corners| {
             let (foot, feature) = closest_on_triangle(p, *corners);
             let distance2 = p.distance_squared(foot);
             if distance2 > past {

@@ -90,6 +90,13 @@ pub struct NearTree {
     /// Corners of each leaf slot's triangle, m (not stored: [`Self::restore`] makes them again).
     #[serde(skip)]
     corners: Vec<[DVec3; 3]>,
+    /// The parent of each pair of binary siblings (the root's: [`NONE`]); not stored.
+    #[serde(skip)]
+    up: Vec<u32>,
+    /// The binary leaf holding each triangle, by triangle ([`NONE`]: not in this tree); not
+    /// stored.
+    #[serde(skip)]
+    home: Vec<u32>,
 }
 
 /// One triangle to build from: its id, corners and (widened) box.
@@ -164,7 +171,26 @@ impl NearTree {
         tree.nodes = widen(&binary.nodes);
         tree.pairs = binary.nodes.chunks(2).map(|c| Pair([c[0], c[1]])).collect();
         tree.corners = tree.triangles.iter().map(|&t| corners(t)).collect();
+        tree.link();
         tree
+    }
+
+    /// Makes [`Self::up`] and [`Self::home`] from the binary layout (children after their
+    /// parents, leaves within the slots).
+    fn link(&mut self) {
+        let count = self.pairs.len() * 2;
+        self.up = vec![NONE; self.pairs.len()];
+        self.home = vec![NONE; self.triangles.iter().max().map_or(0, |&t| t as usize + 1)];
+        for i in (0..count).filter(|&i| i != 1) {
+            let n = *self.node(i);
+            if n.count > 0 {
+                for &t in &self.triangles[n.first as usize..(n.first + n.count) as usize] {
+                    self.home[t as usize] = i as u32;
+                }
+            } else if let Some(u) = self.up.get_mut(n.first as usize >> 1) {
+                *u = i as u32;
+            }
+        }
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
@@ -201,6 +227,7 @@ impl NearTree {
             return false;
         }
         self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
+        self.link();
         true
     }
 
@@ -253,7 +280,24 @@ impl NearTree {
     /// (`None`: the bound stands). Nearer children first; a deferred child is dropped when
     /// it is taken off the stack if the bound has passed it.
     #[inline]
-    pub fn nearest(&self, q: Vec3, mut bound: f32, mut leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
+    pub fn nearest(&self, q: Vec3, bound: f32, leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
+        self.nearest_from(q, bound, None, leaf);
+    }
+
+    /// [`Self::nearest`], starting at the leaf that holds triangle `start` (one found for a
+    /// point nearby) and going up from it: at each ancestor, the subtree of its other child
+    /// is searched (from the top, as [`Self::nearest`]) where its box lies within the bound.
+    /// Those subtrees and the leaf are the whole tree, so the same triangles can win; the
+    /// path down from the root to the leaf is not walked. Without `start`, or with one not in
+    /// this tree, from the root.
+    #[inline]
+    pub fn nearest_from(
+        &self,
+        q: Vec3,
+        mut bound: f32,
+        start: Option<u32>,
+        mut leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>,
+    ) {
         let q = Vec3A::from(q);
         let Some(root) = self.pairs.first().map(|p| &p.0[0]) else {
             return;
@@ -261,9 +305,26 @@ impl NearTree {
         if root.distance_squared(q) >= bound {
             return;
         }
+        let home = start.and_then(|t| self.home.get(t as usize)).copied().filter(|&n| n != NONE);
+        let Some(mut below) = home.map(|n| n as usize) else {
+            self.descend(q, 0, &mut bound, &mut leaf);
+            return;
+        };
+        self.descend(q, below, &mut bound, &mut leaf);
+        while below > 1 {
+            let other = below ^ 1;
+            if self.node(other).distance_squared(q) < bound {
+                self.descend(q, other, &mut bound, &mut leaf);
+            }
+            below = self.up[below >> 1] as usize;
+        }
+    }
+
+    /// The depth-first descent of [`Self::nearest`] through the subtree at binary node `at`.
+    #[inline(always)]
+    fn descend(&self, q: Vec3A, mut at: usize, bound: &mut f32, leaf: &mut impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
         let mut stack = [(0u32, 0f32); NEAREST_STACK];
         let mut depth = 0usize;
-        let mut at = 0usize;
         loop {
             let node = *self.node(at);
             if node.count > 0 {
@@ -271,7 +332,7 @@ impl NearTree {
                 let slots = first..first + node.count as usize;
                 for (&t, corners) in self.triangles[slots.clone()].iter().zip(&self.corners[slots]) {
                     if let Some(b) = leaf(t, corners) {
-                        bound = bound.min(b);
+                        *bound = bound.min(b);
                     }
                 }
             } else {
@@ -283,8 +344,8 @@ impl NearTree {
                 } else {
                     (c + 1, db, c, da)
                 };
-                if dn < bound {
-                    if df < bound {
+                if dn < *bound {
+                    if df < *bound {
                         stack[depth] = (far as u32, df);
                         depth += 1;
                     }
@@ -299,7 +360,7 @@ impl NearTree {
                 }
                 depth -= 1;
                 let (n, d) = stack[depth];
-                if d < bound {
+                if d < *bound {
                     at = n as usize;
                     break;
                 }
@@ -770,7 +831,8 @@ mod tests {
     /// Triangle soups the body never gives: a cluster of near-coincident triangles, a run
     /// shrinking geometrically towards a point (which drives surface-area splits deep), and
     /// triangles scattered at random. For each, the tree's nearest distance equals a scan
-    /// of every triangle, at points near and far, and its walk along a segment finds a
+    /// of every triangle, at points near and far, searched from the root or from any
+    /// triangle's leaf, and its walk along a segment finds a
     /// crossing exactly when a scan does, with the caller's boxes widened as the body index
     /// widens its own.
     #[test]
@@ -830,6 +892,15 @@ mod tests {
                     Some(((d + 1e-5) * (d + 1e-5)) as f32)
                 });
                 assert_eq!(best, truth, "soup {k}, {p}");
+                // Started from any leaf (or from a triangle not in the tree): the same.
+                let start = (jitter(1.0).x + 0.5) * (soup.len() + 5) as f64;
+                let mut best = f64::INFINITY;
+                tree.nearest_from(p.as_vec3(), f32::INFINITY, Some(start as u32), |_, corners| {
+                    let d = to_triangle(p, *corners);
+                    best = best.min(d);
+                    Some(((d + 1e-5) * (d + 1e-5)) as f32)
+                });
+                assert_eq!(best, truth, "soup {k}, {p}, from triangle {start}");
             }
             // Segments: the walk may look at more triangles than it must, never at fewer.
             let mut hits = 0;
