@@ -45,9 +45,10 @@ impl BodyIndex {
     pub fn nearby(&self, centre: DVec3, found: &Nearest, room: f64) -> Nearby {
         let reach = (found.distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
         let mut triangles = Vec::new();
-        // Every box within the reach: the bound never tightens.
+        // Every box within the reach (the bound never tightens), from the found triangle's
+        // leaf up; the order found does not matter, as they are sorted.
         self.near
-            .nearest(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
+            .nearest_from(centre.as_vec3(), (reach * reach) as f32, Some(found.triangle), |t, corners| {
                 let (foot, _) = closest_on_triangle(centre, *corners);
                 triangles.push((centre.distance(foot), t, *corners));
                 None
