@@ -448,6 +448,12 @@ impl BodyIndex {
     /// walk over the body's adjacency from the hint before descending was measured and
     /// dropped: the nearer-first descent visits as few leaves without it, 5.6 a query on
     /// the demo's garment, and the walk's own triangle tests cost more than they save.)
+    ///
+    /// With `upward`, the descent starts at the hint's leaf and goes up
+    /// ([`NearTree::nearest_from`]): faster when the hint lies next to the answer (queries
+    /// vertex after vertex, as detection makes them), slower when it lies far (a hint left
+    /// by a query elsewhere on the body, as between the edge rounds' crossings), where the
+    /// descent from the root finds a tight bound sooner. The answer is the same either way.
     fn nearest_in(
         &self,
         tree: &NearTree,
@@ -455,6 +461,7 @@ impl BodyIndex {
         p: DVec3,
         reach: f64,
         hint: Option<u32>,
+        upward: bool,
     ) -> Option<Nearest> {
         let hint = hint.filter(|&t| (t as usize) < self.triangles.len() && member(t));
         let start = hint.map(|t| self.candidate(p, t)).filter(|n| n.distance <= reach);
@@ -466,7 +473,7 @@ impl BodyIndex {
         // tie, and its bound would not lower the least so far. No square root for it.
         let mut past = beyond(start.map_or(reach, |n| n.distance));
         // Costs are squared distances (no square root per box).
-        tree.nearest_from(p.as_vec3(), (limit * limit) as f32, hint, |t, corners| {
+        tree.nearest_from(p.as_vec3(), (limit * limit) as f32, hint.filter(|_| upward), |t, corners| {
             let (foot, feature) = closest_on_triangle(p, *corners);
             let distance2 = p.distance_squared(foot);
             if distance2 > past {
@@ -512,11 +519,12 @@ impl BodyIndex {
     /// [`Self::nearest`] warm-started from triangle `hint` (the one found for this point at
     /// its last position, say).
     pub fn nearest_from(&self, p: DVec3, reach: f64, hint: Option<u32>) -> Option<Nearest> {
-        self.nearest_in(&self.near, |t| self.on_shell(t), p, reach, hint)
+        self.nearest_in(&self.near, |t| self.on_shell(t), p, reach, hint, false)
     }
 
-    /// The nearest point of partition `k`'s triangles within `reach` (warm-started as
-    /// [`Self::nearest`]).
+    /// The nearest point of partition `k`'s triangles within `reach`, warm-started as
+    /// [`Self::nearest`] and searched up from the hint's leaf (detection's point-face test
+    /// asks vertex after vertex, so the last triangle found lies next to the answer).
     pub fn nearest_in_partition(&self, k: usize, p: DVec3, reach: f64) -> Option<Nearest> {
         let part = &self.partitions[k];
         self.nearest_in(
@@ -525,6 +533,7 @@ impl BodyIndex {
             p,
             reach,
             self.last_found(),
+            true,
         )
     }
 
