@@ -529,7 +529,7 @@ impl BodyIndex {
         let part = &self.partitions[k];
         self.nearest_in(
             &part.tree,
-            |t| part.triangles.binary_search(&t).is_ok(),
+            |t| part.tree.holds(t),
             p,
             reach,
             self.last_found(),

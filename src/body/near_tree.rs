@@ -231,6 +231,12 @@ impl NearTree {
         true
     }
 
+    /// Whether triangle `t` is one of this tree's.
+    #[inline]
+    pub fn holds(&self, t: u32) -> bool {
+        self.home.get(t as usize).is_some_and(|&n| n != NONE)
+    }
+
     /// The depth of the binary layout's deepest node (children after their parents).
     fn binary_depth(&self) -> usize {
         let nodes: Vec<Node> = self.pairs.iter().flat_map(|p| p.0).collect();
