@@ -112,6 +112,9 @@ thread_local! {
     /// The last triangle a nearest-point search on this thread found: (the index's key,
     /// triangle). Only a hint: see [`BodyIndex::nearest`].
     static LAST_FOUND: Cell<(usize, u32)> = const { Cell::new((0, u32::MAX)) };
+    /// Where the winner of the last upward search on this thread lay: (the tree's key,
+    /// its leaf). Only a start: see [`BodyIndex::nearest_in_partition`].
+    static LAST_LEAF: Cell<(usize, usize)> = const { Cell::new((0, usize::MAX)) };
 }
 
 /// Directions of the rays that count windings (fixed, off every axis and diagonal).
@@ -321,9 +324,10 @@ impl BodyIndex {
         }
         let (triangles, positions) = (&self.triangles, &self.positions);
         let corners = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
-        self.near.restore(count, corners)
-            && self.all.as_mut().is_none_or(|all| all.restore(count, corners))
-            && self.partitions.iter_mut().all(|p| p.tree.restore(count, corners))
+        // Only the partitions' trees are searched upwards (`nearest_in_partition`).
+        self.near.restore(count, corners, false)
+            && self.all.as_mut().is_none_or(|all| all.restore(count, corners, false))
+            && self.partitions.iter_mut().all(|p| p.tree.restore(count, corners, true))
     }
 
     /// The corners of triangle `t`.
@@ -449,11 +453,12 @@ impl BodyIndex {
     /// dropped: the nearer-first descent visits as few leaves without it, 5.6 a query on
     /// the demo's garment, and the walk's own triangle tests cost more than they save.)
     ///
-    /// With `upward`, the descent starts at the hint's leaf and goes up
-    /// ([`NearTree::nearest_from`]): faster when the hint lies next to the answer (queries
-    /// vertex after vertex, as detection makes them), slower when it lies far (a hint left
-    /// by a query elsewhere on the body, as between the edge rounds' crossings), where the
-    /// descent from the root finds a tight bound sooner. The answer is the same either way.
+    /// With `upward`, a search on the same tree as this thread's last upward one starts at
+    /// the leaf where that one's winner lay and goes up ([`NearTree::nearest_from`]; the
+    /// hint is then not needed): faster when the last query was next to this one (vertex
+    /// after vertex, as detection asks), slower when it was far (as between the edge
+    /// rounds' crossings, which is why the whole-body search keeps the descent from the
+    /// root). The answer is the same either way.
     fn nearest_in(
         &self,
         tree: &NearTree,
@@ -463,7 +468,12 @@ impl BodyIndex {
         hint: Option<u32>,
         upward: bool,
     ) -> Option<Nearest> {
-        let hint = hint.filter(|&t| (t as usize) < self.triangles.len() && member(t));
+        let tree_key = std::ptr::from_ref(tree) as usize;
+        let from = upward
+            .then(|| LAST_LEAF.get())
+            .filter(|&(key, _)| key == tree_key)
+            .map(|(_, leaf)| leaf);
+        let hint = hint.filter(|&t| from.is_none() && (t as usize) < self.triangles.len() && member(t));
         let start = hint.map(|t| self.candidate(p, t)).filter(|n| n.distance <= reach);
         let mut best = start;
         let limit = start.map_or(reach, |n| n.distance) + self.slack;
@@ -473,7 +483,7 @@ impl BodyIndex {
         // tie, and its bound would not lower the least so far. No square root for it.
         let mut past = beyond(start.map_or(reach, |n| n.distance));
         // Costs are squared distances (no square root per box).
-        tree.nearest_from(p.as_vec3(), (limit * limit) as f32, hint.filter(|_| upward), |t, corners| {
+        let fell = tree.nearest_from(p.as_vec3(), (limit * limit) as f32, from, |t, corners| {
             let (foot, feature) = closest_on_triangle(p, *corners);
             let distance2 = p.distance_squared(foot);
             if distance2 > past {
@@ -489,6 +499,9 @@ impl BodyIndex {
             let cost = distance + slack;
             Some((cost * cost) as f32)
         });
+        if upward && let Some(leaf) = fell {
+            LAST_LEAF.set((tree_key, leaf));
+        }
         let best = best?;
         LAST_FOUND.set((self.key(), best.triangle));
         Some(self.settle(p, best))
@@ -522,14 +535,15 @@ impl BodyIndex {
         self.nearest_in(&self.near, |t| self.on_shell(t), p, reach, hint, false)
     }
 
-    /// The nearest point of partition `k`'s triangles within `reach`, warm-started as
-    /// [`Self::nearest`] and searched up from the hint's leaf (detection's point-face test
-    /// asks vertex after vertex, so the last triangle found lies next to the answer).
+    /// The nearest point of partition `k`'s triangles within `reach`: searched up from the
+    /// leaf where the last search of this partition's tree on this thread found its winner
+    /// (detection's point-face test asks vertex after vertex, so that leaf lies next to the
+    /// answer), or else warm-started as [`Self::nearest`].
     pub fn nearest_in_partition(&self, k: usize, p: DVec3, reach: f64) -> Option<Nearest> {
         let part = &self.partitions[k];
         self.nearest_in(
             &part.tree,
-            |t| part.tree.holds(t),
+            |t| part.triangles.binary_search(&t).is_ok(),
             p,
             reach,
             self.last_found(),

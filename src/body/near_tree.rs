@@ -93,10 +93,6 @@ pub struct NearTree {
     /// The parent of each pair of binary siblings (the root's: [`NONE`]); not stored.
     #[serde(skip)]
     up: Vec<u32>,
-    /// The binary leaf holding each triangle, by triangle ([`NONE`]: not in this tree); not
-    /// stored.
-    #[serde(skip)]
-    home: Vec<u32>,
 }
 
 /// One triangle to build from: its id, corners and (widened) box.
@@ -171,34 +167,41 @@ impl NearTree {
         tree.nodes = widen(&binary.nodes);
         tree.pairs = binary.nodes.chunks(2).map(|c| Pair([c[0], c[1]])).collect();
         tree.corners = tree.triangles.iter().map(|&t| corners(t)).collect();
-        tree.link();
+        tree.link(true);
         tree
     }
 
-    /// Makes [`Self::up`] and [`Self::home`] from the binary layout (children after their
-    /// parents, leaves within the slots).
-    fn link(&mut self) {
+    /// The depth of the binary layout's deepest node (children after their parents), and
+    /// with `parents`, [`Self::up`] made.
+    fn link(&mut self, parents: bool) -> usize {
         let count = self.pairs.len() * 2;
-        self.up = vec![NONE; self.pairs.len()];
-        self.home = vec![NONE; self.triangles.iter().max().map_or(0, |&t| t as usize + 1)];
+        self.up = if parents { vec![NONE; self.pairs.len()] } else { Vec::new() };
+        // Depths by pair of siblings (saturating: far beyond any stack).
+        let mut depth = vec![0u8; self.pairs.len()];
+        let mut deepest = 0u8;
         for i in (0..count).filter(|&i| i != 1) {
             let n = *self.node(i);
-            if n.count > 0 {
-                for &t in &self.triangles[n.first as usize..(n.first + n.count) as usize] {
-                    self.home[t as usize] = i as u32;
+            let pair = n.first as usize >> 1;
+            if n.count == 0 && pair < depth.len() {
+                if let Some(u) = self.up.get_mut(pair) {
+                    *u = i as u32;
                 }
-            } else if let Some(u) = self.up.get_mut(n.first as usize >> 1) {
-                *u = i as u32;
+                let below = depth[i >> 1].saturating_add(1);
+                depth[pair] = below;
+                deepest = deepest.max(below);
             }
         }
+        deepest as usize
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
-    /// `t`'s corners, as given to [`Self::new`], for `t` below `count`); `false`, and the
-    /// tree unchanged, if the tree read back does not hold together (a child or a leaf
-    /// outside its arrays or not after its parent, a triangle not below `count`), so that no
-    /// query can index out of bounds or loop.
-    pub fn restore(&mut self, count: usize, corners: impl Fn(u32) -> [DVec3; 3]) -> bool {
+    /// `t`'s corners, as given to [`Self::new`], for `t` below `count`), and with `parents`
+    /// the links [`Self::nearest_from`] climbs (without them it searches from the root);
+    /// `false`, and the tree unchanged, if the tree read back does not hold together (a
+    /// child or a leaf outside its arrays or not after its parent, a triangle not below
+    /// `count`, deeper than a query's stack), so that no query can index out of bounds or
+    /// loop.
+    pub fn restore(&mut self, count: usize, corners: impl Fn(u32) -> [DVec3; 3], parents: bool) -> bool {
         let slots = self.triangles.len();
         let leaf_fits = |first: usize, count: usize| count >= 1 && first + count <= slots;
         let binary = self.pairs.iter().flat_map(|p| p.0).enumerate().all(|(i, n)| {
@@ -222,49 +225,33 @@ impl NearTree {
         });
         let empty = self.pairs.is_empty() && self.nodes.is_empty();
         let rooted = empty || (!self.pairs.is_empty() && !self.nodes.is_empty());
-        let fits = binary && self.binary_depth() <= NEAREST_STACK && wide && self.wide_depth() * 3 + 4 <= STACK;
+        let fits = binary && wide && self.wide_depth() * 3 + 4 <= STACK;
         if !(fits && rooted && self.triangles.iter().all(|&t| (t as usize) < count)) {
             return false;
         }
-        self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
-        self.link();
-        true
-    }
-
-    /// Whether triangle `t` is one of this tree's.
-    #[inline]
-    pub fn holds(&self, t: u32) -> bool {
-        self.home.get(t as usize).is_some_and(|&n| n != NONE)
-    }
-
-    /// The depth of the binary layout's deepest node (children after their parents).
-    fn binary_depth(&self) -> usize {
-        let nodes: Vec<Node> = self.pairs.iter().flat_map(|p| p.0).collect();
-        let mut depth = vec![0usize; nodes.len()];
-        for (i, n) in nodes.iter().enumerate() {
-            if i != 1 && n.count == 0 {
-                let below = depth[i] + 1;
-                for c in [n.first as usize, n.first as usize + 1] {
-                    if let Some(d) = depth.get_mut(c) {
-                        *d = below;
-                    }
-                }
-            }
+        if self.link(parents) > NEAREST_STACK {
+            self.up = Vec::new();
+            return false;
         }
-        depth.into_iter().max().unwrap_or(0)
+        self.corners = self.triangles.iter().map(|&t| corners(t)).collect();
+        true
     }
 
     /// The depth of the four-wide layout's deepest node (children after their parents).
     fn wide_depth(&self) -> usize {
-        let mut depth = vec![0usize; self.nodes.len()];
+        // Saturating: far beyond any stack.
+        let mut depth = vec![0u8; self.nodes.len()];
+        let mut deepest = 0u8;
         for (i, w) in self.nodes.iter().enumerate() {
+            let below = depth[i].saturating_add(1);
             for &c in &w.child {
                 if c != NONE && c & LEAF_BIT == 0 && (c as usize) < depth.len() {
-                    depth[c as usize] = depth[i] + 1;
+                    depth[c as usize] = below;
+                    deepest = deepest.max(below);
                 }
             }
         }
-        depth.into_iter().max().unwrap_or(0)
+        deepest as usize
     }
 
     /// The triangles of leaf `child` (a child with [`LEAF_BIT`]), with their corners.
@@ -284,51 +271,60 @@ impl NearTree {
     /// Visits the triangles whose boxes lie nearer `q` than the bound: `bound` (squared,
     /// `f32`) to start with, then the least that `leaf(triangle, corners)` returned so far
     /// (`None`: the bound stands). Nearer children first; a deferred child is dropped when
-    /// it is taken off the stack if the bound has passed it.
+    /// it is taken off the stack if the bound has passed it. Returns the leaf (a binary
+    /// node) where the bound last fell, if it fell: where the winner lies.
     #[inline]
-    pub fn nearest(&self, q: Vec3, bound: f32, leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
-        self.nearest_from(q, bound, None, leaf);
+    pub fn nearest(&self, q: Vec3, bound: f32, leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) -> Option<usize> {
+        self.nearest_from(q, bound, None, leaf)
     }
 
-    /// [`Self::nearest`], starting at the leaf that holds triangle `start` (one found for a
-    /// point nearby) and going up from it: at each ancestor, the subtree of its other child
-    /// is searched (from the top, as [`Self::nearest`]) where its box lies within the bound.
-    /// Those subtrees and the leaf are the whole tree, so the same triangles can win; the
-    /// path down from the root to the leaf is not walked. Without `start`, or with one not in
-    /// this tree, from the root.
+    /// [`Self::nearest`], starting at leaf `start` (where the winner of a search for a point
+    /// nearby lay, as [`Self::nearest`] returns it) and going up from it: at each ancestor,
+    /// the subtree of its other child is searched (from the top, as [`Self::nearest`])
+    /// where its box lies within the bound. Those subtrees and the leaf are the whole tree,
+    /// so the same triangles can win; the path down from the root is not walked. Without
+    /// `start`, with one that is not a leaf of this tree, or on a tree read back without its
+    /// parents, from the root.
     #[inline]
     pub fn nearest_from(
         &self,
         q: Vec3,
         mut bound: f32,
-        start: Option<u32>,
+        start: Option<usize>,
         mut leaf: impl FnMut(u32, &[DVec3; 3]) -> Option<f32>,
-    ) {
+    ) -> Option<usize> {
         let q = Vec3A::from(q);
-        let Some(root) = self.pairs.first().map(|p| &p.0[0]) else {
-            return;
-        };
+        let root = self.pairs.first().map(|p| &p.0[0])?;
         if root.distance_squared(q) >= bound {
-            return;
+            return None;
         }
-        let home = start.and_then(|t| self.home.get(t as usize)).copied().filter(|&n| n != NONE);
-        let Some(mut below) = home.map(|n| n as usize) else {
-            self.descend(q, 0, &mut bound, &mut leaf);
-            return;
+        let mut fell = None;
+        let start = start.filter(|&n| n != 1 && n < 2 * self.pairs.len() && self.node(n).count > 0 && !self.up.is_empty());
+        let Some(mut below) = start else {
+            self.descend(q, 0, &mut bound, &mut fell, &mut leaf);
+            return fell;
         };
-        self.descend(q, below, &mut bound, &mut leaf);
+        self.descend(q, below, &mut bound, &mut fell, &mut leaf);
         while below > 1 {
             let other = below ^ 1;
             if self.node(other).distance_squared(q) < bound {
-                self.descend(q, other, &mut bound, &mut leaf);
+                self.descend(q, other, &mut bound, &mut fell, &mut leaf);
             }
             below = self.up[below >> 1] as usize;
         }
+        fell
     }
 
     /// The depth-first descent of [`Self::nearest`] through the subtree at binary node `at`.
     #[inline(always)]
-    fn descend(&self, q: Vec3A, mut at: usize, bound: &mut f32, leaf: &mut impl FnMut(u32, &[DVec3; 3]) -> Option<f32>) {
+    fn descend(
+        &self,
+        q: Vec3A,
+        mut at: usize,
+        bound: &mut f32,
+        fell: &mut Option<usize>,
+        leaf: &mut impl FnMut(u32, &[DVec3; 3]) -> Option<f32>,
+    ) {
         let mut stack = [(0u32, 0f32); NEAREST_STACK];
         let mut depth = 0usize;
         loop {
@@ -337,8 +333,11 @@ impl NearTree {
                 let first = node.first as usize;
                 let slots = first..first + node.count as usize;
                 for (&t, corners) in self.triangles[slots.clone()].iter().zip(&self.corners[slots]) {
-                    if let Some(b) = leaf(t, corners) {
-                        *bound = bound.min(b);
+                    if let Some(b) = leaf(t, corners)
+                        && b < *bound
+                    {
+                        *bound = b;
+                        *fell = Some(at);
                     }
                 }
             } else {
@@ -898,15 +897,16 @@ mod tests {
                     Some(((d + 1e-5) * (d + 1e-5)) as f32)
                 });
                 assert_eq!(best, truth, "soup {k}, {p}");
-                // Started from any leaf (or from a triangle not in the tree): the same.
-                let start = (jitter(1.0).x + 0.5) * (soup.len() + 5) as f64;
+                // Started from any node (a leaf, an inner node or none of the tree's, which
+                // start from the root): the same.
+                let start = (jitter(1.0).x + 0.5) * (2 * tree.pairs.len() + 5) as f64;
                 let mut best = f64::INFINITY;
-                tree.nearest_from(p.as_vec3(), f32::INFINITY, Some(start as u32), |_, corners| {
+                tree.nearest_from(p.as_vec3(), f32::INFINITY, Some(start as usize), |_, corners| {
                     let d = to_triangle(p, *corners);
                     best = best.min(d);
                     Some(((d + 1e-5) * (d + 1e-5)) as f32)
                 });
-                assert_eq!(best, truth, "soup {k}, {p}, from triangle {start}");
+                assert_eq!(best, truth, "soup {k}, {p}, from node {start}");
             }
             // Segments: the walk may look at more triangles than it must, never at fewer.
             let mut hits = 0;
@@ -947,17 +947,17 @@ mod tests {
             let [a, b, c] = soup[t as usize];
             (a.min(b).min(c).as_vec3(), a.max(b).max(c).as_vec3())
         });
-        assert!(tree.clone().restore(50, corners));
+        assert!(tree.clone().restore(50, corners, true));
         let mut looped = tree.clone();
         looped.nodes[0].child[0] = 0;
-        assert!(!looped.restore(50, corners));
+        assert!(!looped.restore(50, corners, true));
         let mut back = tree.clone();
         back.pairs[1].0[0].first = 0;
-        assert!(!back.restore(50, corners));
+        assert!(!back.restore(50, corners, true));
         let mut past = tree.clone();
         past.triangles.pop();
-        assert!(!past.restore(50, corners));
-        assert!(!tree.clone().restore(49, corners));
+        assert!(!past.restore(50, corners, true));
+        assert!(!tree.clone().restore(49, corners, true));
     }
 
     /// A binary chain `levels` deep over 200 triangles: every internal node's first child
@@ -990,10 +990,10 @@ mod tests {
     #[test]
     fn a_tree_read_back_too_deep_for_the_descent_is_refused() {
         let corners = |t: u32| [DVec3::X * t as f64, DVec3::new(t as f64, 1.0, 0.0), DVec3::new(t as f64, 0.0, 1.0)];
-        assert!(!chain(NEAREST_STACK + 1).restore(200, corners));
+        assert!(!chain(NEAREST_STACK + 1).restore(200, corners, true));
         let mut deepest = chain(NEAREST_STACK);
-        assert_eq!(deepest.binary_depth(), NEAREST_STACK);
-        assert!(deepest.restore(200, corners));
+        assert!(deepest.restore(200, corners, true));
+        assert_eq!(deepest.link(true), NEAREST_STACK);
         let mut seen = 0;
         deepest.nearest(Vec3::ZERO, f32::INFINITY, |_, _| {
             seen += 1;

@@ -45,10 +45,9 @@ impl BodyIndex {
     pub fn nearby(&self, centre: DVec3, found: &Nearest, room: f64) -> Nearby {
         let reach = (found.distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
         let mut triangles = Vec::new();
-        // Every box within the reach (the bound never tightens), from the found triangle's
-        // leaf up; the order found does not matter, as they are sorted.
+        // Every box within the reach: the bound never tightens.
         self.near
-            .nearest_from(centre.as_vec3(), (reach * reach) as f32, Some(found.triangle), |t, corners| {
+            .nearest(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
                 let (foot, _) = closest_on_triangle(centre, *corners);
                 triangles.push((centre.distance(foot), t, *corners));
                 None
