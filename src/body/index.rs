@@ -325,7 +325,7 @@ impl BodyIndex {
         let (triangles, positions) = (&self.triangles, &self.positions);
         let corners = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
         // Only the partitions' trees are searched upwards (`nearest_in_partition`).
-        self.near.restore(count, corners, false)
+        self.near.restore(count, corners, true)
             && self.all.as_mut().is_none_or(|all| all.restore(count, corners, false))
             && self.partitions.iter_mut().all(|p| p.tree.restore(count, corners, true))
     }
@@ -527,6 +527,13 @@ impl BodyIndex {
     /// curve, over a patch, vertex after vertex); the answer does not depend on it.
     pub fn nearest(&self, p: DVec3, reach: f64) -> Option<Nearest> {
         self.nearest_from(p, reach, self.last_found())
+    }
+
+    /// [`Self::nearest`] for queries that come one next to the other (the samples of a
+    /// patch, row after row): searched up from the leaf of the thread's last such search
+    /// (see [`Self::nearest_in`]). The same answer.
+    pub fn nearest_next(&self, p: DVec3, reach: f64) -> Option<Nearest> {
+        self.nearest_in(&self.near, |t| self.on_shell(t), p, reach, self.last_found(), true)
     }
 
     /// [`Self::nearest`] warm-started from triangle `hint` (the one found for this point at

@@ -63,7 +63,7 @@ impl BodyProbe {
     /// measures where it stands, the last one where it stops): `None` for a body with no
     /// triangles.
     pub fn clear_measuring(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>) {
-        self.clear_with(p, gap, |q| self.index.nearest(q, f64::INFINITY))
+        self.clear_with(p, gap, |q| self.index.nearest_next(q, f64::INFINITY))
     }
 
     /// [`Self::clear_measuring`] for a point that moves a little between calls (a sample
