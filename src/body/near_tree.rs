@@ -171,27 +171,38 @@ impl NearTree {
         tree
     }
 
-    /// The depth of the binary layout's deepest node (children after their parents), and
-    /// with `parents`, [`Self::up`] made.
-    fn link(&mut self, parents: bool) -> usize {
+    /// The depth of the binary layout's deepest node, and with `parents`, [`Self::up`]
+    /// made; `None` if the layout does not hold together (a leaf outside the slots, a
+    /// child outside the nodes or not after its parent).
+    fn link(&mut self, parents: bool) -> Option<usize> {
         let count = self.pairs.len() * 2;
-        self.up = if parents { vec![NONE; self.pairs.len()] } else { Vec::new() };
+        let slots = self.triangles.len();
+        let mut up = if parents { vec![NONE; self.pairs.len()] } else { Vec::new() };
         // Depths by pair of siblings (saturating: far beyond any stack).
         let mut depth = vec![0u8; self.pairs.len()];
         let mut deepest = 0u8;
         for i in (0..count).filter(|&i| i != 1) {
             let n = *self.node(i);
-            let pair = n.first as usize >> 1;
-            if n.count == 0 && pair < depth.len() {
-                if let Some(u) = self.up.get_mut(pair) {
-                    *u = i as u32;
+            let first = n.first as usize;
+            if n.count > 0 {
+                if first + n.count as usize > slots {
+                    return None;
                 }
-                let below = depth[i >> 1].saturating_add(1);
-                depth[pair] = below;
-                deepest = deepest.max(below);
+                continue;
             }
+            // Children after their parent: no descent can loop.
+            if first % 2 != 0 || first <= i || first >= count {
+                return None;
+            }
+            if let Some(u) = up.get_mut(first >> 1) {
+                *u = i as u32;
+            }
+            let below = depth[i >> 1].saturating_add(1);
+            depth[first >> 1] = below;
+            deepest = deepest.max(below);
         }
-        deepest as usize
+        self.up = up;
+        Some(deepest as usize)
     }
 
     /// Makes the corners of a tree read back from storage again (`corners(t)`: triangle
@@ -204,15 +215,6 @@ impl NearTree {
     pub fn restore(&mut self, count: usize, corners: impl Fn(u32) -> [DVec3; 3], parents: bool) -> bool {
         let slots = self.triangles.len();
         let leaf_fits = |first: usize, count: usize| count >= 1 && first + count <= slots;
-        let binary = self.pairs.iter().flat_map(|p| p.0).enumerate().all(|(i, n)| {
-            i == 1
-                || if n.count > 0 {
-                    leaf_fits(n.first as usize, n.count as usize)
-                } else {
-                    // Children after their parent: no descent can loop.
-                    n.first % 2 == 0 && n.first as usize > i && (n.first as usize) < 2 * self.pairs.len()
-                }
-        });
         let wide = self.nodes.iter().enumerate().all(|(i, w)| {
             w.child.iter().all(|&c| {
                 c == NONE
@@ -225,11 +227,11 @@ impl NearTree {
         });
         let empty = self.pairs.is_empty() && self.nodes.is_empty();
         let rooted = empty || (!self.pairs.is_empty() && !self.nodes.is_empty());
-        let fits = binary && wide && self.wide_depth() * 3 + 4 <= STACK;
+        let fits = wide && self.wide_depth() * 3 + 4 <= STACK;
         if !(fits && rooted && self.triangles.iter().all(|&t| (t as usize) < count)) {
             return false;
         }
-        if self.link(parents) > NEAREST_STACK {
+        if self.link(parents).is_none_or(|depth| depth > NEAREST_STACK) {
             self.up = Vec::new();
             return false;
         }
@@ -993,7 +995,7 @@ mod tests {
         assert!(!chain(NEAREST_STACK + 1).restore(200, corners, true));
         let mut deepest = chain(NEAREST_STACK);
         assert!(deepest.restore(200, corners, true));
-        assert_eq!(deepest.link(true), NEAREST_STACK);
+        assert_eq!(deepest.link(true), Some(NEAREST_STACK));
         let mut seen = 0;
         deepest.nearest(Vec3::ZERO, f32::INFINITY, |_, _| {
             seen += 1;
