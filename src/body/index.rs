@@ -324,7 +324,8 @@ impl BodyIndex {
         }
         let (triangles, positions) = (&self.triangles, &self.positions);
         let corners = |t: u32| triangles[t as usize].map(|i| positions[i as usize]);
-        // Only the partitions' trees are searched upwards (`nearest_in_partition`).
+        // The shell's and the partitions' trees are searched upwards (`nearest_next`,
+        // `nearest_in_partition`); the tree of every triangle only counts windings.
         self.near.restore(count, corners, true)
             && self.all.as_mut().is_none_or(|all| all.restore(count, corners, false))
             && self.partitions.iter_mut().all(|p| p.tree.restore(count, corners, true))

@@ -177,7 +177,11 @@ impl NearTree {
     fn link(&mut self, parents: bool) -> Option<usize> {
         let count = self.pairs.len() * 2;
         let slots = self.triangles.len();
-        let mut up = if parents { vec![NONE; self.pairs.len()] } else { Vec::new() };
+        let mut up = if parents {
+            vec![NONE; self.pairs.len()]
+        } else {
+            Vec::new()
+        };
         // Depths by pair of siblings (saturating: far beyond any stack).
         let mut depth = vec![0u8; self.pairs.len()];
         let mut deepest = 0u8;
@@ -301,7 +305,8 @@ impl NearTree {
             return None;
         }
         let mut fell = None;
-        let start = start.filter(|&n| n != 1 && n < 2 * self.pairs.len() && self.node(n).count > 0 && !self.up.is_empty());
+        let start =
+            start.filter(|&n| n != 1 && n < 2 * self.pairs.len() && self.node(n).count > 0 && !self.up.is_empty());
         let Some(mut below) = start else {
             self.descend(q, 0, &mut bound, &mut fell, &mut leaf);
             return fell;
@@ -966,7 +971,13 @@ mod tests {
     /// goes on down, its second is a one-triangle leaf; every box holds everything.
     fn chain(levels: usize) -> NearTree {
         let soup: Vec<[DVec3; 3]> = (0..200)
-            .map(|k| [DVec3::X * k as f64, DVec3::new(k as f64, 1.0, 0.0), DVec3::new(k as f64, 0.0, 1.0)])
+            .map(|k| {
+                [
+                    DVec3::X * k as f64,
+                    DVec3::new(k as f64, 1.0, 0.0),
+                    DVec3::new(k as f64, 0.0, 1.0),
+                ]
+            })
             .collect();
         let ids: Vec<u32> = (0..200).collect();
         let mut tree = NearTree::new(&ids, |t| soup[t as usize], |_| (Vec3::splat(-1e3), Vec3::splat(1e3)));
@@ -991,7 +1002,13 @@ mod tests {
     /// point) runs through it.
     #[test]
     fn a_tree_read_back_too_deep_for_the_descent_is_refused() {
-        let corners = |t: u32| [DVec3::X * t as f64, DVec3::new(t as f64, 1.0, 0.0), DVec3::new(t as f64, 0.0, 1.0)];
+        let corners = |t: u32| {
+            [
+                DVec3::X * t as f64,
+                DVec3::new(t as f64, 1.0, 0.0),
+                DVec3::new(t as f64, 0.0, 1.0),
+            ]
+        };
         assert!(!chain(NEAREST_STACK + 1).restore(200, corners, true));
         let mut deepest = chain(NEAREST_STACK);
         assert!(deepest.restore(200, corners, true));

@@ -337,7 +337,11 @@ pub fn detect(
     }
     let fresh = state.memo.is_empty();
     // The skipping thresholds' unit (a fresh state tests every vertex: no need of it).
-    let edge = if fresh { 0.0 } else { mean_edge(garment.positions, garment.edges) };
+    let edge = if fresh {
+        0.0
+    } else {
+        mean_edge(garment.positions, garment.edges)
+    };
     // Patches whose curves did not move.
     let patch_still: Vec<bool> = garment
         .patch_curves

@@ -126,19 +126,9 @@ impl GarmentState {
     /// resolution 24, one core, ran 1,978 ms with the copy and 1,931 without.)
     pub(crate) fn on_framework(&self, framework: Framework) -> Self {
         Self {
-            template: self.template,
-            options: self.options,
-            dims: self.dims.clone(),
             framework: Some(framework),
-            detect: self.detect.clone(),
-            collision: None,
             net: self.net.clone(),
-            edits: self.edits.clone(),
-            standard: self.standard.clone(),
-            m1: None,
-            cuts: self.cuts.clone(),
-            sculpts: self.sculpts.clone(),
-            sculpted: None,
+            ..self.unsolved()
         }
     }
 }

@@ -580,7 +580,10 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
                     let m = 0.5 * (points[j] + points[(j + 1) % points.len()]);
                     let n = l.edge_normal(j);
                     for b in [m - n * reach.inside, m + n * reach.outside] {
-                        cases.push((DVec3::new(b.x, stack.y0 + k as f64 * stack.dy, b.y), DVec3::new(n.x, 0.0, n.y)));
+                        cases.push((
+                            DVec3::new(b.x, stack.y0 + k as f64 * stack.dy, b.y),
+                            DVec3::new(n.x, 0.0, n.y),
+                        ));
                     }
                 }
             }
