@@ -195,7 +195,7 @@ impl NearTree {
                 continue;
             }
             // Children after their parent: no descent can loop.
-            if first % 2 != 0 || first <= i || first >= count {
+            if !first.is_multiple_of(2) || first <= i || first >= count {
                 return None;
             }
             if let Some(u) = up.get_mut(first >> 1) {
@@ -430,6 +430,44 @@ impl NearTree {
 }
 
 impl NearTree {
+    /// Visits every triangle whose box lies nearer `q` than `bound` (squared, `f32`), and
+    /// the others of their leaves, each once, as `visit(triangle, corners)`, in no
+    /// particular order: the walk reads the tree four
+    /// lanes wide (a gather has no bound to tighten, so the binary descent's nearer-first
+    /// order buys nothing).
+    pub fn within(&self, q: Vec3, bound: f32, mut visit: impl FnMut(u32, &[DVec3; 3])) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let q = q.to_array().map(Vec4::splat);
+        let bound = Vec4::splat(bound);
+        let mut stack = [0u32; STACK];
+        let mut depth = 1usize;
+        while depth > 0 {
+            depth -= 1;
+            let child = stack[depth];
+            if child & LEAF_BIT != 0 {
+                for (t, corners) in self.leaf(child) {
+                    visit(t, corners);
+                }
+                continue;
+            }
+            let w = &self.nodes[child as usize];
+            let mut d2 = Vec4::ZERO;
+            for ((lo, hi), q) in w.lo.iter().zip(&w.hi).zip(&q) {
+                let gap = (*lo - *q).max(*q - *hi).max(Vec4::ZERO);
+                d2 += gap * gap;
+            }
+            let near = d2.cmplt(bound).bitmask();
+            for k in 0..4 {
+                if near & (1 << k) != 0 && w.child[k] != NONE {
+                    stack[depth] = w.child[k];
+                    depth += 1;
+                }
+            }
+        }
+    }
+
     /// The first hit along the ray `a + t d`, `t` in `range`: `hit(triangle, corners)` gives
     /// a triangle's parameter where the ray meets it; the least parameter wins, the lowest
     /// triangle among equals. Boxes are tested in `f32` over `range` and let through while
@@ -844,7 +882,8 @@ mod tests {
     /// shrinking geometrically towards a point (which drives surface-area splits deep), and
     /// triangles scattered at random. For each, the tree's nearest distance equals a scan
     /// of every triangle, at points near and far, searched from the root or from any
-    /// triangle's leaf, and its walk along a segment finds a
+    /// triangle's leaf; a gather within a radius visits every triangle nearer than it; and
+    /// its walk along a segment finds a
     /// crossing exactly when a scan does, with the caller's boxes widened as the body index
     /// widens its own.
     #[test]
@@ -914,6 +953,22 @@ mod tests {
                     Some(((d + 1e-5) * (d + 1e-5)) as f32)
                 });
                 assert_eq!(best, truth, "soup {k}, {p}, from node {start}");
+                // Gathering within a radius: every triangle nearer than it is visited, once.
+                let radius = (truth + 1e-4) * (1.0 + 3.0 * jitter(1.0).x.abs());
+                let mut visited = Vec::new();
+                tree.within(p.as_vec3(), (radius * radius) as f32, |t, _| visited.push(t));
+                visited.sort_unstable();
+                let count = visited.len();
+                visited.dedup();
+                assert_eq!(visited.len(), count, "soup {k}, {p}: a triangle visited twice");
+                for (t, &tri) in soup.iter().enumerate() {
+                    let d = to_triangle(p, tri);
+                    let seen = visited.binary_search(&(t as u32)).is_ok();
+                    assert!(
+                        seen || d >= radius,
+                        "soup {k}, {p}: triangle {t} at {d} < {radius} missed"
+                    );
+                }
             }
             // Segments: the walk may look at more triangles than it must, never at fewer.
             let mut hits = 0;

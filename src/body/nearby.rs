@@ -43,14 +43,24 @@ impl BodyIndex {
     /// The triangles a search from any point within `room` (m) of `centre` needs; `found` is
     /// the nearest point to `centre` ([`Self::nearest`] with no limit).
     pub fn nearby(&self, centre: DVec3, found: &Nearest, room: f64) -> Nearby {
-        let reach = (found.distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
+        self.nearby_within(centre, found.distance, room)
+    }
+
+    /// [`Self::nearby`] knowing only that the body lies within `distance` (m) of `centre`
+    /// (the distance to some body point, at least the nearest one's): the triangles
+    /// gathered are those [`Self::nearby`] gathers and maybe more, and the scans' answers
+    /// are the same. One pass over the tree instead of a search and then the pass.
+    pub fn nearby_within(&self, centre: DVec3, distance: f64, room: f64) -> Nearby {
+        let reach = (distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
         let mut triangles = Vec::new();
         // Every box within the reach: the bound never tightens.
         self.near
-            .nearest(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
+            .within(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
                 let (foot, _) = closest_on_triangle(centre, *corners);
-                triangles.push((centre.distance(foot), t, *corners));
-                None
+                let distance = centre.distance(foot);
+                if distance <= reach {
+                    triangles.push((distance, t, *corners));
+                }
             });
         triangles.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         Nearby {
@@ -86,5 +96,14 @@ impl BodyIndex {
         }
         let (distance, t, foot, feature) = best?;
         Some(self.settle(p, self.at_feature(t, foot, feature, distance)))
+    }
+
+    /// [`Self::nearest_nearby`] at the ball's centre, with no scan: the triangles are held
+    /// by their distance from the centre and then their index, the order in which the scan
+    /// picks its winner, so the first one wins.
+    pub fn nearest_at_centre(&self, near: &Nearby) -> Option<Nearest> {
+        let &(distance, t, corners) = near.triangles.first()?;
+        let (foot, feature) = closest_on_triangle(near.centre, corners);
+        Some(self.settle(near.centre, self.at_feature(t, foot, feature, distance)))
     }
 }

@@ -63,7 +63,32 @@ impl BodyProbe {
     /// measures where it stands, the last one where it stops): `None` for a body with no
     /// triangles.
     pub fn clear_measuring(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>) {
-        self.clear_with(p, gap, |q| self.index.nearest_next(q, f64::INFINITY))
+        self.clear_with(p, gap, |q, _| self.index.nearest_next(q, f64::INFINITY))
+    }
+
+    /// [`Self::clear_measuring`], and for a point the clearing moved, the ball
+    /// [`Self::clear_near`] keeps about where it stops ([`Self::nearby`]): a point moved
+    /// stands at most `gap` off the skin point it was moved from, so each pass after the
+    /// first gathers the ball about where it stands at once and finds the nearest point
+    /// in it, instead of searching the tree and then gathering the ball. The same answers.
+    pub fn clear_keeping_ball(&self, p: DVec3, gap: f64) -> (DVec3, Option<Nearest>, Option<Nearby>) {
+        let room = NEARBY_ROOM * gap;
+        let mut ball: Option<Nearby> = None;
+        let (q, n) = self.clear_with(p, gap, |q, within| {
+            if let Some(n) = ball.as_ref().and_then(|b| self.index.nearest_nearby(b, q)) {
+                return Some(n);
+            }
+            match within {
+                None => self.index.nearest_next(q, f64::INFINITY),
+                Some(d) => {
+                    let near = self.index.nearby_within(q, d, room);
+                    let n = self.index.nearest_at_centre(&near);
+                    ball = Some(near);
+                    n
+                }
+            }
+        });
+        (q, n, ball)
     }
 
     /// [`Self::clear_measuring`] for a point that moves a little between calls (a sample
@@ -72,7 +97,7 @@ impl BodyProbe {
     /// same answers as the full search.
     pub fn clear_near(&self, p: DVec3, gap: f64, near: &mut Option<Nearby>) -> (DVec3, Option<Nearest>) {
         let room = NEARBY_ROOM * gap;
-        self.clear_with(p, gap, |q| {
+        self.clear_with(p, gap, |q, _| {
             if let Some(n) = near.as_ref().and_then(|b| self.index.nearest_nearby(b, q)) {
                 return Some(n);
             }
@@ -104,18 +129,21 @@ impl BodyProbe {
         self.index.nearby(p, found, NEARBY_ROOM * gap)
     }
 
-    /// [`Self::clear`], each pass's nearest point found by `search`.
+    /// [`Self::clear`], each pass's nearest point found by `search`, given the point and,
+    /// after the first pass, its distance from the skin point it was moved from (the body
+    /// lies at least that near).
     fn clear_with(
         &self,
         p: DVec3,
         gap: f64,
-        mut search: impl FnMut(DVec3) -> Option<Nearest>,
+        mut search: impl FnMut(DVec3, Option<f64>) -> Option<Nearest>,
     ) -> (DVec3, Option<Nearest>) {
         let mut q = p;
         let mut stop = (Stop::IterationLimit, CLEAR_PASSES, 0.0);
-        let mut last = None;
+        let mut last: Option<Nearest> = None;
         for pass in 0..=CLEAR_PASSES {
-            last = search(q);
+            let within = last.map(|n| q.distance(n.foot));
+            last = search(q, within);
             let Some(n) = last else {
                 stop = (Stop::Converged, pass, 0.0);
                 break;

@@ -5,6 +5,7 @@
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
+use std::sync::Mutex;
 
 use glam::DVec3;
 
@@ -110,9 +111,9 @@ pub struct Surfacer<'a> {
     shapes: BTreeMap<String, Vec<DVec3>>,
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
-    /// Patches surfaced anew whose interior the clearing moved: (index, samples moved, the
-    /// body's nearest point to each interior sample).
-    to_relax: Vec<(usize, Vec<bool>, Vec<Option<Nearest>>)>,
+    /// Patches surfaced anew whose interior the clearing moved: (index, the clearing of
+    /// each sample).
+    to_relax: Vec<(usize, Cleared)>,
     /// The body's nearest point to the interior samples of the patches surfaced anew, where
     /// they stand: (patch, sample, nearest point).
     measured: Vec<(usize, usize, Nearest)>,
@@ -177,15 +178,22 @@ impl<'a> Surfacer<'a> {
     pub fn finish(mut self) -> Surfaced {
         let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
         let patches = &self.patches;
+        // Each job takes its balls (a job runs once): no copy of them.
+        let balls: Vec<Mutex<Vec<Option<Nearby>>>> = self
+            .to_relax
+            .iter_mut()
+            .map(|(_, c)| Mutex::new(std::mem::take(&mut c.balls)))
+            .collect();
         let jobs = &self.to_relax;
         let relaxed = par_map_from(jobs.len(), 2, |k| {
-            let (i, moved, found) = &jobs[k];
+            let (i, cleared) = &jobs[k];
             let mut grid = patches[*i].clone();
-            let mut found = found.clone();
-            relax(&mut grid, moved, &mut found, probe, gap, scale);
+            let mut found = cleared.found.clone();
+            let near = std::mem::take(&mut *balls[k].lock().unwrap_or_else(|e| e.into_inner()));
+            relax(&mut grid, &cleared.moved, &mut found, near, probe, gap, scale);
             (grid, found)
         });
-        for ((i, _, _), (grid, found)) in self.to_relax.iter().zip(relaxed) {
+        for ((i, _), (grid, found)) in self.to_relax.iter().zip(relaxed) {
             self.measured.extend(sampled(*i, &found));
             self.patches[*i] = grid;
         }
@@ -245,11 +253,11 @@ impl<'a> Surfacer<'a> {
         // The blend of four boundaries that stand off the body can still dip into it where
         // the body bulges between them (the inner thigh and the belly over a tall crotch
         // junction): interior samples stand the clearance off, as contour spans do.
-        let (moved, found) = clear_interior(&mut grid, self.probe, self.layout.clearance);
-        if moved.contains(&true) {
-            self.to_relax.push((self.patches.len(), moved, found));
+        let cleared = clear_interior(&mut grid, self.probe, self.layout.clearance);
+        if cleared.moved.contains(&true) {
+            self.to_relax.push((self.patches.len(), cleared));
         } else {
-            self.measured.extend(sampled(self.patches.len(), &found));
+            self.measured.extend(sampled(self.patches.len(), &cleared.found));
         }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
@@ -294,22 +302,35 @@ fn sampled(patch: usize, found: &[Option<Nearest>]) -> impl Iterator<Item = (usi
         .filter_map(move |(k, n)| n.map(|n| (patch, k, n)))
 }
 
-/// Clears every interior sample of `grid` off the body by `gap` (m); which ones moved, and
-/// the body's nearest point to each interior sample where it ends.
-fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> (Vec<bool>, Vec<Option<Nearest>>) {
+/// What [`clear_interior`] did to each sample of a patch.
+struct Cleared {
+    /// Whether it moved.
+    moved: Vec<bool>,
+    /// The body's nearest point where it ends.
+    found: Vec<Option<Nearest>>,
+    /// For a sample moved, the ball [`BodyProbe::clear_near`] keeps about where it ends.
+    balls: Vec<Option<Nearby>>,
+}
+
+/// Clears every interior sample of `grid` off the body by `gap` (m).
+fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> Cleared {
     let (nu, nv) = (grid.nu, grid.nv);
-    let mut moved = vec![false; grid.points.len()];
-    let mut found = vec![None; grid.points.len()];
+    let mut out = Cleared {
+        moved: vec![false; grid.points.len()],
+        found: vec![None; grid.points.len()],
+        balls: vec![None; grid.points.len()],
+    };
     for j in 1..nv {
         for i in 1..nu {
             let k = j * (nu + 1) + i;
-            let (p, n) = probe.clear_measuring(grid.points[k], gap);
-            moved[k] = p != grid.points[k];
+            let (p, n, ball) = probe.clear_keeping_ball(grid.points[k], gap);
+            out.moved[k] = p != grid.points[k];
             grid.points[k] = p;
-            found[k] = n;
+            out.found[k] = n;
+            out.balls[k] = ball.filter(|_| out.moved[k] && n.is_some());
         }
     }
-    (moved, found)
+    out
 }
 
 /// Most rounds of relaxation of a cleared patch.
@@ -321,17 +342,19 @@ pub const RELAX_ROUNDS: usize = 12;
 /// tangent plane there (so the patch does not flatten), and clears it again; the samples
 /// the clearing left alone keep the Coons blend and hold the rest in place. Stops early
 /// once no sample moves more than 1e-4 of `scale` (m) in a round. `found` follows the
-/// body's nearest point to each sample moved.
-fn relax(grid: &mut PatchGrid, moved: &[bool], found: &mut [Option<Nearest>], probe: &BodyProbe, gap: f64, scale: f64) {
+/// body's nearest point to each sample moved; `near` holds each moved sample's ball, about
+/// where the clearing left it.
+fn relax(
+    grid: &mut PatchGrid,
+    moved: &[bool],
+    found: &mut [Option<Nearest>],
+    mut near: Vec<Option<Nearby>>,
+    probe: &BodyProbe,
+    gap: f64,
+    scale: f64,
+) {
     let (nu, nv) = (grid.nu, grid.nv);
     let at = |i: usize, j: usize| j * (nu + 1) + i;
-    // Each moved sample's ball, about where the clearing left it.
-    let mut near: Vec<Option<Nearby>> = (0..grid.points.len())
-        .map(|k| {
-            let n = found[k].as_ref().filter(|_| moved[k])?;
-            Some(probe.nearby(grid.points[k], n, gap))
-        })
-        .collect();
     for _ in 0..RELAX_ROUNDS {
         let before = grid.points.clone();
         let mut most: f64 = 0.0;

@@ -615,7 +615,9 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
 /// ([`BodyIndex::nearby`], as the relaxation of a patch's samples makes them) from points
 /// moved anywhere within the ball gives the whole tree's answer, field for field, and the
 /// distance of a scan of every shell triangle written in the test; outside the ball it
-/// declines. Balls of 2 mm and 2 cm (the clearance of a tight garment and more), about
+/// declines. So does a ball gathered knowing only a distance the body lies within
+/// ([`BodyIndex::nearby_within`]), and the first triangle of a ball is the tree's answer at
+/// its centre. Balls of 2 mm and 2 cm (the clearance of a tight garment and more), about
 /// garment points near and through the skin.
 #[test]
 fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_on_every_body() {
@@ -635,6 +637,11 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
             let found = index.nearest(centre, f64::INFINITY).expect("a nearest point");
             for room in [0.002, 0.02] {
                 let near = index.nearby(centre, &found, room);
+                assert_eq!(index.nearest_at_centre(&near), Some(found), "{centre}: at the centre");
+                // Gathered knowing only some distance the body lies within (at least the
+                // nearest one's): the same answers.
+                let within = found.distance * (1.0 + rng.next()) + 0.005 * rng.next();
+                let wider = index.nearby_within(centre, within, room);
                 for _ in 0..3 {
                     let q = centre + room * unit(&mut rng);
                     let got = index.nearest_nearby(&near, q).expect("within the ball");
@@ -645,6 +652,7 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
                         "{}: {q} in a ball of {room} m about {centre}",
                         path.display()
                     );
+                    assert_eq!(index.nearest_nearby(&wider, q), Some(tree), "{q}: in the wider ball");
                     let truth = brute_distance(&shell, q);
                     assert!((got.distance - truth).abs() < 1e-12, "{q}: {} vs {truth}", got.distance);
                     scanned += 1;
@@ -657,6 +665,74 @@ fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_
         assert!(
             scanned > 300 && declined > 100,
             "{scanned} scanned, {declined} declined"
+        );
+    }
+}
+
+/// On every shipped body, clearing a point off the body while keeping the ball about where
+/// it stops ([`BodyProbe::clear_keeping_ball`], as the assembly clears a patch's samples)
+/// gives the point and nearest point of the clearing by tree searches, bit for bit, and
+/// the distance of a scan of every shell triangle (a point left where it was stands the
+/// clearance off by that scan); it keeps
+/// a ball exactly when the point moved, and the ball's searches anywhere within it give
+/// the tree's answers. Garment points moved up to 2 cm either way, so that some start
+/// inside the body, at a tight and a loose clearance.
+#[test]
+fn clearing_that_keeps_its_ball_equals_clearing_by_tree_searches_on_every_body() {
+    use drape::garment::BodyProbe;
+    let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
+    let mut rng = Lcg(31);
+    let unit = |rng: &mut Lcg| loop {
+        let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0;
+        if v.length_squared() <= 1.0 {
+            return v;
+        }
+    };
+    for path in &shipped_bodies() {
+        let (_, index, shell, shift) = on_body(path);
+        let probe = BodyProbe::from_index(index);
+        let (mut moved, mut still, mut searched) = (0, 0, 0);
+        for p in garment.iter().step_by(11) {
+            for gap in [0.004, 0.02] {
+                let start = *p + shift + 0.02 * unit(&mut rng);
+                let (q, n, ball) = probe.clear_keeping_ball(start, gap);
+                let (want_q, want_n) = probe.clear_measuring(start, gap);
+                assert_eq!((q, n), (want_q, want_n), "{}: {start} cleared by {gap}", path.display());
+                assert_eq!(ball.is_some(), q != start, "{start}: a ball exactly when moved");
+                // And against a scan of every shell triangle: the nearest distance where it
+                // stops (and a point left where it was stood the clearance off).
+                let truth = brute_distance(&shell, q);
+                let found = n.expect("a nearest point");
+                assert!(
+                    (found.distance - truth).abs() < 1e-12,
+                    "{q}: {} vs {truth}",
+                    found.distance
+                );
+                if q == start {
+                    assert!(
+                        truth >= gap * (1.0 - 1e-6) && found.signed(q) > 0.0,
+                        "{q}: left at {truth}"
+                    );
+                }
+                let Some(ball) = ball else {
+                    still += 1;
+                    continue;
+                };
+                moved += 1;
+                for _ in 0..2 {
+                    let r = 0.5 * gap * unit(&mut rng);
+                    let Some(got) = probe.index().nearest_nearby(&ball, q + r) else {
+                        // Outside the ball: the ball may be centred where an earlier pass stood.
+                        continue;
+                    };
+                    assert_eq!(Some(got), probe.index().nearest(q + r, f64::INFINITY), "{}", q + r);
+                    searched += 1;
+                }
+            }
+        }
+        assert!(
+            moved > 100 && still > 100 && searched > 100,
+            "{moved} moved, {still} still, {searched} searched"
         );
     }
 }
