@@ -404,20 +404,34 @@ impl NearTree {
         }
         let (o, inv) = ray_lanes(a, d);
         let (t0, t1) = (Vec4::splat(range[0] as f32), Vec4::splat(range[1] as f32));
+        self.walk(
+            |w| {
+                let (lo, hi) = slabs(w, o, inv, t0, t1);
+                lo.cmple(hi).bitmask()
+            },
+            |leaf| self.leaf(leaf).any(|(t, corners)| test(t, corners)),
+        )
+    }
+
+    /// The four-wide walk: from the root, into the children of each node whose lanes
+    /// `lanes(node)` sets (a bit a lane), handing each leaf reached (a child with
+    /// [`LEAF_BIT`]) to `leaf`, which stops the walk by returning true (and so does the
+    /// walk).
+    #[inline(always)]
+    fn walk(&self, mut lanes: impl FnMut(&Wide) -> u32, mut leaf: impl FnMut(u32) -> bool) -> bool {
         let mut stack = [0u32; STACK];
         let mut depth = 1usize;
         while depth > 0 {
             depth -= 1;
             let child = stack[depth];
             if child & LEAF_BIT != 0 {
-                if self.leaf(child).any(|(t, corners)| test(t, corners)) {
+                if leaf(child) {
                     return true;
                 }
                 continue;
             }
             let w = &self.nodes[child as usize];
-            let (lo, hi) = slabs(w, o, inv, t0, t1);
-            let meets = lo.cmple(hi).bitmask();
+            let meets = lanes(w);
             for k in 0..4 {
                 if meets & (1 << k) != 0 && w.child[k] != NONE {
                     stack[depth] = w.child[k];
@@ -441,31 +455,22 @@ impl NearTree {
         }
         let q = q.to_array().map(Vec4::splat);
         let bound = Vec4::splat(bound);
-        let mut stack = [0u32; STACK];
-        let mut depth = 1usize;
-        while depth > 0 {
-            depth -= 1;
-            let child = stack[depth];
-            if child & LEAF_BIT != 0 {
-                for (t, corners) in self.leaf(child) {
+        self.walk(
+            |w| {
+                let mut d2 = Vec4::ZERO;
+                for ((lo, hi), q) in w.lo.iter().zip(&w.hi).zip(&q) {
+                    let gap = (*lo - *q).max(*q - *hi).max(Vec4::ZERO);
+                    d2 += gap * gap;
+                }
+                d2.cmplt(bound).bitmask()
+            },
+            |leaf| {
+                for (t, corners) in self.leaf(leaf) {
                     visit(t, corners);
                 }
-                continue;
-            }
-            let w = &self.nodes[child as usize];
-            let mut d2 = Vec4::ZERO;
-            for ((lo, hi), q) in w.lo.iter().zip(&w.hi).zip(&q) {
-                let gap = (*lo - *q).max(*q - *hi).max(Vec4::ZERO);
-                d2 += gap * gap;
-            }
-            let near = d2.cmplt(bound).bitmask();
-            for k in 0..4 {
-                if near & (1 << k) != 0 && w.child[k] != NONE {
-                    stack[depth] = w.child[k];
-                    depth += 1;
-                }
-            }
-        }
+                false
+            },
+        );
     }
 
     /// The first hit along the ray `a + t d`, `t` in `range`: `hit(triangle, corners)` gives

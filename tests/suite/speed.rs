@@ -611,6 +611,16 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
     );
 }
 
+/// A point drawn uniformly from the unit ball (by rejection).
+fn in_unit_ball(rng: &mut Lcg) -> DVec3 {
+    loop {
+        let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0;
+        if v.length_squared() <= 1.0 {
+            return v;
+        }
+    }
+}
+
 /// On every shipped body, a search scanning the triangles gathered about a point
 /// ([`BodyIndex::nearby`], as the relaxation of a patch's samples makes them) from points
 /// moved anywhere within the ball gives the whole tree's answer, field for field, and the
@@ -623,12 +633,7 @@ fn line_line_reading_only_the_runs_near_the_vertex_equals_a_scan_of_every_edge_o
 fn searches_among_the_triangles_gathered_about_a_point_agree_with_a_brute_force_on_every_body() {
     let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
     let mut rng = Lcg(29);
-    let unit = |rng: &mut Lcg| loop {
-        let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0;
-        if v.length_squared() <= 1.0 {
-            return v;
-        }
-    };
+    let unit = in_unit_ball;
     for path in &shipped_bodies() {
         let (_, index, shell, shift) = on_body(path);
         let (mut scanned, mut declined) = (0, 0);
@@ -682,12 +687,7 @@ fn clearing_that_keeps_its_ball_equals_clearing_by_tree_searches_on_every_body()
     use drape::garment::BodyProbe;
     let garment: Vec<DVec3> = real_jumpsuit().m0.mesh.positions.clone();
     let mut rng = Lcg(31);
-    let unit = |rng: &mut Lcg| loop {
-        let v = DVec3::new(rng.next() - 0.5, rng.next() - 0.5, rng.next() - 0.5) * 2.0;
-        if v.length_squared() <= 1.0 {
-            return v;
-        }
-    };
+    let unit = in_unit_ball;
     for path in &shipped_bodies() {
         let (_, index, shell, shift) = on_body(path);
         let probe = BodyProbe::from_index(index);
