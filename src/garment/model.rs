@@ -194,6 +194,28 @@ pub struct Framework {
 }
 
 impl Framework {
+    /// A copy of its curves, dimensions and layout, without its surface: no patches, no
+    /// M0 and no cleared spans (what an edit's solve changes, before the assembly makes
+    /// the surface again; copying the surface cost the solve about a millisecond a drag at
+    /// resolution 24).
+    pub fn without_surface(&self) -> Framework {
+        Framework {
+            template: self.template,
+            fit: self.fit,
+            planes: self.planes.clone(),
+            rings: self.rings.clone(),
+            open_curves: self.open_curves.clone(),
+            lines: self.lines.clone(),
+            contours: self.contours.clone(),
+            straightened: self.straightened.clone(),
+            patches: Vec::new(),
+            m0: M0::default(),
+            spans: super::surface::Spans::new(),
+            dimensions: self.dimensions.clone(),
+            layout: self.layout.clone(),
+        }
+    }
+
     /// A ring by name.
     pub fn ring(&self, name: &str) -> Option<&GarmentRing> {
         self.rings.iter().find(|r| r.name == name)

@@ -74,7 +74,7 @@ pub fn solve(
 ) -> Result<Solution, EditError> {
     let gap = (options.gap_fraction * fw.ease()).max(options.min_gap * fw.layout.height);
     let mut run = Run {
-        fw: fw.clone(),
+        fw: fw.without_surface(),
         net,
         probe,
         options,

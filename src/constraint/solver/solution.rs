@@ -63,7 +63,9 @@ pub struct Iteration {
 /// The result of an edit.
 #[derive(Clone, Debug)]
 pub struct Solution {
-    /// The framework with its curves solved (lines, patches and M0 not yet rebuilt).
+    /// The framework with its curves solved, without its surface (no patches, M0 or
+    /// cleared spans: [`Framework::without_surface`]; the assembly makes them again) and
+    /// with the lines of before.
     pub framework: Framework,
     /// Every curve solve, in order.
     pub iterations: Vec<Iteration>,
