@@ -286,8 +286,11 @@ fn measure(
     // An edge can meet the surface only if the balls free of it around its ends do not
     // cover it: |d(a)| + |d(b)| <= |ab|.
     let ends_at = |e: usize| edges[e].map(|v| positions[v as usize]);
-    let known: Vec<Option<bool>> = match &reuse {
-        Some((r, _)) => (0..edges.len()).map(|e| r.crossing(e, ends_at(e))).collect(),
+    let known: Vec<Option<bool>> = match &mut reuse {
+        Some((r, _)) => {
+            r.begin_check(positions, edges);
+            (0..edges.len()).map(|e| r.crossing(e, edges[e])).collect()
+        }
         None => vec![None; edges.len()],
     };
     let hits = par_map(edges.len(), |e| {
@@ -301,7 +304,7 @@ fn measure(
         counts.quality_edges = known.iter().filter(|k| k.is_some()).count();
         for (e, hit) in hits.iter().enumerate() {
             if known[e].is_none() {
-                r.set_crossing(edges.len(), e, ends_at(e), *hit);
+                r.set_crossing(e, *hit);
             }
         }
     }

@@ -18,8 +18,19 @@ use super::quality::VertexDistance;
 pub struct Reuse {
     /// Per vertex: where its distance was measured, and the distance.
     distance: Vec<Option<(DVec3, VertexDistance)>>,
-    /// Per edge: its ends when the quality check tested it, and whether it met the body.
-    crossing: Vec<Option<([DVec3; 2], bool)>>,
+    /// Per edge: the quality check that last tested it (counted from 1; 0: none), and
+    /// whether it met the body then.
+    crossing: Vec<(u32, bool)>,
+    /// The quality checks so far, the edges they tested, and per vertex where it stood at
+    /// the last one and the check at which it last stood somewhere else than at the one
+    /// before: an edge's verdict holds while neither end has moved since its check, which
+    /// is when its ends are those it was tested at (every check reads every edge: it tests
+    /// those whose ends moved and keeps the others), at a few bytes an edge instead of both
+    /// ends' positions.
+    checks: u32,
+    checked_edges: Vec<[u32; 2]>,
+    checked_at: Vec<DVec3>,
+    moved_at: Vec<u32>,
     /// Per edge: its ends when the first edge round tested it; it did not cross then.
     clear_in_round: Vec<Option<[DVec3; 2]>>,
 }
@@ -49,12 +60,33 @@ impl Reuse {
         }
     }
 
-    /// Whether edge `e` with ends `ends` meets the body, if it was tested there.
-    pub fn crossing(&self, e: usize, ends: [DVec3; 2]) -> Option<bool> {
-        match self.crossing.get(e) {
-            Some(Some((at, hit))) if *at == ends => Some(*hit),
-            _ => None,
+    /// Starts a quality check of `edges` on the vertices at `positions`: notes the vertices
+    /// that moved since the last check (every one when the edges or the vertex count
+    /// changed, which also forgets every verdict).
+    pub fn begin_check(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
+        self.checks += 1;
+        if self.checked_edges != edges || self.checked_at.len() != positions.len() {
+            self.checked_edges = edges.to_vec();
+            self.crossing = vec![(0, false); edges.len()];
+            self.checked_at = positions.to_vec();
+            self.moved_at = vec![self.checks; positions.len()];
+            return;
         }
+        for ((at, moved), &p) in self.checked_at.iter_mut().zip(&mut self.moved_at).zip(positions) {
+            // `!=`, not a distance: a NaN position, never equal to itself, never stands still.
+            if *at != p {
+                *at = p;
+                *moved = self.checks;
+            }
+        }
+    }
+
+    /// Whether edge `[a, b]` (edge `e` of this check's edges) meets the body, if it was
+    /// tested by a check since which neither end moved.
+    pub fn crossing(&self, e: usize, [a, b]: [u32; 2]) -> Option<bool> {
+        let &(tested, hit) = self.crossing.get(e)?;
+        let moved = |v: u32| self.moved_at.get(v as usize).copied().unwrap_or(u32::MAX);
+        (tested > 0 && tested >= moved(a) && tested >= moved(b)).then_some(hit)
     }
 
     /// Whether the first edge round found edge `e` clear of the body at these ends.
@@ -70,12 +102,11 @@ impl Reuse {
         self.distance[v] = Some((p, s));
     }
 
-    /// Remembers whether edge `e` at `ends` meets the body.
-    pub fn set_crossing(&mut self, edges: usize, e: usize, ends: [DVec3; 2], hit: bool) {
-        if self.crossing.len() != edges {
-            self.crossing = vec![None; edges];
+    /// Remembers whether edge `e` meets the body, tested by this check.
+    pub fn set_crossing(&mut self, e: usize, hit: bool) {
+        if let Some(slot) = self.crossing.get_mut(e) {
+            *slot = (self.checks, hit);
         }
-        self.crossing[e] = Some((ends, hit));
     }
 
     /// Remembers the first edge round's verdict on edge `e` at `ends`.
@@ -84,5 +115,69 @@ impl Reuse {
             self.clear_in_round = vec![None; edges];
         }
         self.clear_in_round[e] = clear.then_some(ends);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::Reuse;
+
+    struct Lcg(u64);
+
+    impl Lcg {
+        fn below(&mut self, n: usize) -> usize {
+            self.0 = self
+                .0
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((self.0 >> 33) % n as u64) as usize
+        }
+    }
+
+    /// Checks as the quality check makes them (every edge read; those without a verdict
+    /// tested and remembered) over random moves, some of them back to where a vertex
+    /// stood before, a NaN now and then, and a change of the edges: an edge's verdict is
+    /// taken exactly when its ends are those it was tested at, as a record of both ends'
+    /// positions written here says, and it is the verdict given then.
+    #[test]
+    fn a_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_tested_at() {
+        let mut rng = Lcg(7);
+        let spots = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE, DVec3::NAN];
+        let n = 12;
+        let mut edges: Vec<[u32; 2]> = (0..n as u32).map(|v| [v, (v + 1) % n as u32]).collect();
+        let mut positions: Vec<DVec3> = (0..n).map(|v| spots[v % 5]).collect();
+        let mut reuse = Reuse::default();
+        let mut record: Vec<Option<([DVec3; 2], bool)>> = vec![None; edges.len()];
+        let (mut taken, mut tested) = (0, 0);
+        for check in 0..400 {
+            if check == 200 {
+                // Other edges: nothing known of them.
+                edges = (0..n as u32).map(|v| [v, (v + 5) % n as u32]).collect();
+                record = vec![None; edges.len()];
+            }
+            for _ in 0..rng.below(4) {
+                let v = rng.below(n);
+                // A NaN one time in eight.
+                let choices = spots.len() - usize::from(rng.below(8) != 0);
+                positions[v] = spots[rng.below(choices)];
+            }
+            reuse.begin_check(&positions, &edges);
+            for (e, &[a, b]) in edges.iter().enumerate() {
+                let ends = [positions[a as usize], positions[b as usize]];
+                let want = record[e].and_then(|(at, hit)| (at == ends).then_some(hit));
+                assert_eq!(reuse.crossing(e, [a, b]), want, "check {check}, edge {e}");
+                if want.is_some() {
+                    taken += 1;
+                } else {
+                    let hit = rng.below(2) == 1;
+                    reuse.set_crossing(e, hit);
+                    record[e] = Some((ends, hit));
+                    tested += 1;
+                }
+            }
+        }
+        assert!(taken > 2000 && tested > 500, "{taken} taken, {tested} tested");
     }
 }
