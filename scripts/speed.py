@@ -217,12 +217,16 @@ def main():
                 ]
         figures["sessions"] = runs
 
-        def index_ms(tag, how):
-            """The `body.index` time of the first run `tag`, which must have `how` (built, read) it."""
-            step = next(s for s in runs[tag][0] if "body.index" in s["compute"])
-            if not any(n.startswith(f"body index {how}") for n in step["notes"]):
-                sys.exit(f"{tag}: expected the body index {how}, the run says {step['notes']}")
-            return step["compute"]["body.index"]
+        def index_ms(tag, how, every=False):
+            """The `body.index` time of the first run `tag` (with `every`, the median over all its
+            runs), each of which must have `how` (built, read) it."""
+            times = []
+            for r in runs[tag] if every else runs[tag][:1]:
+                step = next(s for s in r if "body.index" in s["compute"])
+                if not any(n.startswith(f"body index {how}") for n in step["notes"]):
+                    sys.exit(f"{tag}: expected the body index {how}, the run says {step['notes']}")
+                times.append(step["compute"]["body.index"])
+            return med(times)
 
         def drags(tag):
             return [s for r in runs[tag] for s in r if s["op"] == "drag" and "garment.assemble" in s["compute"]]
@@ -243,7 +247,7 @@ def main():
         emit(f"| body index build, ms | {d1['index_build_ms']:.1f} | {d2['index_build_ms']:.1f} | <= 20 ms or cached |")
         emit(f"| body index read from its cache file, ms | {d1['index_cached_ms']:.1f} | {d2['index_cached_ms']:.1f} | <= 20 ms |")
         emit(f"| a session's body index: first run on the body (built and cached), ms | {index_ms('demo6.1', 'built'):.1f} | {index_ms('demo6.2', 'built'):.1f} | |")
-        emit(f"| a session's body index: the next run (read from the cache), ms | {index_ms('demo24.1', 'read'):.1f} | {index_ms('demo24.2', 'read'):.1f} | <= 20 ms |")
+        emit(f"| a session's body index: the next runs (read from the cache; median of {max(1, a.session_runs)}), ms | {index_ms('demo24.1', 'read', True):.1f} | {index_ms('demo24.2', 'read', True):.1f} | <= 20 ms |")
     if a.json:
         a.json.write_text(json.dumps(figures, indent=1))
     if a.readme:
