@@ -162,17 +162,26 @@ pub fn respond_edges(
     // Edges to check: all at first (but those known clear at the same ends), then those
     // with an end moved in the round before (the others kept their ends, and none of them
     // crossed).
-    let mut check: Vec<usize> = match &reuse {
-        Some((r, _)) => (0..edges.len())
-            .filter(|&e| !r.clear_in_round(e, ends_at(positions, e)))
-            .collect(),
+    let mut check: Vec<usize> = match &mut reuse {
+        Some((r, _)) => {
+            r.begin_round(positions, edges);
+            (0..edges.len()).filter(|&e| !r.clear_in_round(e, edges[e])).collect()
+        }
         None => (0..edges.len()).collect(),
     };
     if let Some(k) = known {
         // A ray test rounds at about 1e-16 of the body's size; a millionth of the body
-        // (about 2 um) keeps every edge the rounded test could call crossing.
+        // (about 2 um) keeps every edge the rounded test could call crossing. An edge its
+        // ends' distances show clear is remembered as clear, as the test would find it: the
+        // round gives or keeps a verdict for every edge (see `Reuse::begin_round`).
         let margin = 1e-6 * index.height;
-        check.retain(|&e| !k.covers(edges[e], ends_at(positions, e), margin));
+        check.retain(|&e| {
+            let covered = k.covers(edges[e], ends_at(positions, e), margin);
+            if covered && let Some((r, _)) = &mut reuse {
+                r.set_round(e, true);
+            }
+            !covered
+        });
     }
     if let Some((_, counts)) = &mut reuse {
         counts.round_edges = edges.len() - check.len();
@@ -194,7 +203,7 @@ pub fn respond_edges(
             && let Some((r, _)) = &mut reuse
         {
             for (&e, t) in check.iter().zip(&tested) {
-                r.set_round(edges.len(), e, ends_at(positions_now, e), t.is_none());
+                r.set_round(e, t.is_none());
             }
         }
         let crossings: Vec<(Crossing, [Option<Way>; 2])> = tested.into_iter().flatten().collect();

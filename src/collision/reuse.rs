@@ -18,21 +18,58 @@ use super::quality::VertexDistance;
 pub struct Reuse {
     /// Per vertex: where its distance was measured, and the distance.
     distance: Vec<Option<(DVec3, VertexDistance)>>,
-    /// Per edge: the quality check that last tested it (counted from 1; 0: none), and
+    /// Per edge: the quality check that last tested it (see [`Moves`]; 0: none), and
     /// whether it met the body then.
     crossing: Vec<(u32, bool)>,
-    /// The quality checks so far, the edges they tested, and per vertex where it stood at
-    /// the last one and the check at which it last stood somewhere else than at the one
-    /// before: an edge's verdict holds while neither end has moved since its check, which
-    /// is when its ends are those it was tested at (every check reads every edge: it tests
-    /// those whose ends moved and keeps the others), at a few bytes an edge instead of both
-    /// ends' positions.
-    checks: u32,
-    checked_edges: Vec<[u32; 2]>,
-    checked_at: Vec<DVec3>,
+    /// The quality checks' vertex moves.
+    checks: Moves,
+    /// Per edge: the first edge round that last found it clear (0: none, or it crossed).
+    clear_in_round: Vec<u32>,
+    /// The first edge rounds' vertex moves.
+    rounds: Moves,
+}
+
+/// The passes over a garment's edges that remember a verdict per edge (the quality checks,
+/// the first edge rounds), numbered from 1, and per vertex where it stood at the last pass
+/// and the pass at which it last stood somewhere else than at the one before. An edge's
+/// verdict holds while neither end has moved since the pass that gave it, which is when
+/// its ends are those it was given at, provided every pass gives or keeps a verdict for
+/// every edge: a few bytes an edge instead of both ends' positions.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct Moves {
+    passes: u32,
+    edges: Vec<[u32; 2]>,
+    at: Vec<DVec3>,
     moved_at: Vec<u32>,
-    /// Per edge: its ends when the first edge round tested it; it did not cross then.
-    clear_in_round: Vec<Option<[DVec3; 2]>>,
+}
+
+impl Moves {
+    /// Starts a pass over `edges` with the vertices at `positions`: notes the vertices that
+    /// moved since the last pass (every one when the edges or the vertex count changed);
+    /// true when they changed (every verdict is void).
+    fn begin(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) -> bool {
+        self.passes += 1;
+        if self.edges != edges || self.at.len() != positions.len() {
+            self.edges = edges.to_vec();
+            self.at = positions.to_vec();
+            self.moved_at = vec![self.passes; positions.len()];
+            return true;
+        }
+        for ((at, moved), &p) in self.at.iter_mut().zip(&mut self.moved_at).zip(positions) {
+            // `!=`, not a distance: a NaN position, never equal to itself, never stands still.
+            if *at != p {
+                *at = p;
+                *moved = self.passes;
+            }
+        }
+        false
+    }
+
+    /// Whether a verdict given at pass `given` on edge `[a, b]` still holds.
+    fn holds(&self, given: u32, [a, b]: [u32; 2]) -> bool {
+        let moved = |v: u32| self.moved_at.get(v as usize).copied().unwrap_or(u32::MAX);
+        given > 0 && given >= moved(a) && given >= moved(b)
+    }
 }
 
 /// How much a step took from [`Reuse`] (for the metrics).
@@ -60,38 +97,37 @@ impl Reuse {
         }
     }
 
-    /// Starts a quality check of `edges` on the vertices at `positions`: notes the vertices
-    /// that moved since the last check (every one when the edges or the vertex count
-    /// changed, which also forgets every verdict).
+    /// Starts a quality check of `edges` on the vertices at `positions` (see [`Moves`]):
+    /// the check then reads every edge's verdict ([`Self::crossing`]) and gives one to
+    /// those without ([`Self::set_crossing`]).
     pub fn begin_check(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
-        self.checks += 1;
-        if self.checked_edges != edges || self.checked_at.len() != positions.len() {
-            self.checked_edges = edges.to_vec();
+        if self.checks.begin(positions, edges) {
             self.crossing = vec![(0, false); edges.len()];
-            self.checked_at = positions.to_vec();
-            self.moved_at = vec![self.checks; positions.len()];
-            return;
-        }
-        for ((at, moved), &p) in self.checked_at.iter_mut().zip(&mut self.moved_at).zip(positions) {
-            // `!=`, not a distance: a NaN position, never equal to itself, never stands still.
-            if *at != p {
-                *at = p;
-                *moved = self.checks;
-            }
         }
     }
 
     /// Whether edge `[a, b]` (edge `e` of this check's edges) meets the body, if it was
     /// tested by a check since which neither end moved.
-    pub fn crossing(&self, e: usize, [a, b]: [u32; 2]) -> Option<bool> {
+    pub fn crossing(&self, e: usize, ends: [u32; 2]) -> Option<bool> {
         let &(tested, hit) = self.crossing.get(e)?;
-        let moved = |v: u32| self.moved_at.get(v as usize).copied().unwrap_or(u32::MAX);
-        (tested > 0 && tested >= moved(a) && tested >= moved(b)).then_some(hit)
+        self.checks.holds(tested, ends).then_some(hit)
     }
 
-    /// Whether the first edge round found edge `e` clear of the body at these ends.
-    pub fn clear_in_round(&self, e: usize, ends: [DVec3; 2]) -> bool {
-        matches!(self.clear_in_round.get(e), Some(Some(at)) if *at == ends)
+    /// Starts a first edge round over `edges` on the vertices at `positions` (see
+    /// [`Moves`]): the round then reads every edge's verdict ([`Self::clear_in_round`])
+    /// and gives one to every edge without ([`Self::set_round`]).
+    pub fn begin_round(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
+        if self.rounds.begin(positions, edges) {
+            self.clear_in_round = vec![0; edges.len()];
+        }
+    }
+
+    /// Whether a first edge round since which neither end of edge `[a, b]` (edge `e` of
+    /// this round's edges) moved found it clear of the body.
+    pub fn clear_in_round(&self, e: usize, ends: [u32; 2]) -> bool {
+        self.clear_in_round
+            .get(e)
+            .is_some_and(|&given| self.rounds.holds(given, ends))
     }
 
     /// Remembers the distance of vertex `v` at `p`.
@@ -104,17 +140,18 @@ impl Reuse {
 
     /// Remembers whether edge `e` meets the body, tested by this check.
     pub fn set_crossing(&mut self, e: usize, hit: bool) {
+        let check = self.checks.passes;
         if let Some(slot) = self.crossing.get_mut(e) {
-            *slot = (self.checks, hit);
+            *slot = (check, hit);
         }
     }
 
-    /// Remembers the first edge round's verdict on edge `e` at `ends`.
-    pub fn set_round(&mut self, edges: usize, e: usize, ends: [DVec3; 2], clear: bool) {
-        if self.clear_in_round.len() != edges {
-            self.clear_in_round = vec![None; edges];
+    /// Remembers whether this first edge round found edge `e` clear of the body.
+    pub fn set_round(&mut self, e: usize, clear: bool) {
+        let round = self.rounds.passes;
+        if let Some(slot) = self.clear_in_round.get_mut(e) {
+            *slot = if clear { round } else { 0 };
         }
-        self.clear_in_round[e] = clear.then_some(ends);
     }
 }
 
@@ -179,5 +216,45 @@ mod tests {
             }
         }
         assert!(taken > 2000 && tested > 500, "{taken} taken, {tested} tested");
+    }
+
+    /// The same for the first edge rounds' verdicts (clear, or none: a crossing edge is
+    /// tested again), given as a round gives them to every edge it does not keep.
+    #[test]
+    fn a_clear_round_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_found_clear_at() {
+        let mut rng = Lcg(11);
+        let spots = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE, DVec3::NAN];
+        let n = 12;
+        let mut edges: Vec<[u32; 2]> = (0..n as u32).map(|v| [v, (v + 1) % n as u32]).collect();
+        let mut positions: Vec<DVec3> = (0..n).map(|v| spots[v % 5]).collect();
+        let mut reuse = Reuse::default();
+        let mut record: Vec<Option<[DVec3; 2]>> = vec![None; edges.len()];
+        let (mut kept, mut given) = (0, 0);
+        for round in 0..400 {
+            if round == 200 {
+                edges = (0..n as u32).map(|v| [v, (v + 7) % n as u32]).collect();
+                record = vec![None; edges.len()];
+            }
+            for _ in 0..rng.below(4) {
+                let v = rng.below(n);
+                let choices = spots.len() - usize::from(rng.below(8) != 0);
+                positions[v] = spots[rng.below(choices)];
+            }
+            reuse.begin_round(&positions, &edges);
+            for (e, &[a, b]) in edges.iter().enumerate() {
+                let ends = [positions[a as usize], positions[b as usize]];
+                let want = record[e] == Some(ends);
+                assert_eq!(reuse.clear_in_round(e, [a, b]), want, "round {round}, edge {e}");
+                if want {
+                    kept += 1;
+                } else {
+                    let clear = rng.below(4) != 0;
+                    reuse.set_round(e, clear);
+                    record[e] = clear.then_some(ends);
+                    given += 1;
+                }
+            }
+        }
+        assert!(kept > 2000 && given > 500, "{kept} kept, {given} given");
     }
 }
