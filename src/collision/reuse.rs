@@ -173,38 +173,53 @@ mod tests {
         }
     }
 
-    /// Checks as the quality check makes them (every edge read; those without a verdict
-    /// tested and remembered) over random moves, some of them back to where a vertex
-    /// stood before, a NaN now and then, and a change of the edges: an edge's verdict is
-    /// taken exactly when its ends are those it was tested at, as a record of both ends'
-    /// positions written here says, and it is the verdict given then.
-    #[test]
-    fn a_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_tested_at() {
-        let mut rng = Lcg(7);
+    /// 400 passes over a ring of 12 vertices: before each, up to three vertices move to
+    /// one of five spots (so some go back to where they stood before) or, one time in
+    /// eight, to NaN; after 200, other edges. `pass(reuse, rng, edges, ends)` makes a
+    /// pass with each edge's ends, and is told (`ends` empty) when the edges change.
+    fn random_passes(seed: u64, mut pass: impl FnMut(&mut Reuse, &mut Lcg, &[[u32; 2]], &[[DVec3; 2]])) {
+        let mut rng = Lcg(seed);
         let spots = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE, DVec3::NAN];
         let n = 12;
         let mut edges: Vec<[u32; 2]> = (0..n as u32).map(|v| [v, (v + 1) % n as u32]).collect();
         let mut positions: Vec<DVec3> = (0..n).map(|v| spots[v % 5]).collect();
         let mut reuse = Reuse::default();
-        let mut record: Vec<Option<([DVec3; 2], bool)>> = vec![None; edges.len()];
-        let (mut taken, mut tested) = (0, 0);
-        for check in 0..400 {
-            if check == 200 {
-                // Other edges: nothing known of them.
+        for k in 0..400 {
+            if k == 200 {
                 edges = (0..n as u32).map(|v| [v, (v + 5) % n as u32]).collect();
-                record = vec![None; edges.len()];
+                pass(&mut reuse, &mut rng, &edges, &[]);
             }
             for _ in 0..rng.below(4) {
                 let v = rng.below(n);
-                // A NaN one time in eight.
                 let choices = spots.len() - usize::from(rng.below(8) != 0);
                 positions[v] = spots[rng.below(choices)];
             }
             reuse.begin_check(&positions, &edges);
-            for (e, &[a, b]) in edges.iter().enumerate() {
-                let ends = [positions[a as usize], positions[b as usize]];
+            reuse.begin_round(&positions, &edges);
+            let ends: Vec<[DVec3; 2]> = edges
+                .iter()
+                .map(|&[a, b]| [positions[a as usize], positions[b as usize]])
+                .collect();
+            pass(&mut reuse, &mut rng, &edges, &ends);
+        }
+    }
+
+    /// Checks as the quality check makes them (every edge read; those without a verdict
+    /// tested and remembered) over [`random_passes`]: an edge's verdict is taken exactly
+    /// when its ends are those it was tested at, as a record of both ends' positions
+    /// written here says, and it is the verdict given then.
+    #[test]
+    fn a_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_tested_at() {
+        let mut record: Vec<Option<([DVec3; 2], bool)>> = Vec::new();
+        let (mut taken, mut tested) = (0, 0);
+        random_passes(7, |reuse, rng, edges, ends| {
+            if ends.is_empty() || record.len() != edges.len() {
+                // Other edges: nothing known of them.
+                record = vec![None; edges.len()];
+            }
+            for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
                 let want = record[e].and_then(|(at, hit)| (at == ends).then_some(hit));
-                assert_eq!(reuse.crossing(e, [a, b]), want, "check {check}, edge {e}");
+                assert_eq!(reuse.crossing(e, edge), want, "edge {e}");
                 if want.is_some() {
                     taken += 1;
                 } else {
@@ -214,7 +229,7 @@ mod tests {
                     tested += 1;
                 }
             }
-        }
+        });
         assert!(taken > 2000 && tested > 500, "{taken} taken, {tested} tested");
     }
 
@@ -222,29 +237,15 @@ mod tests {
     /// tested again), given as a round gives them to every edge it does not keep.
     #[test]
     fn a_clear_round_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_found_clear_at() {
-        let mut rng = Lcg(11);
-        let spots = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE, DVec3::NAN];
-        let n = 12;
-        let mut edges: Vec<[u32; 2]> = (0..n as u32).map(|v| [v, (v + 1) % n as u32]).collect();
-        let mut positions: Vec<DVec3> = (0..n).map(|v| spots[v % 5]).collect();
-        let mut reuse = Reuse::default();
-        let mut record: Vec<Option<[DVec3; 2]>> = vec![None; edges.len()];
+        let mut record: Vec<Option<[DVec3; 2]>> = Vec::new();
         let (mut kept, mut given) = (0, 0);
-        for round in 0..400 {
-            if round == 200 {
-                edges = (0..n as u32).map(|v| [v, (v + 7) % n as u32]).collect();
+        random_passes(11, |reuse, rng, edges, ends| {
+            if ends.is_empty() || record.len() != edges.len() {
                 record = vec![None; edges.len()];
             }
-            for _ in 0..rng.below(4) {
-                let v = rng.below(n);
-                let choices = spots.len() - usize::from(rng.below(8) != 0);
-                positions[v] = spots[rng.below(choices)];
-            }
-            reuse.begin_round(&positions, &edges);
-            for (e, &[a, b]) in edges.iter().enumerate() {
-                let ends = [positions[a as usize], positions[b as usize]];
+            for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
                 let want = record[e] == Some(ends);
-                assert_eq!(reuse.clear_in_round(e, [a, b]), want, "round {round}, edge {e}");
+                assert_eq!(reuse.clear_in_round(e, edge), want, "edge {e}");
                 if want {
                     kept += 1;
                 } else {
@@ -254,7 +255,7 @@ mod tests {
                     given += 1;
                 }
             }
-        }
+        });
         assert!(kept > 2000 && given > 500, "{kept} kept, {given} given");
     }
 }
