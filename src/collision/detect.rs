@@ -381,10 +381,8 @@ pub fn detect(
         if !fresh {
             let m = &state.memo[v];
             let moved = p.distance(m.position);
-            let same_slice = m.slice == NO_SLICE || {
-                let now = ((p.y - index.slices.y0) / index.slices.dy.max(f64::MIN_POSITIVE)).round();
-                now >= 0.0 && now as usize == m.slice as usize
-            };
+            let same_slice =
+                m.slice == NO_SLICE || index.slices.nearest(p.y).is_some_and(|(k, _)| k == m.slice as usize);
             let safe = moved < m.clearance && m.partition as usize == partition && same_slice && m.method == method;
             let patch = garment.vertex_patches.get(v).is_some_and(|ps| {
                 !ps.is_empty()

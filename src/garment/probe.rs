@@ -123,12 +123,6 @@ impl BodyProbe {
             .map_or(f64::INFINITY, |n| n.signed(p))
     }
 
-    /// The ball [`Self::clear_near`] keeps about `p`, whose nearest point `found` is (for a
-    /// sample cleared before it is relaxed).
-    pub fn nearby(&self, p: DVec3, found: &Nearest, gap: f64) -> Nearby {
-        self.index.nearby(p, found, NEARBY_ROOM * gap)
-    }
-
     /// [`Self::clear`], each pass's nearest point found by `search`, given the point and,
     /// after the first pass, its distance from the skin point it was moved from (the body
     /// lies at least that near).

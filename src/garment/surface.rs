@@ -5,7 +5,6 @@
 
 use std::cell::RefCell;
 use std::collections::BTreeMap;
-use std::sync::Mutex;
 
 use glam::DVec3;
 
@@ -17,7 +16,7 @@ use super::probe::BodyProbe;
 use super::ring::GarmentRing;
 use crate::body::index::Nearest;
 use crate::body::nearby::Nearby;
-use crate::par::par_map_from;
+use crate::par::par_map_owned;
 
 /// A framework error: `what` is wrong with curve `curve`.
 pub fn missing(curve: &str, what: &str) -> FrameworkError {
@@ -178,24 +177,21 @@ impl<'a> Surfacer<'a> {
     pub fn finish(mut self) -> Surfaced {
         let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
         let patches = &self.patches;
-        // Each job takes its balls (a job runs once): no copy of them.
-        let balls: Vec<Mutex<Vec<Option<Nearby>>>> = self
-            .to_relax
-            .iter_mut()
-            .map(|(_, c)| Mutex::new(std::mem::take(&mut c.balls)))
-            .collect();
-        let jobs = &self.to_relax;
-        let relaxed = par_map_from(jobs.len(), 2, |k| {
-            let (i, cleared) = &jobs[k];
-            let mut grid = patches[*i].clone();
-            let mut found = cleared.found.clone();
-            let near = std::mem::take(&mut *balls[k].lock().unwrap_or_else(|e| e.into_inner()));
-            relax(&mut grid, &cleared.moved, &mut found, near, probe, gap, scale);
-            (grid, found)
+        // Each job owns its clearing (its balls are not copied).
+        let jobs = std::mem::take(&mut self.to_relax);
+        let relaxed = par_map_owned(jobs, 2, |(i, cleared)| {
+            let Cleared {
+                moved,
+                mut found,
+                balls,
+            } = cleared;
+            let mut grid = patches[i].clone();
+            relax(&mut grid, &moved, &mut found, balls, probe, gap, scale);
+            (i, grid, found)
         });
-        for ((i, _), (grid, found)) in self.to_relax.iter().zip(relaxed) {
-            self.measured.extend(sampled(*i, &found));
-            self.patches[*i] = grid;
+        for (i, grid, found) in relaxed {
+            self.measured.extend(sampled(i, &found));
+            self.patches[i] = grid;
         }
         Surfaced {
             patches: self.patches,
