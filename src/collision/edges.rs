@@ -67,11 +67,19 @@ struct Crossing {
     depth: f64,
 }
 
-/// The edge's deepest point inside the body, if it meets the body.
+/// The deepest point inside the body of an edge that passes through the body surface (as
+/// [`BodyIndex::segment_hits`] decides): where it goes in and out is found by casting rays
+/// along it both ways (the middle of the edge where a ray slips through a crack between
+/// triangles that the exact test does not let it through).
 fn crossing(index: &BodyIndex, ends: [u32; 2], pa: DVec3, pb: DVec3) -> Option<Crossing> {
     let reach = 0.2 * index.height;
-    let (t_in, _) = index.cast_ray(pa, pb - pa, 0.0, 1.0)?;
-    let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map_or(t_in, |(t, _)| 1.0 - t);
+    let t_in = index.cast_ray(pa, pb - pa, 0.0, 1.0).map(|(t, _)| t);
+    let t_out = index.cast_ray(pb, pa - pb, 0.0, 1.0).map(|(t, _)| 1.0 - t);
+    let (t_in, t_out) = match (t_in, t_out) {
+        (Some(a), b) => (a, b.unwrap_or(a)),
+        (None, Some(b)) => (b, b),
+        (None, None) => (0.5, 0.5),
+    };
     let t = 0.5 * (t_in + t_out.max(t_in));
     let mid = pa.lerp(pb, t);
     let near = index.nearest(mid, reach)?;
@@ -188,25 +196,35 @@ pub fn respond_edges(
     }
     for round in 1..=options.edge_rounds {
         let positions_now = &*positions;
-        let tested: Vec<Option<(Crossing, [Option<Way>; 2])>> = par_map(check.len(), |k| {
+        // Whether each edge passes through the surface, decided by the quality check's
+        // exact test (so that the check takes a first round's verdict at the same ends),
+        // and for those that do, how to lift them (boxed: few edges cross).
+        type Lift = Box<(Crossing, [Option<Way>; 2])>;
+        let tested: Vec<(bool, Option<Lift>)> = par_map(check.len(), |k| {
             let ends = edges[check[k]];
             let [pa, pb] = ends.map(|v| positions_now[v as usize]);
-            let c = crossing(index, ends, pa, pb)?;
-            let ways = [0, 1].map(|k| {
-                (!roles.is_pinned(ends[k]))
-                    .then(|| way(index, [pa, pb][k], c.out, ease))
-                    .flatten()
+            if !index.segment_hits(pa, pb) {
+                return (false, None);
+            }
+            let lift = crossing(index, ends, pa, pb).map(|c| {
+                let ways = [0, 1].map(|k| {
+                    (!roles.is_pinned(ends[k]))
+                        .then(|| way(index, [pa, pb][k], c.out, ease))
+                        .flatten()
+                });
+                Box::new((c, ways))
             });
-            Some((c, ways))
+            (true, lift)
         });
         if round == 1
             && let Some((r, _)) = &mut reuse
         {
-            for (&e, t) in check.iter().zip(&tested) {
-                r.set_round(e, t.is_none());
+            for (&e, (hit, _)) in check.iter().zip(&tested) {
+                r.set_round(e, !hit);
             }
         }
-        let crossings: Vec<(Crossing, [Option<Way>; 2])> = tested.into_iter().flatten().collect();
+        let crossings: Vec<(Crossing, [Option<Way>; 2])> =
+            tested.into_iter().filter_map(|(_, c)| c.map(|c| *c)).collect();
         found.push(crossings.len());
         if round == 1 {
             first = crossings.iter().map(|(c, _)| c.ends).collect();

@@ -267,6 +267,10 @@ pub fn collide(
     });
     timings.respond_edges += rounds_ms;
     responses.extend(edge_responses);
+    if options.full_quality {
+        // Nor what the edge rounds just found.
+        state.reuse.clear();
+    }
     let quality = timed(&mut timings.quality, || {
         quality_reusing(
             index,

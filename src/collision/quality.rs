@@ -289,7 +289,7 @@ fn measure(
     let known: Vec<Option<bool>> = match &mut reuse {
         Some((r, _)) => {
             r.begin_check(positions, edges);
-            (0..edges.len()).map(|e| r.crossing(e, edges[e])).collect()
+            (0..edges.len()).map(|e| r.check_verdict(e, edges[e])).collect()
         }
         None => vec![None; edges.len()],
     };
@@ -303,7 +303,7 @@ fn measure(
     if let Some((r, counts)) = &mut reuse {
         counts.quality_edges = known.iter().filter(|k| k.is_some()).count();
         for (e, hit) in hits.iter().enumerate() {
-            if known[e].is_none() {
+            if known[e].is_none() || r.crossing(e, edges[e]).is_none() {
                 r.set_crossing(e, *hit);
             }
         }

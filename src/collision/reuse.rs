@@ -104,6 +104,11 @@ impl Reuse {
         if self.checks.begin(positions, edges) {
             self.crossing = vec![(0, false); edges.len()];
         }
+        // The first edge rounds' moves, seen from here too: a round's verdict then holds
+        // for this check where neither end moved since ([`Self::clear_in_round`]).
+        if self.rounds.begin(positions, edges) {
+            self.clear_in_round = vec![0; edges.len()];
+        }
     }
 
     /// Whether edge `[a, b]` (edge `e` of this check's edges) meets the body, if it was
@@ -120,6 +125,14 @@ impl Reuse {
         if self.rounds.begin(positions, edges) {
             self.clear_in_round = vec![0; edges.len()];
         }
+    }
+
+    /// What a quality check knows of edge `[a, b]` (edge `e` of its edges): its own verdict
+    /// ([`Self::crossing`]), or else clear if a first edge round since which neither end
+    /// moved found it clear (the rounds decide with the check's test).
+    pub fn check_verdict(&self, e: usize, ends: [u32; 2]) -> Option<bool> {
+        self.crossing(e, ends)
+            .or_else(|| self.clear_in_round(e, ends).then_some(false))
     }
 
     /// Whether a first edge round since which neither end of edge `[a, b]` (edge `e` of
@@ -175,9 +188,10 @@ mod tests {
 
     /// 400 passes over a ring of 12 vertices: before each, up to three vertices move to
     /// one of five spots (so some go back to where they stood before) or, one time in
-    /// eight, to NaN; after 200, other edges. `pass(reuse, rng, edges, ends)` makes a
-    /// pass with each edge's ends, and is told (`ends` empty) when the edges change.
-    fn random_passes(seed: u64, mut pass: impl FnMut(&mut Reuse, &mut Lcg, &[[u32; 2]], &[[DVec3; 2]])) {
+    /// eight, to NaN; after 200, other edges. `pass(reuse, rng, edges, positions, ends)`
+    /// makes a pass with each edge's ends, and is told (`ends` empty) when the edges change.
+    #[allow(clippy::type_complexity)]
+    fn random_passes(seed: u64, mut pass: impl FnMut(&mut Reuse, &mut Lcg, &[[u32; 2]], &[DVec3], &[[DVec3; 2]])) {
         let mut rng = Lcg(seed);
         let spots = [DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z, DVec3::ONE, DVec3::NAN];
         let n = 12;
@@ -187,20 +201,18 @@ mod tests {
         for k in 0..400 {
             if k == 200 {
                 edges = (0..n as u32).map(|v| [v, (v + 5) % n as u32]).collect();
-                pass(&mut reuse, &mut rng, &edges, &[]);
+                pass(&mut reuse, &mut rng, &edges, &positions, &[]);
             }
             for _ in 0..rng.below(4) {
                 let v = rng.below(n);
                 let choices = spots.len() - usize::from(rng.below(8) != 0);
                 positions[v] = spots[rng.below(choices)];
             }
-            reuse.begin_check(&positions, &edges);
-            reuse.begin_round(&positions, &edges);
             let ends: Vec<[DVec3; 2]> = edges
                 .iter()
                 .map(|&[a, b]| [positions[a as usize], positions[b as usize]])
                 .collect();
-            pass(&mut reuse, &mut rng, &edges, &ends);
+            pass(&mut reuse, &mut rng, &edges, &positions, &ends);
         }
     }
 
@@ -212,7 +224,8 @@ mod tests {
     fn a_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_tested_at() {
         let mut record: Vec<Option<([DVec3; 2], bool)>> = Vec::new();
         let (mut taken, mut tested) = (0, 0);
-        random_passes(7, |reuse, rng, edges, ends| {
+        random_passes(7, |reuse, rng, edges, positions, ends| {
+            reuse.begin_check(positions, edges);
             if ends.is_empty() || record.len() != edges.len() {
                 // Other edges: nothing known of them.
                 record = vec![None; edges.len()];
@@ -239,7 +252,8 @@ mod tests {
     fn a_clear_round_verdict_is_taken_exactly_when_the_edges_ends_are_those_it_was_found_clear_at() {
         let mut record: Vec<Option<[DVec3; 2]>> = Vec::new();
         let (mut kept, mut given) = (0, 0);
-        random_passes(11, |reuse, rng, edges, ends| {
+        random_passes(11, |reuse, rng, edges, positions, ends| {
+            reuse.begin_round(positions, edges);
             if ends.is_empty() || record.len() != edges.len() {
                 record = vec![None; edges.len()];
             }
@@ -257,5 +271,59 @@ mod tests {
             }
         });
         assert!(kept > 2000 && given > 500, "{kept} kept, {given} given");
+    }
+    /// First edge rounds and quality checks taking turns over [`random_passes`], as a
+    /// step makes them (vertices move between a round and the check after it): the check
+    /// takes its own verdict where the ends are those it tested at, else clear where they
+    /// are those a round found clear at, else none, as records of both ends' positions
+    /// written here say; and it remembers what it takes from a round as its own.
+    #[test]
+    fn a_check_takes_a_rounds_clear_verdict_exactly_where_the_ends_did_not_move_since() {
+        let mut checked: Vec<Option<([DVec3; 2], bool)>> = Vec::new();
+        let mut cleared: Vec<Option<[DVec3; 2]>> = Vec::new();
+        let (mut round, mut from_round, mut tested) = (false, 0, 0);
+        random_passes(13, |reuse, rng, edges, positions, ends| {
+            if ends.is_empty() || checked.len() != edges.len() {
+                checked = vec![None; edges.len()];
+                cleared = vec![None; edges.len()];
+            }
+            round = !round;
+            if round {
+                reuse.begin_round(positions, edges);
+                for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
+                    if !reuse.clear_in_round(e, edge) {
+                        let clear = rng.below(4) != 0;
+                        reuse.set_round(e, clear);
+                        cleared[e] = clear.then_some(ends);
+                    }
+                }
+                return;
+            }
+            reuse.begin_check(positions, edges);
+            for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
+                let own = checked[e].and_then(|(at, hit)| (at == ends).then_some(hit));
+                let want = own.or((cleared[e] == Some(ends)).then_some(false));
+                assert_eq!(reuse.check_verdict(e, edge), want, "edge {e}");
+                match want {
+                    Some(hit) => {
+                        from_round += usize::from(own.is_none());
+                        if own.is_none() {
+                            reuse.set_crossing(e, hit);
+                            checked[e] = Some((ends, hit));
+                        }
+                    }
+                    None => {
+                        let hit = rng.below(2) == 1;
+                        reuse.set_crossing(e, hit);
+                        checked[e] = Some((ends, hit));
+                        tested += 1;
+                    }
+                }
+            }
+        });
+        assert!(
+            from_round > 100 && tested > 300,
+            "{from_round} from a round, {tested} tested"
+        );
     }
 }
