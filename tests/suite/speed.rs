@@ -294,14 +294,17 @@ fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_bru
 }
 
 /// On every shipped body, the jumpsuit's M0 moved onto it and perturbed (up to 3 cm each
-/// way): the edge rounds give the same lifts, rounds and positions, bit for bit, whether the
-/// first round casts a ray along every edge or skips those the measured distances of their
-/// ends show clear; and a brute-force ray test over every shell triangle finds none of the
-/// skipped edges meeting the body.
+/// way; 30 edges made to touch the skin at an end and stand off it): the edge rounds give the same lifts, rounds and positions, bit for bit, whether the
+/// first round tests every edge or skips those the measured distances of their ends show
+/// clear; a brute-force ray test over every shell triangle finds none of the skipped edges
+/// meeting the body; and the first round's crossing edges are exactly those that pass
+/// through some shell triangle by the exact segment test, tried on every one (the quality
+/// check's crossing edges, whose verdicts the check takes from the round).
 #[test]
 fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
     use drape::collision::quality::measure_vertices;
     use drape::collision::{KnownClearance, ResponseOptions, VertexRoles, respond_edges, response_ease};
+    use drape::geom::predicates::segment_crosses_triangle;
     let jumpsuit = &real_jumpsuit().m0;
     let edges = &jumpsuit.edges;
     let mut rng = Lcg(11);
@@ -314,12 +317,21 @@ fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
             triangles: jumpsuit.mesh.triangles.clone(),
         };
         let normals = garment.vertex_normals();
-        let positions: Vec<DVec3> = garment
+        let mut positions: Vec<DVec3> = garment
             .positions
             .iter()
             .zip(&normals)
             .map(|(p, n)| *p + *n * (rng.next() * 0.06 - 0.03))
             .collect();
+        // Edges that touch the skin at an end and stand off it along the body's normal
+        // there: their far end on a body vertex, exactly. They do not pass through it.
+        let body_normals = shell.vertex_normals();
+        for k in 0..30 {
+            let [a, b] = edges[k * edges.len() / 30];
+            let v = shell.triangles[k * shell.triangles.len() / 30][0] as usize;
+            positions[b as usize] = shell.positions[v];
+            positions[a as usize] = shell.positions[v] + body_normals[v] * 0.01;
+        }
         let partition: Vec<usize> = positions.iter().map(|p| index.partition_at(p.y).unwrap_or(0)).collect();
         let (boundary, rings) = (vec![false; positions.len()], vec![None; positions.len()]);
         let roles = VertexRoles {
@@ -388,6 +400,31 @@ fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
                 "{name}: edge {a}-{b} meets the body at {hit:?}"
             );
         }
+        let corners: Vec<[DVec3; 3]> = shell
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| shell.positions[v as usize]))
+            .collect();
+        let boxes: Vec<[DVec3; 2]> = corners
+            .iter()
+            .map(|[p, q, r]| [p.min(*q).min(*r), p.max(*q).max(*r)])
+            .collect();
+        let mut through: Vec<[u32; 2]> = edges
+            .iter()
+            .copied()
+            .filter(|&[a, b]| {
+                let (pa, pb) = (positions[a as usize], positions[b as usize]);
+                let [lo, hi] = [pa.min(pb), pa.max(pb)];
+                corners.iter().zip(&boxes).any(|(c, [tlo, thi])| {
+                    lo.cmple(*thi).all() && hi.cmpge(*tlo).all() && segment_crosses_triangle(pa, pb, *c)
+                })
+            })
+            .collect();
+        let mut first = every.2.clone();
+        through.sort_unstable();
+        first.sort_unstable();
+        assert!(through.len() > 10, "{name}: {} edges through the skin", through.len());
+        assert_eq!(first, through, "{name}: the first round's crossing edges");
     }
 }
 
