@@ -35,7 +35,7 @@ use crate::par::par_map;
 /// `free[v]` (m) from the body surface (zero where not known). An edge both of whose ends
 /// still stand there, and whose ends' free balls overlap along it (`free[a] + free[b]` more
 /// than its length, by a margin for the ray test's rounding), has no point on the surface:
-/// the first edge round does not cast its ray.
+/// the first edge round does not test it.
 #[derive(Clone, Copy, Debug)]
 pub struct KnownClearance<'a> {
     /// Where each vertex stood when measured, m.

@@ -241,7 +241,7 @@ pub fn collide(
         state.reuse.clear();
     }
     // Every vertex's distance after the vertex response (those not known from earlier
-    // steps): the edge rounds cast no ray along an edge its ends' distances show clear, and
+    // steps): the edge rounds test no edge its ends' distances show clear, and
     // the quality check takes the distances of the vertices the rounds leave in place.
     let measured = timed(&mut timings.respond_edges, || {
         quality::measure_vertices(index, &positions, Some(&state.reuse))
