@@ -172,7 +172,7 @@ pub fn respond_edges(
     // crossed).
     let mut check: Vec<usize> = match &mut reuse {
         Some((r, _)) => {
-            r.begin_round(positions, edges);
+            r.begin_pass(positions, edges);
             (0..edges.len()).filter(|&e| !r.clear_in_round(e, edges[e])).collect()
         }
         None => (0..edges.len()).collect(),
@@ -181,7 +181,7 @@ pub fn respond_edges(
         // A ray test rounds at about 1e-16 of the body's size; a millionth of the body
         // (about 2 um) keeps every edge the rounded test could call crossing. An edge its
         // ends' distances show clear is remembered as clear, as the test would find it: the
-        // round gives or keeps a verdict for every edge (see `Reuse::begin_round`).
+        // round gives or keeps a verdict for every edge (see `Reuse::begin_pass`).
         let margin = 1e-6 * index.height;
         check.retain(|&e| {
             let covered = k.covers(edges[e], ends_at(positions, e), margin);

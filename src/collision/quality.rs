@@ -288,7 +288,7 @@ fn measure(
     let ends_at = |e: usize| edges[e].map(|v| positions[v as usize]);
     let known: Vec<Option<bool>> = match &mut reuse {
         Some((r, _)) => {
-            r.begin_check(positions, edges);
+            r.begin_pass(positions, edges);
             (0..edges.len()).map(|e| r.check_verdict(e, edges[e])).collect()
         }
         None => vec![None; edges.len()],
@@ -302,10 +302,10 @@ fn measure(
     });
     if let Some((r, counts)) = &mut reuse {
         counts.quality_edges = known.iter().filter(|k| k.is_some()).count();
+        // Every edge gets this check's verdict: those it took still stand at the ends
+        // they were given at, and those from a round become the check's own.
         for (e, hit) in hits.iter().enumerate() {
-            if known[e].is_none() || r.crossing(e, edges[e]).is_none() {
-                r.set_crossing(e, *hit);
-            }
+            r.set_crossing(e, *hit);
         }
     }
     for (e, hit) in hits.into_iter().enumerate() {

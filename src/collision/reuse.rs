@@ -1,7 +1,8 @@
 //! What a collision remembers between steps so that it measures only what a step could
 //! have changed: the signed distance of each vertex where the quality check last measured
 //! it, and for each edge whether it crossed the body at the ends it had when last tested
-//! (by the quality check, and by the first edge round, whose tests differ).
+//! (by the quality check, or found clear by the first edge round, which decides with the
+//! check's test).
 //!
 //! A remembered answer is used only where the positions are the same, bit for bit: a
 //! distance and a crossing depend on nothing else (the body is fixed for a session), so
@@ -18,23 +19,22 @@ use super::quality::VertexDistance;
 pub struct Reuse {
     /// Per vertex: where its distance was measured, and the distance.
     distance: Vec<Option<(DVec3, VertexDistance)>>,
-    /// Per edge: the quality check that last tested it (see [`Moves`]; 0: none), and
-    /// whether it met the body then.
+    /// Per edge: the pass of the quality check that last tested it (see [`Moves`]; 0:
+    /// none), and whether it met the body then.
     crossing: Vec<(u32, bool)>,
-    /// The quality checks' vertex moves.
-    checks: Moves,
-    /// Per edge: the first edge round that last found it clear (0: none, or it crossed).
+    /// Per edge: the pass of the first edge round that last found it clear (0: none, or
+    /// it crossed).
     clear_in_round: Vec<u32>,
-    /// The first edge rounds' vertex moves.
-    rounds: Moves,
+    /// The vertex moves between passes, checks and rounds alike.
+    moves: Moves,
 }
 
-/// The passes over a garment's edges that remember a verdict per edge (the quality checks,
-/// the first edge rounds), numbered from 1, and per vertex where it stood at the last pass
-/// and the pass at which it last stood somewhere else than at the one before. An edge's
-/// verdict holds while neither end has moved since the pass that gave it, which is when
-/// its ends are those it was given at, provided every pass gives or keeps a verdict for
-/// every edge: a few bytes an edge instead of both ends' positions.
+/// The passes over a garment's edges that remember a verdict per edge (the quality checks
+/// and the first edge rounds, in one sequence), numbered from 1, and per vertex where it
+/// stood at the last pass and the pass at which it last stood somewhere else than at the
+/// one before. An edge's verdict holds while neither end has moved since the pass that gave
+/// it, which is exactly when its ends are those it was given at: a few bytes an edge
+/// instead of both ends' positions.
 #[derive(Clone, Debug, Default, PartialEq)]
 struct Moves {
     passes: u32,
@@ -97,16 +97,13 @@ impl Reuse {
         }
     }
 
-    /// Starts a quality check of `edges` on the vertices at `positions` (see [`Moves`]):
-    /// the check then reads every edge's verdict ([`Self::crossing`]) and gives one to
-    /// those without ([`Self::set_crossing`]).
-    pub fn begin_check(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
-        if self.checks.begin(positions, edges) {
+    /// Starts a pass over `edges` on the vertices at `positions` (see [`Moves`]): a quality
+    /// check then reads its verdicts ([`Self::check_verdict`]) and gives one to every edge
+    /// ([`Self::set_crossing`]); a first edge round reads [`Self::clear_in_round`] and
+    /// gives [`Self::set_round`]. A change of the edges forgets every verdict.
+    pub fn begin_pass(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
+        if self.moves.begin(positions, edges) {
             self.crossing = vec![(0, false); edges.len()];
-        }
-        // The first edge rounds' moves, seen from here too: a round's verdict then holds
-        // for this check where neither end moved since ([`Self::clear_in_round`]).
-        if self.rounds.begin(positions, edges) {
             self.clear_in_round = vec![0; edges.len()];
         }
     }
@@ -115,16 +112,7 @@ impl Reuse {
     /// tested by a check since which neither end moved.
     pub fn crossing(&self, e: usize, ends: [u32; 2]) -> Option<bool> {
         let &(tested, hit) = self.crossing.get(e)?;
-        self.checks.holds(tested, ends).then_some(hit)
-    }
-
-    /// Starts a first edge round over `edges` on the vertices at `positions` (see
-    /// [`Moves`]): the round then reads every edge's verdict ([`Self::clear_in_round`])
-    /// and gives one to every edge without ([`Self::set_round`]).
-    pub fn begin_round(&mut self, positions: &[DVec3], edges: &[[u32; 2]]) {
-        if self.rounds.begin(positions, edges) {
-            self.clear_in_round = vec![0; edges.len()];
-        }
+        self.moves.holds(tested, ends).then_some(hit)
     }
 
     /// What a quality check knows of edge `[a, b]` (edge `e` of its edges): its own verdict
@@ -140,7 +128,7 @@ impl Reuse {
     pub fn clear_in_round(&self, e: usize, ends: [u32; 2]) -> bool {
         self.clear_in_round
             .get(e)
-            .is_some_and(|&given| self.rounds.holds(given, ends))
+            .is_some_and(|&given| self.moves.holds(given, ends))
     }
 
     /// Remembers the distance of vertex `v` at `p`.
@@ -151,9 +139,9 @@ impl Reuse {
         self.distance[v] = Some((p, s));
     }
 
-    /// Remembers whether edge `e` meets the body, tested by this check.
+    /// Remembers whether edge `e` meets the body at this check's pass.
     pub fn set_crossing(&mut self, e: usize, hit: bool) {
-        let check = self.checks.passes;
+        let check = self.moves.passes;
         if let Some(slot) = self.crossing.get_mut(e) {
             *slot = (check, hit);
         }
@@ -161,7 +149,7 @@ impl Reuse {
 
     /// Remembers whether this first edge round found edge `e` clear of the body.
     pub fn set_round(&mut self, e: usize, clear: bool) {
-        let round = self.rounds.passes;
+        let round = self.moves.passes;
         if let Some(slot) = self.clear_in_round.get_mut(e) {
             *slot = if clear { round } else { 0 };
         }
@@ -225,7 +213,7 @@ mod tests {
         let mut record: Vec<Option<([DVec3; 2], bool)>> = Vec::new();
         let (mut taken, mut tested) = (0, 0);
         random_passes(7, |reuse, rng, edges, positions, ends| {
-            reuse.begin_check(positions, edges);
+            reuse.begin_pass(positions, edges);
             if ends.is_empty() || record.len() != edges.len() {
                 // Other edges: nothing known of them.
                 record = vec![None; edges.len()];
@@ -253,7 +241,7 @@ mod tests {
         let mut record: Vec<Option<[DVec3; 2]>> = Vec::new();
         let (mut kept, mut given) = (0, 0);
         random_passes(11, |reuse, rng, edges, positions, ends| {
-            reuse.begin_round(positions, edges);
+            reuse.begin_pass(positions, edges);
             if ends.is_empty() || record.len() != edges.len() {
                 record = vec![None; edges.len()];
             }
@@ -273,10 +261,11 @@ mod tests {
         assert!(kept > 2000 && given > 500, "{kept} kept, {given} given");
     }
     /// First edge rounds and quality checks taking turns over [`random_passes`], as a
-    /// step makes them (vertices move between a round and the check after it): the check
-    /// takes its own verdict where the ends are those it tested at, else clear where they
-    /// are those a round found clear at, else none, as records of both ends' positions
-    /// written here say; and it remembers what it takes from a round as its own.
+    /// step makes them (vertices move between a round and the check after it), in one
+    /// sequence of passes: the check takes its own verdict where the ends stood where it
+    /// tested them at every pass since, else clear where they stood where a round found
+    /// them clear, else none, as records of both ends' positions written here say; and it
+    /// remembers what it takes from a round as its own.
     #[test]
     fn a_check_takes_a_rounds_clear_verdict_exactly_where_the_ends_did_not_move_since() {
         let mut checked: Vec<Option<([DVec3; 2], bool)>> = Vec::new();
@@ -288,8 +277,17 @@ mod tests {
                 cleared = vec![None; edges.len()];
             }
             round = !round;
+            reuse.begin_pass(positions, edges);
+            // A verdict holds while its ends stand where they were at every pass since.
+            for (e, ends) in ends.iter().enumerate() {
+                if checked[e].is_some_and(|(at, _)| at != *ends) {
+                    checked[e] = None;
+                }
+                if cleared[e].is_some_and(|at| at != *ends) {
+                    cleared[e] = None;
+                }
+            }
             if round {
-                reuse.begin_round(positions, edges);
                 for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
                     if !reuse.clear_in_round(e, edge) {
                         let clear = rng.below(4) != 0;
@@ -299,7 +297,6 @@ mod tests {
                 }
                 return;
             }
-            reuse.begin_check(positions, edges);
             for (e, (&edge, &ends)) in edges.iter().zip(ends).enumerate() {
                 let own = checked[e].and_then(|(at, hit)| (at == ends).then_some(hit));
                 let want = own.or((cleared[e] == Some(ends)).then_some(false));
