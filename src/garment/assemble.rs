@@ -35,11 +35,11 @@ pub struct Assembled {
 }
 
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
-/// whose curves did not change are taken from it.
+/// whose sides did not change are taken from it.
 pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>) -> Result<Assembled, FrameworkError> {
     let spec = template::of(fw.template);
     let lines = spec.lines(fw, probe)?;
-    let mut s = Surfacer::new(fw, &lines, probe, previous);
+    let mut s = Surfacer::new(fw, probe, previous);
     spec.patches(&mut s, &lines)?;
     let Surfaced {
         patches,

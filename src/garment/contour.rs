@@ -70,22 +70,34 @@ impl Contour {
         let knots = self.spline.knots();
         let (a, b) = (knots[k], knots[k + 1]);
         let n = n.max(1);
-        (0..=n)
+        let raw: Vec<DVec3> = (0..=n)
             .map(|s| match s {
                 0 => self.points[k],
                 s if s == n => self.points[k + 1],
-                s => {
-                    let p = self.spline.sample(a + (b - a) * s as f64 / n as f64);
-                    clearance.map_or(p, |(probe, gap)| probe.clear(p, gap))
-                }
+                s => self.spline.sample(a + (b - a) * s as f64 / n as f64),
             })
-            .collect()
+            .collect();
+        match clearance {
+            Some((probe, gap)) => clear_inner(&raw, probe, gap),
+            None => raw,
+        }
     }
 
     /// Dense samples for display (16 per span), m.
     pub fn polyline(&self) -> Vec<DVec3> {
         self.spline.subdivide(16, false)
     }
+}
+
+/// `samples` with the inner ones (all but the ends) pushed out to stand `gap` (m) off the
+/// body.
+pub fn clear_inner(samples: &[DVec3], probe: &BodyProbe, gap: f64) -> Vec<DVec3> {
+    let last = samples.len().saturating_sub(1);
+    samples
+        .iter()
+        .enumerate()
+        .map(|(s, &p)| if s == 0 || s == last { p } else { probe.clear(p, gap) })
+        .collect()
 }
 
 /// A short feature line between two control points that no section gives (a shoulder

@@ -102,6 +102,21 @@ impl PatchGrid {
         })
     }
 
+    /// Whether its boundary is `[bottom, top, left, right]` (as given to [`Self::coons`]).
+    pub fn sides_are(&self, [bottom, top, left, right]: [&[DVec3]; 4]) -> bool {
+        let w = self.nu + 1;
+        let row = |j: usize| &self.points[j * w..(j + 1) * w];
+        let column = |i: usize| (0..=self.nv).map(move |j| self.points[j * w + i]);
+        bottom.len() == w
+            && top.len() == w
+            && left.len() == self.nv + 1
+            && right.len() == self.nv + 1
+            && row(0) == bottom
+            && row(self.nv) == top
+            && column(0).eq(left.iter().copied())
+            && column(self.nu).eq(right.iter().copied())
+    }
+
     /// Records the curves the boundary comes from.
     pub fn with_curves(mut self, curves: Vec<CurveRef>) -> Self {
         self.curves = curves;

@@ -8,7 +8,7 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::contour::Contour;
+use super::contour::{Contour, clear_inner};
 use super::m0::{CurveRef, PatchGrid};
 use super::model::{FeatureLine, Framework, FrameworkError, Layout};
 use super::open_curve::OpenCurve;
@@ -106,8 +106,7 @@ pub struct Surfacer<'a> {
     fw: &'a Framework,
     probe: &'a BodyProbe,
     layout: &'a Layout,
-    previous: Option<(&'a Framework, BTreeMap<String, Vec<DVec3>>)>,
-    shapes: BTreeMap<String, Vec<DVec3>>,
+    previous: Option<&'a Framework>,
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
     /// Patches surfaced anew whose interior the clearing moved: (index, the clearing of
@@ -122,8 +121,17 @@ pub struct Surfacer<'a> {
 
 /// Cleared contour spans by (contour, span from its control point `k`, segments): the
 /// spans a framework's patches were surfaced from, kept with it so that the next assembly
-/// takes those of the contours that did not change instead of clearing them again.
-pub type Spans = BTreeMap<(String, usize, usize), Vec<DVec3>>;
+/// takes those whose samples did not change instead of clearing them again.
+pub type Spans = BTreeMap<(String, usize, usize), Span>;
+
+/// A contour span's samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Span {
+    /// On the contour, m.
+    pub raw: Vec<DVec3>,
+    /// Inner samples cleared off the body, m.
+    pub cleared: Vec<DVec3>,
+}
 
 /// What a [`Surfacer`] made.
 pub struct Surfaced {
@@ -140,20 +148,14 @@ pub struct Surfaced {
 }
 
 impl<'a> Surfacer<'a> {
-    /// Surfaces `fw` (with its `lines`); with `previous`, patches none of whose curves
-    /// changed are taken from it.
-    pub fn new(
-        fw: &'a Framework,
-        lines: &[FeatureLine],
-        probe: &'a BodyProbe,
-        previous: Option<&'a Framework>,
-    ) -> Self {
+    /// Surfaces `fw`; with `previous`, patches and spans whose samples did not change are
+    /// taken from it.
+    pub fn new(fw: &'a Framework, probe: &'a BodyProbe, previous: Option<&'a Framework>) -> Self {
         Self {
             fw,
             probe,
             layout: &fw.layout,
-            previous: previous.map(|p| (p, curve_shapes(p, &p.lines))),
-            shapes: curve_shapes(fw, lines),
+            previous,
             patches: Vec::new(),
             resurfaced: Vec::new(),
             to_relax: Vec::new(),
@@ -205,24 +207,29 @@ impl<'a> Surfacer<'a> {
     /// samples cleared off the body.
     ///
     /// A span is cleared once an assembly (it bounds two patches), and taken from the
-    /// previous framework when the contour's shape and the clearance are the same: the same
-    /// samples, as clearing depends on nothing else.
+    /// previous framework when its samples before clearing and the clearance are the same:
+    /// the same cleared samples, as clearing depends on nothing else.
     pub fn span(&self, name: &str, from: &str, n: usize) -> Result<Vec<DVec3>, FrameworkError> {
         let c = contour(self.fw, name)?;
         let key = (name.to_string(), through_at(c, from)?, n);
         if let Some(span) = self.spans.borrow().get(&key) {
-            return Ok(span.clone());
+            return Ok(span.cleared.clone());
         }
-        let kept = self.previous.as_ref().and_then(|(old, shapes)| {
-            let same = old.layout.clearance == self.layout.clearance && shapes.get(name) == self.shapes.get(name);
-            same.then(|| old.spans.get(&key)).flatten()
+        let raw = c.span(key.1, n, None);
+        let kept = self.previous.and_then(|old| {
+            let same = old.layout.clearance == self.layout.clearance;
+            same.then(|| old.spans.get(&key)).flatten().filter(|s| s.raw == raw)
         });
         let span = match kept {
             Some(span) => span.clone(),
-            None => c.span(key.1, n, Some((self.probe, self.layout.clearance))),
+            None => Span {
+                cleared: clear_inner(&raw, self.probe, self.layout.clearance),
+                raw,
+            },
         };
-        self.spans.borrow_mut().insert(key, span.clone());
-        Ok(span)
+        let cleared = span.cleared.clone();
+        self.spans.borrow_mut().insert(key, span);
+        Ok(cleared)
     }
 
     /// The control points of contour `name` that shape its span from ring `from`.
@@ -236,14 +243,18 @@ impl<'a> Surfacer<'a> {
         })
     }
 
-    /// Surfaces one patch, or keeps the previous one when none of its curves changed.
+    /// Surfaces one patch, or keeps the previous one when its four sides and the clearance
+    /// are the same: a patch is the Coons blend of its sides, cleared and relaxed against
+    /// the same body, so it depends on nothing else.
     pub fn patch(&mut self, name: &str, sides: [&[DVec3]; 4], curves: Vec<CurveRef>) -> Result<(), FrameworkError> {
-        if let Some((old, shapes)) = &self.previous {
-            let same = curves.iter().all(|c| shapes.get(&c.curve) == self.shapes.get(&c.curve));
-            if same && let Some(p) = old.patches.iter().find(|p| p.name == name) {
-                self.patches.push(p.clone());
-                return Ok(());
-            }
+        if let Some(old) = self.previous
+            && old.layout.clearance == self.layout.clearance
+            && let Some(p) = old.patches.iter().find(|p| p.name == name)
+            && p.curves == curves
+            && p.sides_are(sides)
+        {
+            self.patches.push(p.clone());
+            return Ok(());
         }
         let mut grid = PatchGrid::coons(name, sides, 1e-9 * self.layout.height)?.with_curves(curves);
         // The blend of four boundaries that stand off the body can still dip into it where
@@ -259,34 +270,6 @@ impl<'a> Surfacer<'a> {
         self.resurfaced.push(name.to_string());
         Ok(())
     }
-}
-
-/// Every curve's shape by name: rings and open curves (control points), contours (points
-/// and end tangents), lines (samples). Two frameworks whose curve has the same shape
-/// give that curve the same samples.
-pub fn curve_shapes(fw: &Framework, lines: &[FeatureLine]) -> BTreeMap<String, Vec<DVec3>> {
-    let mut out = BTreeMap::new();
-    for r in &fw.rings {
-        out.insert(r.name.clone(), r.stages.control.clone());
-    }
-    for c in &fw.open_curves {
-        out.insert(c.name.clone(), c.stages.control.clone());
-    }
-    for c in &fw.contours {
-        let mut key = c.points.clone();
-        key.extend([c.tangents[0], c.tangents[1]].map(|t| t.unwrap_or(DVec3::splat(f64::NAN))));
-        // NaN != NaN would call every natural end changed: use a sentinel instead.
-        for p in &mut key {
-            if p.is_nan() {
-                *p = DVec3::splat(f64::MAX);
-            }
-        }
-        out.insert(c.name.clone(), key);
-    }
-    for l in lines {
-        out.insert(l.name.clone(), l.points.clone());
-    }
-    out
 }
 
 /// The samples of patch `patch` whose nearest body point `found` holds: (patch, sample,
