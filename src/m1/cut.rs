@@ -276,6 +276,18 @@ fn store_point(m1: &M1, m0: &[[u32; 3]], positions: &[DVec3], p: &CutPoint) -> O
     })
 }
 
+/// Whether `m1` flipped M0's edge `edge` between `faces` (so that its edge `DE` joins the
+/// faces' centroids).
+fn flipped_in(m1: Option<&M1>, faces: [u32; 2], edge: [u32; 2]) -> bool {
+    m1.is_some_and(|m1| {
+        m1.first.flips.iter().any(|&(e, f)| {
+            let same_faces = f == faces || f == [faces[1], faces[0]];
+            let same_edge = e == edge || e == [edge[1], edge[0]];
+            same_faces && same_edge
+        })
+    })
+}
+
 /// `D`, `E` and `G` of a flipped edge.
 fn flipped_triangle(
     m1: Option<&M1>,
@@ -335,7 +347,22 @@ pub fn rebuild_point(m1: Option<&M1>, m0: &[[u32; 3]], positions: &[DVec3], poin
         }
         StoredPoint::Flipped { faces, edge, bary } => {
             let (d, e, g) = flipped_triangle(m1, m0, positions, faces, edge);
-            d * bary[0] + e * bary[1] + g * bary[2]
+            if flipped_in(m1, faces, edge) {
+                return d * bary[0] + e * bary[1] + g * bary[2];
+            }
+            // The edge `DE` is not in this mesh (the faces are not refined, or not flipped,
+            // or the line is placed on M0): the surface between the two centroids runs
+            // through `G` on the faces' shared edge. The point keeps its fraction of the way.
+            let s = bary[1] / (bary[0] + bary[1]);
+            let (first, second) = (d.distance(g), g.distance(e));
+            let at = s * (first + second);
+            if at <= first && first > 0.0 {
+                d.lerp(g, at / first)
+            } else if second > 0.0 {
+                g.lerp(e, ((at - first) / second).clamp(0.0, 1.0))
+            } else {
+                g
+            }
         }
     }
 }

@@ -145,16 +145,16 @@ fn a_refined_patch_meets_its_unrefined_neighbour_without_t_junctions() {
     }
 }
 
-/// The M1 of every step, as emitted.
+/// The M1 of every step, as emitted, with M0 (collided) beside it.
 #[derive(Default)]
-struct M1s(Vec<(usize, M1Outcome, Vec<[u32; 3]>)>);
+struct M1s(Vec<(usize, M1Outcome, TriMesh)>);
 
 impl StageSink for M1s {
     fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
         self.0.push((
             info.step,
             stage.outcome.clone(),
-            stage.m0.collision.mesh.triangles.clone(),
+            stage.m0.collision.mesh.clone(),
         ));
         Ok(())
     }
@@ -207,7 +207,7 @@ fn a_cut_line_stored_on_m0_is_rebuilt_on_its_m1_and_follows_a_dimension_edit() {
     }
     assert!(flipped > 10, "the cuts cross flipped edges ({flipped})");
     // After the waist grows 6 cm: every rebuilt point lies on the new M1's surface.
-    let (_, last, _) = m1s.0.last().expect("the set step");
+    let (_, last, m0) = m1s.0.last().expect("the set step");
     let mesh = TriMesh {
         positions: last.collision.positions.clone(),
         triangles: last.m1.mesh.triangles.clone(),
@@ -221,6 +221,19 @@ fn a_cut_line_stored_on_m0_is_rebuilt_on_its_m1_and_follows_a_dimension_edit() {
         }
     }
     assert!(worst < 1e-9, "a rebuilt point {worst} m off M1");
+    // Placed on M0 instead (as the recording shows it there), every point lies on M0's
+    // surface too: a point on a flipped edge runs over the two faces, not between them.
+    let (_, _, m0_at_cut) = m1s.0.iter().find(|(s, _, _)| *s == 4).expect("the second cut step");
+    for (stored, m0) in [(&at_cut.stored, m0_at_cut), (&last.stored, m0)] {
+        for line in stored {
+            for (points, _) in drape::m1::cut::rebuild(None, &m0.triangles, &m0.positions, line) {
+                for p in points {
+                    let off = to_surface(m0, p);
+                    assert!(off < 1e-9, "a point placed {off} m off M0");
+                }
+            }
+        }
+    }
     // And the line moved with the garment: the waist cut is not where it was.
     let moved = at_cut.cuts[0][0]
         .0
