@@ -162,23 +162,24 @@ pub fn set_points(fw: &mut Framework, c: &CurveNode, control: Vec<DVec3>, option
 /// Dense samples of the fitted curve with their spline parameters (`per_span` per
 /// control span), for the curve-layer collision and the self-crossing check.
 pub fn samples(fw: &Framework, c: &CurveNode, per_span: usize) -> Vec<(f64, DVec3)> {
-    let spline = match c.kind {
-        CurveKind::Ring => &fw.rings[c.index].spline,
-        CurveKind::Open => &fw.open_curves[c.index].spline,
-        CurveKind::Contour => &fw.contours[c.index].spline,
+    let sample = |l: f64| match c.kind {
+        CurveKind::Ring => fw.rings[c.index].spline.sample(l),
+        CurveKind::Open => fw.open_curves[c.index].spline.sample(l),
+        CurveKind::Contour => fw.contours[c.index].spline.sample(l),
     };
-    let knots = spline.knots();
+    let knots = knots(fw, c);
     let per = per_span.max(1);
     let mut out = Vec::new();
     for w in knots.windows(2) {
         for s in 0..per {
             let l = w[0] + (w[1] - w[0]) * s as f64 / per as f64;
-            out.push((l, spline.sample(l)));
+            out.push((l, sample(l)));
         }
     }
-    if !closed(c) {
-        let l = spline.length();
-        out.push((l, spline.sample(l)));
+    if !closed(c)
+        && let Some(&l) = knots.last()
+    {
+        out.push((l, sample(l)));
     }
     out
 }

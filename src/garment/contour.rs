@@ -1,11 +1,81 @@
-//! Contour lines (\[frame\] sections 2.3-2.4): open cubic splines through the rings' anchor
+//! Contour lines (\[frame\] sections 2.3-2.4): open cubic curves through the rings' anchor
 //! points (centre front, side, princess lines, the legs' front, outer, back and inner
 //! lines), from the lowest ring up. Patches take their sides from the spans between rings.
+//!
+//! By default a contour has local support ([`LocalSpline3`], [`Contours::Local`]): a span
+//! between two rings depends on the ring points at its ends and the one beyond each, so an
+//! edit moves the contour (and the garment) only near the points it moves, and the patches
+//! further off keep their samples. [`Contours::Natural`] fits the `C2` interpolating spline
+//! instead ([`ChordSpline3`]), every span depending on every point.
 
 use glam::DVec3;
 
+use super::model::Contours;
 use super::probe::BodyProbe;
-use crate::geom::{ChordSpline3, CurveEnds, SplineError};
+use crate::geom::{ChordSpline3, CurveEnds, LocalSpline3, SplineError};
+
+/// A contour's curve, by [`Contours`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum ContourCurve {
+    /// [`Contours::Local`].
+    Local(LocalSpline3),
+    /// [`Contours::Natural`].
+    Natural(ChordSpline3),
+}
+
+impl ContourCurve {
+    /// Which kind it is.
+    pub fn kind(&self) -> Contours {
+        match self {
+            Self::Local(_) => Contours::Local,
+            Self::Natural(_) => Contours::Natural,
+        }
+    }
+
+    /// Total chord length (the parameter range is `[0, length]`).
+    pub fn length(&self) -> f64 {
+        match self {
+            Self::Local(c) => c.length(),
+            Self::Natural(c) => c.length(),
+        }
+    }
+
+    /// The parameters of the points (accumulated chord lengths).
+    pub fn knots(&self) -> &[f64] {
+        match self {
+            Self::Local(c) => c.knots(),
+            Self::Natural(c) => c.knots(),
+        }
+    }
+
+    /// `P(l)`, at accumulated chord length `l`, m.
+    pub fn sample(&self, l: f64) -> DVec3 {
+        match self {
+            Self::Local(c) => c.sample(l),
+            Self::Natural(c) => c.sample(l),
+        }
+    }
+
+    /// `dP/dl`.
+    pub fn derivative(&self, l: f64) -> DVec3 {
+        match self {
+            Self::Local(c) => c.derivative(l),
+            Self::Natural(c) => c.derivative(l),
+        }
+    }
+
+    /// Sample `s` of `n` equal parameter steps along span `k`, `0 < s < n`. A local
+    /// curve reads the span's own data only (the same samples wherever its points stay).
+    fn span_sample(&self, k: usize, s: usize, n: usize) -> DVec3 {
+        match self {
+            Self::Local(c) => c.span_sample(k, s as f64 / n as f64),
+            Self::Natural(c) => {
+                let (a, b) = (c.knots()[k], c.knots()[k + 1]);
+                c.sample(a + (b - a) * s as f64 / n as f64)
+            }
+        }
+    }
+}
 
 /// A fitted contour.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,17 +86,17 @@ pub struct Contour {
     pub through: Vec<String>,
     /// Their positions, m (world frame).
     pub points: Vec<DVec3>,
-    /// The spline.
-    pub spline: ChordSpline3,
-    /// Clamped end tangents (lowest end, highest end); `None` leaves that end natural.
+    /// The curve.
+    pub spline: ContourCurve,
+    /// Clamped end tangents (lowest end, highest end); `None` leaves that end free.
     pub tangents: [Option<DVec3>; 2],
 }
 
 impl Contour {
-    /// Fits the contour through `points` (m, lowest first) as a chord-length cubic spline with
-    /// natural ends (\[frame\] section 2.3).
-    pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>) -> Result<Self, SplineError> {
-        Self::fit_with(name, through, points, [None, None])
+    /// Fits the contour through `points` (m, lowest first) as a chord-length cubic curve
+    /// of kind `kind` with free ends (\[frame\] section 2.3).
+    pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>, kind: Contours) -> Result<Self, SplineError> {
+        Self::fit_with(name, through, points, [None, None], kind)
     }
 
     /// Fits the contour through `points` with the end tangents clamped where given.
@@ -35,14 +105,18 @@ impl Contour {
         through: Vec<String>,
         points: Vec<DVec3>,
         tangents: [Option<DVec3>; 2],
+        kind: Contours,
     ) -> Result<Self, SplineError> {
-        let spline = ChordSpline3::try_new(
-            &points,
-            CurveEnds::Open {
-                start: tangents[0],
-                end: tangents[1],
-            },
-        )?;
+        let spline = match kind {
+            Contours::Local => ContourCurve::Local(LocalSpline3::try_new(&points, tangents[0], tangents[1])?),
+            Contours::Natural => ContourCurve::Natural(ChordSpline3::try_new(
+                &points,
+                CurveEnds::Open {
+                    start: tangents[0],
+                    end: tangents[1],
+                },
+            )?),
+        };
         Ok(Self {
             name: name.to_string(),
             through,
@@ -52,9 +126,10 @@ impl Contour {
         })
     }
 
-    /// Refits through new points and end tangents, keeping the name and what it passes.
+    /// Refits through new points and end tangents, keeping the name, what it passes and
+    /// the kind of curve.
     pub fn refit(&mut self, points: Vec<DVec3>, tangents: [Option<DVec3>; 2]) -> Result<(), SplineError> {
-        *self = Self::fit_with(&self.name, self.through.clone(), points, tangents)?;
+        *self = Self::fit_with(&self.name, self.through.clone(), points, tangents, self.spline.kind())?;
         Ok(())
     }
 
@@ -67,14 +142,12 @@ impl Contour {
     /// `n + 1` samples (m) of the span from point `k` to point `k + 1`, ends exact. With a
     /// probe, the inner samples are pushed out to stand `gap` (m) off the body.
     pub fn span(&self, k: usize, n: usize, clearance: Option<(&BodyProbe, f64)>) -> Vec<DVec3> {
-        let knots = self.spline.knots();
-        let (a, b) = (knots[k], knots[k + 1]);
         let n = n.max(1);
         let raw: Vec<DVec3> = (0..=n)
             .map(|s| match s {
                 0 => self.points[k],
                 s if s == n => self.points[k + 1],
-                s => self.spline.sample(a + (b - a) * s as f64 / n as f64),
+                s => self.spline.span_sample(k, s, n),
             })
             .collect();
         match clearance {
@@ -85,7 +158,10 @@ impl Contour {
 
     /// Dense samples for display (16 per span), m.
     pub fn polyline(&self) -> Vec<DVec3> {
-        self.spline.subdivide(16, false)
+        match &self.spline {
+            ContourCurve::Local(c) => c.subdivide(16),
+            ContourCurve::Natural(c) => c.subdivide(16, false),
+        }
     }
 }
 

@@ -69,6 +69,35 @@ impl Fit {
     }
 }
 
+/// How contours pass through their points.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum Contours {
+    /// Cubic spans with local support ([`crate::geom::LocalSpline3`], `C1`): moving a ring
+    /// point reshapes the contour only over the two spans on each side of it, so an edit
+    /// re-surfaces only the patches near it.
+    #[default]
+    Local,
+    /// The interpolating cubic spline with natural ends ([`crate::geom::ChordSpline3`],
+    /// `C2`): the smoothest curve through the points, but every span depends on every
+    /// point, so an edit re-surfaces every patch along the contours it moves.
+    Natural,
+}
+
+impl Contours {
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Local => "local",
+            Self::Natural => "natural",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::Local, Self::Natural].into_iter().find(|c| c.name() == name)
+    }
+}
+
 /// Dimension values a session has set (the rest come from the body).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Dimensions {

@@ -151,11 +151,8 @@ struct M1s(Vec<(usize, M1Outcome, TriMesh)>);
 
 impl StageSink for M1s {
     fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
-        self.0.push((
-            info.step,
-            stage.outcome.clone(),
-            stage.m0.collision.mesh.clone(),
-        ));
+        self.0
+            .push((info.step, stage.outcome.clone(), stage.m0.collision.mesh.clone()));
         Ok(())
     }
 }

@@ -6,18 +6,19 @@ use glam::DVec3;
 use super::context::{find, point, section_error};
 use crate::garment::adjust::{combined_adjustment, straighten};
 use crate::garment::contour::Contour;
-use crate::garment::model::{FrameworkError, Straightened};
+use crate::garment::model::{Contours, FrameworkError, Straightened};
 use crate::garment::ring::{GarmentRing, RingOptions};
 
 /// A contour spec: name and the `(ring, anchor)` points it passes, lowest first.
 pub type ContourSpec = (String, Vec<(String, String)>);
 
 /// Fits every contour of `specs` through its ring anchors (or the `extra` named points,
-/// such as `crotch.point`), with natural ends.
+/// such as `crotch.point`), as curves of kind `kind` with free ends.
 pub fn fit_contours(
     specs: &[ContourSpec],
     rings: &[GarmentRing],
     extra: &[(String, DVec3)],
+    kind: Contours,
 ) -> Result<Vec<Contour>, FrameworkError> {
     specs
         .iter()
@@ -31,7 +32,7 @@ pub fn fit_contours(
                     None => point(rings, r, a),
                 })
                 .collect::<Result<_, _>>()?;
-            Contour::fit(name, through, points).map_err(|e| FrameworkError::Contour(name.clone(), e))
+            Contour::fit(name, through, points, kind).map_err(|e| FrameworkError::Contour(name.clone(), e))
         })
         .collect()
 }

@@ -10,7 +10,9 @@ pub use contours::{ContourSpec, fit_contours, loosen};
 use super::assemble::assemble;
 use super::contour::Contour;
 use super::m0::M0;
-use super::model::{Dimensions, Fit, Framework, FrameworkError, Layout, NamedPlane, Straightened, TemplateKind};
+use super::model::{
+    Contours, Dimensions, Fit, Framework, FrameworkError, Layout, NamedPlane, Straightened, TemplateKind,
+};
 use super::open_curve::OpenCurve;
 use super::probe::BodyProbe;
 use super::ring::{GarmentRing, RingOptions};
@@ -24,6 +26,8 @@ pub struct FrameworkOptions {
     pub resolution: usize,
     /// Contour fit (default tight for the jumpsuit; the dress is always loose below the hip).
     pub fit: Fit,
+    /// How contours pass through their points (default [`Contours::Local`]).
+    pub contours: Contours,
     /// Ring processing.
     pub ring: RingOptions,
     /// Weld threshold as a fraction of the body's height (default 1e-9).
@@ -37,6 +41,7 @@ impl Default for FrameworkOptions {
         Self {
             resolution: 6,
             fit: Fit::Tight,
+            contours: Contours::Local,
             ring: RingOptions::default(),
             weld_threshold: 1e-9,
             ease_fraction: 0.012,
@@ -54,6 +59,12 @@ impl FrameworkOptions {
     /// With this fit.
     pub fn with_fit(mut self, fit: Fit) -> Self {
         self.fit = fit;
+        self
+    }
+
+    /// With these contours.
+    pub fn with_contours(mut self, contours: Contours) -> Self {
+        self.contours = contours;
         self
     }
 }

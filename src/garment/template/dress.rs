@@ -119,7 +119,7 @@ fn solve(ctx: &mut BuildCtx<'_>) -> Result<Parts, FrameworkError> {
         })
         .collect();
     let straightened = loosen(&mut rings, &specs, "hip", &ctx.options.ring)?;
-    let contours = fit_contours(&specs, &rings, &[])?;
+    let contours = fit_contours(&specs, &rings, &[], ctx.options.contours)?;
     let layout = ctx.layout(Counts::Dress(
         [thigh_y - knee_y, hip_y - thigh_y, waist_y - hip_y].map(|dy| ctx.segments(dy, 1.0)),
     ));

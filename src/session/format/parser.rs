@@ -12,7 +12,7 @@ use super::suggest::did_you_mean;
 use super::syntax::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Chains, Edit, SolverOptions, Target};
-use crate::garment::{Fit, TemplateKind};
+use crate::garment::{Contours, Fit, TemplateKind};
 use crate::m1::M1Options;
 use crate::mannequin::MannequinOptions;
 
@@ -553,7 +553,7 @@ impl Parser<'_> {
         })
     }
 
-    /// `garment jumpsuit|dress fit=tight|loose resolution=N`.
+    /// `garment jumpsuit|dress fit=tight|loose contours=local|natural resolution=N`.
     fn garment(&mut self, line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
         let Some((which, args)) = rest.split_first() else {
             return Err(line.error(
@@ -573,11 +573,20 @@ impl Parser<'_> {
                 ),
             )
         })?;
-        let a = Args::parse(line, args, &["fit", "resolution"], "garment")?;
+        let a = Args::parse(line, args, &["fit", "contours", "resolution"], "garment")?;
         let fit = match a.get("fit") {
             None => Fit::Tight,
             Some(t) => Fit::from_name(t.text)
                 .ok_or_else(|| line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text)))?,
+        };
+        let contours = match a.get("contours") {
+            None => Contours::default(),
+            Some(t) => Contours::from_name(t.text).ok_or_else(|| {
+                line.error(
+                    t.column,
+                    format!("unknown contours '{}': expected local or natural", t.text),
+                )
+            })?,
         };
         let resolution = match a.get("resolution") {
             None => 6,
@@ -588,6 +597,7 @@ impl Parser<'_> {
         Ok(Op::Garment {
             template,
             fit,
+            contours,
             resolution,
         })
     }

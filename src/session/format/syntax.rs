@@ -4,7 +4,7 @@ use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Edit, SolverOptions};
-use crate::garment::{Fit, TemplateKind};
+use crate::garment::{Contours, Fit, TemplateKind};
 use crate::m1::{CutPlane, M1Options};
 use crate::mannequin::MannequinOptions;
 
@@ -127,6 +127,8 @@ pub enum Op {
         template: TemplateKind,
         /// Contour fit.
         fit: Fit,
+        /// How contours pass through their points.
+        contours: Contours,
         /// Segments per anchor arc in M0.
         resolution: usize,
     },

@@ -13,7 +13,9 @@ use super::collide::collide_and_emit;
 use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::constraint::{ConstraintNet, NetworkOptions};
-use crate::garment::{BodyProbe, DimensionValue, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework};
+use crate::garment::{
+    BodyProbe, Contours, DimensionValue, Fit, FrameworkOptions, StitchReport, TemplateKind, build_framework,
+};
 
 /// The figures of a solved framework.
 #[derive(Serialize)]
@@ -22,6 +24,8 @@ struct FrameworkFigures<'a> {
     template: &'static str,
     /// Contour fit.
     fit: &'static str,
+    /// How contours pass through their points.
+    contours: &'static str,
     /// Segments per anchor arc.
     resolution: usize,
     /// M0 vertices, faces and undirected edges.
@@ -58,9 +62,13 @@ pub(super) fn run(
     cx: &StepContext<'_>,
     template: TemplateKind,
     fit: Fit,
+    contours: Contours,
     resolution: usize,
 ) -> Result<(), StepError> {
-    let options = FrameworkOptions::default().with_fit(fit).with_resolution(resolution);
+    let options = FrameworkOptions::default()
+        .with_fit(fit)
+        .with_contours(contours)
+        .with_resolution(resolution);
     state.history.clear();
     let mut next = solve_garment(
         scope,
@@ -108,6 +116,7 @@ pub(super) fn solve_garment(
     scope.record(&FrameworkFigures {
         template: garment.template.name(),
         fit: fw.fit.name(),
+        contours: garment.options.contours.name(),
         resolution: garment.options.resolution,
         m0_vertices: fw.m0.mesh.positions.len(),
         m0_faces: fw.m0.mesh.triangles.len(),

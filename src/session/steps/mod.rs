@@ -44,8 +44,9 @@ pub(super) fn run_step(
         Op::Garment {
             template,
             fit,
+            contours,
             resolution,
-        } => garment::run(scope, state, cx, *template, *fit, *resolution),
+        } => garment::run(scope, state, cx, *template, *fit, *contours, *resolution),
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),

@@ -315,7 +315,7 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         }
     }
     let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
-    let mut contours = fit_contours(&specs, &rings, &crotch_point)?;
+    let mut contours = fit_contours(&specs, &rings, &crotch_point, ctx.options.contours)?;
     // The princess lines run on into the straps: each meets its strap's end tangent.
     for c in &mut contours {
         let strap = match c.name.split_once('_') {
