@@ -23,6 +23,12 @@ pub struct LogOptions {
     /// What is logged: every stage, the final meshes, or the metrics and the log only.
     /// Default value: all.
     pub detail: LogDetail,
+    /// Wait at the end of every step until its data has been written (a file target): a
+    /// step reported done is in the file whole, and on one core the next step's compute does
+    /// not share the core with the encoding and writing of the last one (the wait counts as
+    /// the step's logging). Off for a viewer or a server, whose flush waits on the network.
+    /// Default value: false.
+    pub settle: bool,
 }
 
 impl Default for LogOptions {
@@ -31,6 +37,7 @@ impl Default for LogOptions {
             timings: false,
             mannequin_offset_x: 1.6,
             detail: LogDetail::All,
+            settle: false,
         }
     }
 }
@@ -47,6 +54,13 @@ impl LogOptions {
     #[must_use]
     pub fn with_detail(mut self, detail: LogDetail) -> Self {
         self.detail = detail;
+        self
+    }
+
+    /// Sets [`Self::settle`].
+    #[must_use]
+    pub fn with_settle(mut self, settle: bool) -> Self {
+        self.settle = settle;
         self
     }
 
@@ -350,7 +364,11 @@ impl StageSink for RerunLogger {
                 self.text(
                     TextLogLevel::DEBUG,
                     format!("step {} ({}) done", metrics.step, metrics.op),
-                )
+                )?;
+                if self.options.settle {
+                    self.rec.flush_blocking()?;
+                }
+                Ok(())
             }
             StepEnd::Failed(error) => self.text(TextLogLevel::ERROR, error.to_string()),
             StepEnd::Interrupted { after } => self.text(

@@ -42,7 +42,10 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         .unwrap_or_default();
     let mut logger = RerunLogger::new(
         live.rec.clone(),
-        LogOptions::default().with_timings(args.log_timings).with_detail(detail),
+        LogOptions::default()
+            .with_timings(args.log_timings)
+            .with_detail(detail)
+            .with_settle(args.viewer.connect.is_none() && !args.viewer.serve && !args.viewer.serve_web),
     )
     .internal()?;
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
