@@ -88,7 +88,7 @@ impl LocalSpline3 {
         knots.push(acc);
         for (i, &hi) in h.iter().enumerate() {
             let next = acc + hi;
-            if !(next > acc) {
+            if next <= acc {
                 return Err(SplineError::NotIncreasing {
                     index: i + 1,
                     prev: acc,

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
-use super::logger::{RerunLogger, closed, colored_mesh, f32s, to_sink};
+use super::logger::{RerunLogger, closed, colored_mesh, edge_paths, f32s, to_sink};
 use crate::garment::{Framework, GarmentRing, RingStages};
 use crate::mesh::TriMesh;
 use crate::session::{GarmentPart, RingStep, SinkError};
@@ -292,13 +292,9 @@ impl RerunLogger {
             }
         }
         rec.log("garment/m0", &colored_mesh(mesh, colors)).map_err(to_sink)?;
-        let lines: Vec<Vec<[f32; 3]>> = edges
-            .iter()
-            .map(|e| f32s(&[mesh.positions[e[0] as usize], mesh.positions[e[1] as usize]]))
-            .collect();
         rec.log(
             "garment/m0/edges",
-            &LineStrips3D::new(lines)
+            &LineStrips3D::new(edge_paths(&mesh.positions, edges))
                 .with_radii([0.0004])
                 .with_colors([[60, 60, 70]]),
         )

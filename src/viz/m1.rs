@@ -7,7 +7,7 @@ use glam::DVec3;
 use rerun::{Clear, LineStrips3D, Points3D, TextLogLevel};
 
 use super::colors::m1_rule_color;
-use super::logger::{RerunLogger, colored_mesh, f32s, to_sink};
+use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, to_sink};
 use crate::m1::Rule;
 use crate::session::{M1Stage, SinkError};
 
@@ -43,7 +43,7 @@ impl RerunLogger {
         };
         rec.log(
             "garment/m1/edges",
-            &LineStrips3D::new(strips(edges, positions))
+            &LineStrips3D::new(edge_paths(positions, edges))
                 .with_radii([0.0003])
                 .with_colors([[70, 70, 80]]),
         )
