@@ -5,7 +5,9 @@ and prints the median of every stage's compute time (ms, from `--metrics`) for b
 
     python3 scripts/compare_steps.py BEFORE_BINARY [AFTER_BINARY] [--runs N]
 
-AFTER_BINARY defaults to target/release/drape. Build the "before" binary from an earlier
+AFTER_BINARY defaults to target/release/drape. With --log-all, both log the whole recording
+(on the same core as the compute, as a one-core user would) and a `logging` row gives the
+time of every sink call of the step. Build the "before" binary from an earlier
 commit (`git checkout REV && cargo build --release && cp target/release/drape /tmp/before`).
 """
 
@@ -22,10 +24,11 @@ GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collisi
 M1 = ["m1.select", "m1.subdivide", "m1.collide"]
 
 
-def drag_timings(binary, session, folder):
+def drag_timings(binary, session, folder, log_all=False):
     metrics = folder / "metrics.json"
+    detail = [] if log_all else ["--log-detail", "metrics"]
     subprocess.run(["taskset", "-c", "0", str(binary), "--threads", "1", "--no-index-cache", "run",
-                    str(session), "--log-detail", "metrics", "--metrics", str(metrics),
+                    str(session), *detail, "--metrics", str(metrics),
                     "--save", str(folder / "run.rrd")], cwd=ROOT, capture_output=True, check=True)
     steps = json.loads(metrics.read_text())
     return [s["timings_ms"] for s in steps if s["op"] == "drag" and "m1.select" in s.get("timings_ms", {})]
@@ -36,6 +39,7 @@ def main():
     ap.add_argument("before")
     ap.add_argument("after", nargs="?", default=str(ROOT / "target/release/drape"))
     ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--log-all", action="store_true", help="log the whole recording, and time it")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
@@ -47,15 +51,17 @@ def main():
         for _ in range(args.runs):
             for name, session in sessions.items():
                 for which, binary in (("before", args.before), ("after", args.after)):
-                    for t in drag_timings(binary, session, folder):
+                    for t in drag_timings(binary, session, folder, args.log_all):
                         for k in GARMENT + M1:
                             times.setdefault((name, which, k), []).append(t.get(k, 0.0))
                         times.setdefault((name, which, "garment"), []).append(sum(t.get(k, 0.0) for k in GARMENT))
                         times.setdefault((name, which, "M1"), []).append(sum(t.get(k, 0.0) for k in M1))
+                        times.setdefault((name, which, "logging"), []).append(
+                            sum(v for k, v in t.items() if k.startswith("log.")))
     for name in sessions:
         print(f"\n{name}: drag steps, one core, median ms over {args.runs} runs of the demo's drags\n")
         print("| stage | before | after |\n|---|---:|---:|")
-        for k in GARMENT + ["garment"] + M1 + ["M1"]:
+        for k in GARMENT + ["garment"] + M1 + ["M1"] + (["logging"] if args.log_all else []):
             a = statistics.median(times[(name, "before", k)])
             b = statistics.median(times[(name, "after", k)])
             label = f"**{k}**" if k in ("garment", "M1") else k
