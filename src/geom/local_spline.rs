@@ -140,6 +140,8 @@ impl LocalSpline3 {
     pub fn span_sample(&self, k: usize, t: f64) -> DVec3 {
         let (b, _) = basis(t);
         let (p0, p1) = (self.points[k], self.points[k + 1]);
+        // The chord from the points, not `knots[k + 1] - knots[k]`: the knots accumulate
+        // every chord below, so their difference would change in its last bits with them.
         let h = p0.distance(p1);
         b[0] * p0 + b[1] * h * self.tangents[k] + b[2] * p1 + b[3] * h * self.tangents[k + 1]
     }

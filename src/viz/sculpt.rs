@@ -10,7 +10,7 @@ use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel};
 
 use super::colors::error_color;
-use super::logger::{RerunLogger, colored_mesh, f32s, to_sink};
+use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, to_sink};
 use crate::mesh::TriMesh;
 use crate::sculpt::{Comparison, Displacement, Level, Variant};
 use crate::session::{SculptStage, SinkError};
@@ -35,8 +35,8 @@ fn region_mesh(mesh: &TriMesh, region: &[bool]) -> Mesh3D {
     colored_mesh(mesh, colors)
 }
 
-/// The edges of the region's faces.
-fn region_edges(mesh: &TriMesh, region: &[bool], shift: DVec3) -> Vec<[[f32; 3]; 2]> {
+/// The edges of the region's faces, moved by `shift`, as paths ([`edge_paths`]).
+fn region_edges(mesh: &TriMesh, region: &[bool], shift: DVec3) -> Vec<Vec<[f32; 3]>> {
     let mut edges: Vec<[u32; 2]> = mesh
         .triangles
         .iter()
@@ -46,10 +46,7 @@ fn region_edges(mesh: &TriMesh, region: &[bool], shift: DVec3) -> Vec<[[f32; 3];
         .collect();
     edges.sort_unstable();
     edges.dedup();
-    edges
-        .iter()
-        .map(|e| e.map(|v| (mesh.positions[v as usize] + shift).as_vec3().to_array()))
-        .collect()
+    edge_paths(&shifted(mesh, shift).positions, &edges)
 }
 
 fn shifted(mesh: &TriMesh, shift: DVec3) -> TriMesh {
