@@ -18,7 +18,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use drape::body::Body;
 use drape::body::{self, BUILTIN_BODY_OBJ, BodyMesh, LandmarkKind, LandmarkOptions, PartitionOptions};
-use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
+use drape::garment::{BodyProbe, Contours, Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mannequin::{DressForm, ErrorStats, MannequinOptions, refine_chord, refine_polar, run_mannequin};
 use glam::DVec3;
 
@@ -71,6 +71,9 @@ fn bench_mannequin(c: &mut Criterion) {
 
 const RESOLUTIONS: [usize; 4] = [3, 6, 12, 24];
 
+/// The contour kinds, the default first.
+const KINDS: [Contours; 2] = [Contours::Local, Contours::Natural];
+
 fn garment_scene() -> (Body, BodyProbe, Dimensions) {
     let body = Body::analyse(body_mesh(), &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");
     let probe = BodyProbe::new(&body);
@@ -93,11 +96,15 @@ fn garment_scene() -> (Body, BodyProbe, Dimensions) {
 fn bench_garment(c: &mut Criterion) {
     let (body, probe, dims) = garment_scene();
     let mut g = c.benchmark_group("garment");
-    for k in RESOLUTIONS {
-        let options = FrameworkOptions::default().with_resolution(k);
-        g.bench_with_input(BenchmarkId::new("jumpsuit", k), &options, |b, o| {
-            b.iter(|| build_framework(black_box(&body), &probe, TemplateKind::Jumpsuit, &dims, o))
-        });
+    for kind in KINDS {
+        for k in RESOLUTIONS {
+            let options = FrameworkOptions::default().with_resolution(k).with_contours(kind);
+            g.bench_with_input(
+                BenchmarkId::new(format!("jumpsuit-{}", kind.name()), k),
+                &options,
+                |b, o| b.iter(|| build_framework(black_box(&body), &probe, TemplateKind::Jumpsuit, &dims, o)),
+            );
+        }
     }
     g.finish();
 }
@@ -188,51 +195,64 @@ fn report() {
 
 fn garment_report() {
     let (body, probe, dims) = garment_scene();
-    println!("\n## Garment: jumpsuit framework + M0 (waist +4 cm); girth error = M0 ring polygon vs girth dimension\n");
+    println!("\n## Garment: jumpsuit framework + M0 (waist +4 cm); girth error = M0 ring polygon vs girth dimension;");
+    println!("## M0 against natural contours: each vertex's distance to the same vertex with contours=natural\n");
     println!(
-        "| resolution | median ms | M0 vertices | M0 faces | max girth error % | mean girth error % | waist error % |"
+        "| resolution | contours | median ms | M0 vertices | M0 faces | max girth error % | mean girth error % | waist error % | M0 against natural, max / mean mm |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---|---:|---:|---:|---:|---:|---:|---|");
     for k in RESOLUTIONS {
-        let fw = build_framework(
-            &body,
-            &probe,
-            TemplateKind::Jumpsuit,
-            &dims,
-            &FrameworkOptions::default().with_resolution(k),
-        )
-        .expect("jumpsuit");
-        let errors: Vec<(String, f64)> = fw
-            .rings
-            .iter()
-            .filter(|r| r.name != "neckline")
-            .map(|r| {
-                let side = if r.name.starts_with("left") {
-                    1
-                } else if r.name.starts_with("right") {
-                    -1
-                } else {
-                    0
-                };
-                let target = r.target.unwrap_or(r.girth);
-                (
-                    r.name.clone(),
-                    (row_perimeter(&fw.m0.mesh.positions, r.plane.offset, side) - target) / target,
-                )
-            })
-            .collect();
-        let max = errors.iter().map(|e| e.1.abs()).fold(0.0, f64::max);
-        let mean = errors.iter().map(|e| e.1.abs()).sum::<f64>() / errors.len() as f64;
-        let waist = errors.iter().find(|e| e.0 == "waist").map_or(0.0, |e| e.1);
-        println!(
-            "| {k} | {} | {} | {} | {:.3} | {:.3} | {:+.3} |",
-            fmt_ms(median_ms(&format!("garment/jumpsuit/{k}"))),
-            fw.m0.mesh.positions.len(),
-            fw.m0.mesh.triangles.len(),
-            max * 100.0,
-            mean * 100.0,
-            waist * 100.0
-        );
+        let built = KINDS.map(|kind| {
+            let options = FrameworkOptions::default().with_resolution(k).with_contours(kind);
+            build_framework(&body, &probe, TemplateKind::Jumpsuit, &dims, &options).expect("jumpsuit")
+        });
+        for (kind, fw) in KINDS.iter().zip(&built) {
+            let errors: Vec<(String, f64)> = fw
+                .rings
+                .iter()
+                .filter(|r| r.name != "neckline")
+                .map(|r| {
+                    let side = if r.name.starts_with("left") {
+                        1
+                    } else if r.name.starts_with("right") {
+                        -1
+                    } else {
+                        0
+                    };
+                    let target = r.target.unwrap_or(r.girth);
+                    (
+                        r.name.clone(),
+                        (row_perimeter(&fw.m0.mesh.positions, r.plane.offset, side) - target) / target,
+                    )
+                })
+                .collect();
+            let max = errors.iter().map(|e| e.1.abs()).fold(0.0, f64::max);
+            let mean = errors.iter().map(|e| e.1.abs()).sum::<f64>() / errors.len() as f64;
+            let waist = errors.iter().find(|e| e.0 == "waist").map_or(0.0, |e| e.1);
+            let natural = &built[1].m0.mesh.positions;
+            let moves: Vec<f64> = fw
+                .m0
+                .mesh
+                .positions
+                .iter()
+                .zip(natural)
+                .map(|(a, b)| a.distance(*b))
+                .collect();
+            let far = moves.iter().copied().fold(0.0, f64::max);
+            let mean_move = moves.iter().sum::<f64>() / moves.len().max(1) as f64;
+            println!(
+                "| {k} | {} | {} | {} | {} | {:.3} | {:.3} | {:+.3} | {:.1} / {:.2} |",
+                kind.name(),
+                fmt_ms(median_ms(&format!("garment/jumpsuit-{}/{k}", kind.name()))),
+                fw.m0.mesh.positions.len(),
+                fw.m0.mesh.triangles.len(),
+                max * 100.0,
+                mean * 100.0,
+                waist * 100.0,
+                1e3 * far,
+                1e3 * mean_move
+            );
+        }
     }
 }
 
