@@ -102,7 +102,12 @@ fn table(path: &Path) {
     for (m0_name, m0_rounds) in [("vertices only", 0), ("with edge rounds", rounds)] {
         let (g, m0, partition) = garment(&body, &probe, 6, m0_rounds);
         let m0_edges = edges(&m0);
-        let q = quality(index, &m0.positions, &m0.positions, &m0_edges, &[]);
+        let q = quality(index, &m0.positions, &m0.positions, &m0_edges, &[]).with_faces(
+            index,
+            &m0.positions,
+            &m0.triangles,
+            None,
+        );
         let m0_inside = q.inside.clone();
         let m0_crossing: Vec<[u32; 2]> = q.crossing.iter().map(|&e| m0_edges[e as usize]).collect();
         let (max, p95, mean) = deviation(&m0, &reference);
@@ -158,6 +163,8 @@ fn table(path: &Path) {
                     measured: None,
                     inside: &m0_inside,
                     crossing: &m0_crossing,
+                    triangles: &m0.triangles,
+                    pierced: &q.pierced,
                     partition: &partition,
                     ring_normal: &g.ring_normal,
                 };

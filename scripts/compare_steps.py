@@ -20,7 +20,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
-           "collision.respond_edges", "collision.quality"]
+           "collision.respond_edges", "collision.quality", "collision.respond_faces",
+           "collision.check_faces", "collision.face_clearance"]
 M1 = ["m1.select", "m1.subdivide", "m1.collide"]
 
 
@@ -65,7 +66,7 @@ def main():
             a = statistics.median(times[(name, "before", k)])
             b = statistics.median(times[(name, "after", k)])
             label = f"**{k}**" if k in ("garment", "M1") else k
-            print(f"| {label} | {a:.1f} | {b:.1f} |")
+            print(f"| {label} | {a:.2f} | {b:.2f} |")
 
 
 if __name__ == "__main__":

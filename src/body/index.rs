@@ -583,6 +583,29 @@ impl BodyIndex {
         })
     }
 
+    /// Whether an edge of the body passes through the triangle `tri` (its ends strictly on
+    /// either side of the triangle's plane, the crossing point in the closed triangle),
+    /// decided by exact predicates over the shell triangles whose boxes meet the
+    /// triangle's: the body poking through a garment face whose corners and edges are
+    /// clear of it.
+    pub fn pierces(&self, tri: [DVec3; 3]) -> bool {
+        let lo = tri[0].min(tri[1]).min(tri[2]);
+        let hi = tri[0].max(tri[1]).max(tri[2]);
+        let pad = DVec3::splat(self.slack);
+        self.near
+            .any_in_box(lo - pad, hi + pad, |_, c| edges_through(c, tri).next().is_some())
+    }
+
+    /// Visits every shell triangle whose box meets the box `lo..hi` (and the others of
+    /// its leaf), as `visit(triangle, corners)`.
+    pub fn visit_box(&self, lo: DVec3, hi: DVec3, mut visit: impl FnMut(u32, &[DVec3; 3])) {
+        let pad = DVec3::splat(self.slack);
+        self.near.any_in_box(lo - pad, hi + pad, |t, c| {
+            visit(t, c);
+            false
+        });
+    }
+
     /// Whether the segment `a..b` passes through the body surface (its ends strictly on
     /// either side of a triangle it meets), decided by exact predicates: a segment through
     /// an edge or a corner shared by triangles is never let through the crack between
@@ -592,4 +615,12 @@ impl BodyIndex {
         self.near
             .any_on_segment(a, b, pad, |_, c| segment_crosses_triangle(a, b, *c))
     }
+}
+
+/// The edges of the triangle with corners `c` that pass through the triangle `tri`
+/// ([`segment_crosses_triangle`]), as their ends.
+pub fn edges_through(c: &[DVec3; 3], tri: [DVec3; 3]) -> impl Iterator<Item = [DVec3; 2]> + '_ {
+    (0..3)
+        .map(|k| [c[k], c[(k + 1) % 3]])
+        .filter(move |&[p, q]| segment_crosses_triangle(p, q, tri))
 }

@@ -389,6 +389,26 @@ impl NearTree {
         self.any_on_ray(a, b - a, [-pad, 1.0 + pad], test)
     }
 
+    /// Whether `test(triangle, corners)` holds for any triangle whose box meets the box
+    /// `lo..hi` (tested in `f32`: widen the box by what rounding may take).
+    pub fn any_in_box(&self, lo: DVec3, hi: DVec3, test: impl FnMut(u32, &[DVec3; 3]) -> bool) -> bool {
+        let mut test = test;
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let (qlo, qhi) = (lo.as_vec3().to_array().map(Vec4::splat), hi.as_vec3().to_array().map(Vec4::splat));
+        self.walk(
+            |w| {
+                let mut meets = Vec4::ONE.cmpeq(Vec4::ONE);
+                for axis in 0..3 {
+                    meets &= w.lo[axis].cmple(qhi[axis]) & w.hi[axis].cmpge(qlo[axis]);
+                }
+                meets.bitmask()
+            },
+            |leaf| self.leaf(leaf).any(|(t, corners)| test(t, corners)),
+        )
+    }
+
     /// Whether `test(triangle, corners)` holds for any triangle whose box the ray
     /// `a + t d` meets with `t` in `range` (tested in `f32`: widen the range by what
     /// rounding may take).

@@ -45,14 +45,16 @@ pub struct KnownClearance<'a> {
 }
 
 impl KnownClearance<'_> {
+    /// How far vertex `v`, now at `p`, stands at least from the body, if measured there.
+    pub fn free_at(&self, v: u32, p: DVec3) -> Option<f64> {
+        let v = v as usize;
+        (self.at.get(v) == Some(&p)).then(|| self.free.get(v).copied().unwrap_or(0.0))
+    }
+
     /// Whether edge `[a, b]`, now at `ends`, is known to be clear of the surface by more
     /// than `margin` (m).
     fn covers(&self, [a, b]: [u32; 2], ends: [DVec3; 2], margin: f64) -> bool {
-        let known = |v: u32, p: DVec3| {
-            let v = v as usize;
-            (self.at.get(v) == Some(&p)).then(|| self.free.get(v).copied().unwrap_or(0.0))
-        };
-        match (known(a, ends[0]), known(b, ends[1])) {
+        match (self.free_at(a, ends[0]), self.free_at(b, ends[1])) {
             (Some(fa), Some(fb)) => fa + fb > ends[0].distance(ends[1]) + margin,
             _ => false,
         }
@@ -290,34 +292,7 @@ pub fn respond_edges(
         let responses = respond_round(index, &mut pushed_out, &hits, roles, &|_| ease, round, options);
         let moved: Vec<Response> = par_map(moves.len(), |k| {
             let (v, m) = moves[k];
-            let p = positions_now[v as usize];
-            let iso = roles.ring_normal.get(v as usize).copied().flatten();
-            let along = iso.map_or(m, |n| m - n * m.dot(n));
-            let (m, iso) = if along.length() > 0.5 * m.length() {
-                (along, iso)
-            } else {
-                (m, None)
-            };
-            let to = p + m;
-            let stands = index.signed_distance(to, reach).unwrap_or(reach);
-            // Never into the body, nor nearer it than the ease (or than it stood, if nearer).
-            let before = index.signed_distance(p, reach).unwrap_or(reach);
-            let least = before.min((1.0 - EASE_TOLERANCE) * ease).max(0.0);
-            (stands >= least).then(|| Response {
-                vertex: v,
-                partition: partition.get(v as usize).copied().unwrap_or(0),
-                from: p,
-                to,
-                direction: m.normalize_or_zero(),
-                rule: AppliedRule::EdgeLift,
-                proposed: m.normalize_or_zero(),
-                iso,
-                centre: None,
-                // Edge lifts aim at clearing an edge, not at a gap: where the end stands.
-                ease_error: 0.0,
-                gap: stands,
-                edge_round: round,
-            })
+            lift(index, positions_now, v, m, roles, partition, ease, (round, AppliedRule::EdgeLift))
         })
         .into_iter()
         .flatten()
@@ -340,4 +315,50 @@ pub fn respond_edges(
         }
     }
     (all, found, first)
+}
+
+/// Vertex `v` (at `positions[v]`) lifted by `m` as `rule` in round `round`: a vertex on a
+/// garment ring keeps its height where that leaves most of the move; `None` when the move
+/// would leave it inside the body, or nearer it than the ease (or than it stood, when it
+/// stood nearer).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn lift(
+    index: &BodyIndex,
+    positions: &[DVec3],
+    v: u32,
+    m: DVec3,
+    roles: &VertexRoles<'_>,
+    partition: &[usize],
+    ease: f64,
+    (round, rule): (usize, AppliedRule),
+) -> Option<Response> {
+    let reach = 0.2 * index.height;
+    let p = positions[v as usize];
+    let iso = roles.ring_normal.get(v as usize).copied().flatten();
+    let along = iso.map_or(m, |n| m - n * m.dot(n));
+    let (m, iso) = if along.length() > 0.5 * m.length() {
+        (along, iso)
+    } else {
+        (m, None)
+    };
+    let to = p + m;
+    let stands = index.signed_distance(to, reach).unwrap_or(reach);
+    // Never into the body, nor nearer it than the ease (or than it stood, if nearer).
+    let before = index.signed_distance(p, reach).unwrap_or(reach);
+    let least = before.min((1.0 - EASE_TOLERANCE) * ease).max(0.0);
+    (stands >= least).then(|| Response {
+        vertex: v,
+        partition: partition.get(v as usize).copied().unwrap_or(0),
+        from: p,
+        to,
+        direction: m.normalize_or_zero(),
+        rule,
+        proposed: m.normalize_or_zero(),
+        iso,
+        centre: None,
+        // Lifts aim at clearing an edge or a face, not at a gap: where the end stands.
+        ease_error: 0.0,
+        gap: stands,
+        edge_round: round,
+    })
 }

@@ -5,12 +5,15 @@
 //!
 //! Data flow of one step: [`GarmentMesh::from_framework`] (M0 with the roles the rules
 //! read) -> [`detect()`] (hits, with [`DetectState`] carried between steps) -> [`respond()`]
-//! (moved vertices and the rule of each) -> [`quality()`] (what is left inside, crossing
-//! edges, ease error). The body side is built once per body and shared with the garment:
+//! (moved vertices and the rule of each) -> [`respond_edges`] (edges through the body
+//! lifted) -> [`respond_faces`] (faces the body pokes through lifted, then the edges at
+//! their corners) -> [`quality()`] and [`Quality::with_faces`] (what is left inside,
+//! crossing edges, pierced faces, ease error): the whole surface certified. The body side is built once per body and shared with the garment:
 //! [`BodyIndex::new`] (in [`crate::body::index`]).
 
 pub mod detect;
 pub mod edges;
+pub mod faces;
 pub mod line_line;
 pub mod point_face;
 mod push;
@@ -27,6 +30,7 @@ pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
 pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
 pub use edges::{KnownClearance, respond_edges};
+pub use faces::{pierced_faces, respond_faces};
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
@@ -174,8 +178,14 @@ pub struct CollisionTimings {
     pub respond: f64,
     /// Edge rounds, ms.
     pub respond_edges: f64,
-    /// The quality check, ms.
+    /// The quality check of vertices and edges, ms.
     pub quality: f64,
+    /// Face rounds (and the edge rounds at the corners they lift), ms.
+    pub respond_faces: f64,
+    /// The quality check of the faces, ms.
+    pub check_faces: f64,
+    /// The faces' clearance, ms.
+    pub face_clearance: f64,
 }
 
 /// One step's collision of a garment mesh.
@@ -190,6 +200,12 @@ pub struct Collision {
     /// Edges crossing the body at the start of each edge round (the first: after the
     /// vertex response).
     pub edge_rounds: Vec<usize>,
+    /// Faces pierced by the body at the start of each face round (see [`faces`]).
+    pub face_rounds: Vec<usize>,
+    /// The faces pierced after the edge rounds, before the face rounds lifted them:
+    /// those the first face round found, and those a check before found pierced and whose
+    /// corners have not moved since.
+    pub pierced_before_rounds: Vec<u32>,
     /// The edges (their ends) crossing the body after the vertex response, before the edge
     /// rounds lifted them.
     pub crossing_before_rounds: Vec<[u32; 2]>,
@@ -267,6 +283,41 @@ pub fn collide(
     });
     timings.respond_edges += rounds_ms;
     responses.extend(edge_responses);
+    let triangles = &garment.mesh.triangles;
+    let (face_rounds, pierced_before_rounds) = timed(&mut timings.respond_faces, || {
+        // Faces the rounds of this step have not tested, or whose corners moved since a
+        // check found them clear.
+        let check: Vec<u32> = {
+            let reuse = &mut state.reuse;
+            reuse.begin_pass(&positions, &garment.edges);
+            reuse.begin_faces(triangles);
+            (0..triangles.len() as u32)
+                .filter(|&f| reuse.face(f as usize, triangles[f as usize]) != Some(false))
+                .collect()
+        };
+        let known = KnownClearance {
+            at: &measured.at,
+            free: &free,
+        };
+        let rounds = respond_faces(
+            index,
+            &mut positions,
+            (triangles, &garment.edges),
+            check.clone(),
+            &detection.partition,
+            &roles,
+            ease,
+            &options.response,
+            Some(known),
+        );
+        // The first round's verdicts, at the pass begun before it (a face whose corners
+        // the rounds move since is tested again by the check).
+        for &f in &check {
+            state.reuse.set_face(f as usize, rounds.first.binary_search(&f).is_ok());
+        }
+        responses.extend(rounds.lifts);
+        (rounds.found, rounds.first)
+    });
     if options.full_quality {
         // Nor what the edge rounds just found.
         state.reuse.clear();
@@ -283,11 +334,19 @@ pub fn collide(
             Some(&measured),
         )
     });
+    let quality = timed(&mut timings.check_faces, || {
+        quality.with_faces(index, &positions, triangles, Some(&mut state.reuse))
+    });
+    let quality = timed(&mut timings.face_clearance, || {
+        quality.with_face_clearance(index, &positions, triangles, ease, Some(&mut state.reuse))
+    });
     Collision {
         detection,
         ease,
         responses,
         edge_rounds,
+        face_rounds,
+        pierced_before_rounds,
         crossing_before_rounds: first_round,
         mesh: TriMesh {
             positions,

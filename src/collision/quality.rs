@@ -20,6 +20,13 @@ pub struct Quality {
     pub mean_depth_m: f64,
     /// Edges that meet the body surface.
     pub crossing_edges: usize,
+    /// Faces the body pokes through (an edge of the body passes through them; see
+    /// [`super::faces`]); 0 where the faces were not checked.
+    pub pierced_faces: usize,
+    /// The face clearance: the least distance from the body to any point of a garment face,
+    /// m (0 where a face is pierced; the least vertex clearance where the faces were not
+    /// measured). At most the least vertex clearance, which is a point of a face.
+    pub face_clearance_m: f64,
     /// Largest `|distance - ease|` over the moved vertices, m.
     pub max_ease_error_m: f64,
     /// Mean of it, m.
@@ -35,6 +42,14 @@ pub struct Quality {
     /// The crossing edges (indices into the edge list).
     #[serde(skip)]
     pub crossing: Vec<u32>,
+    /// The pierced faces (indices into the face list), ascending.
+    #[serde(skip)]
+    pub pierced: Vec<u32>,
+    /// The faces nearer the body than the ease (or than the least vertex clearance, where
+    /// that is more), with their least distance to it, m, ascending by face (see
+    /// [`super::faces::faces_nearer`]).
+    #[serde(skip)]
+    pub near_faces: Vec<(u32, f64)>,
     /// Each vertex's signed distance to the body, m (negative inside; infinite where not
     /// measured): the garment's clearance, for fit maps.
     #[serde(skip)]
@@ -70,6 +85,50 @@ pub struct Measured {
 }
 
 impl Quality {
+    /// Checks the faces `triangles` too ([`super::faces::pierced_faces`], with this
+    /// check's vertex distances): the whole surface certified.
+    pub fn with_faces(mut self, index: &BodyIndex, positions: &[DVec3], triangles: &[[u32; 3]], reuse: Option<&mut Reuse>) -> Self {
+        self.pierced = super::faces::pierced_faces(index, positions, triangles, &self.free(), reuse);
+        self.pierced_faces = self.pierced.len();
+        self
+    }
+
+    /// Measures the faces' clearance ([`Self::face_clearance_m`], [`Self::near_faces`]) down
+    /// to `ease` (m), after [`Self::with_faces`]: the faces a lower bound from their
+    /// corners' distances lets nearer than the ease, or than the least vertex clearance
+    /// where that is more, are measured exactly; no other face can be nearer.
+    /// With `reuse`, the faces whose corners did not move since they were measured with the
+    /// same cap are not measured again (the same figures).
+    pub fn with_face_clearance(
+        mut self,
+        index: &BodyIndex,
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+        ease: f64,
+        reuse: Option<&mut Reuse>,
+    ) -> Self {
+        let least_vertex = self
+            .clearance
+            .iter()
+            .filter(|c| c.is_finite())
+            .fold(f64::INFINITY, |a, &c| a.min(c.max(0.0)));
+        let cap = ease.max(least_vertex);
+        let free = self.free();
+        self.near_faces =
+            super::faces::faces_nearer(index, positions, triangles, (&free, &self.pierced), cap, reuse);
+        self.face_clearance_m = self
+            .near_faces
+            .iter()
+            .map(|&(_, d)| d)
+            .fold(least_vertex.min(cap), f64::min);
+        self
+    }
+
+    /// No vertex inside, no edge crossing and no face pierced.
+    pub fn is_clear(&self) -> bool {
+        self.penetrating_vertices == 0 && self.crossing_edges == 0 && self.pierced_faces == 0
+    }
+
     /// How far from the surface each vertex stood at least, m (zero where not measured).
     pub fn free(&self) -> Vec<f64> {
         self.clearance

@@ -92,6 +92,9 @@ pub enum AppliedRule {
     /// An end of an edge still crossing the body, lifted along the way out at the edge's
     /// deepest point (edge rounds).
     EdgeLift,
+    /// A corner of a face the body pokes through (its corners and edges clear of it),
+    /// lifted along the face's outward normal (face rounds, see [`super::faces`]).
+    FaceLift,
     /// The rule's direction was more than 75 degrees off the shortest way out, or its push
     /// too long: out along the shortest way instead.
     Fallback,
@@ -99,7 +102,7 @@ pub enum AppliedRule {
 
 impl AppliedRule {
     /// All rules, in order.
-    pub const ALL: [Self; 8] = [
+    pub const ALL: [Self; 9] = [
         Self::VertexNormal,
         Self::ViewDirection,
         Self::BodyNormal,
@@ -107,6 +110,7 @@ impl AppliedRule {
         Self::LocalCentre,
         Self::Guard,
         Self::EdgeLift,
+        Self::FaceLift,
         Self::Fallback,
     ];
 
@@ -120,6 +124,7 @@ impl AppliedRule {
             Self::LocalCentre => "local_centre",
             Self::Guard => "guard",
             Self::EdgeLift => "edge_lift",
+            Self::FaceLift => "face_lift",
             Self::Fallback => "fallback",
         }
     }

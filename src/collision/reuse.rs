@@ -1,8 +1,9 @@
 //! What a collision remembers between steps so that it measures only what a step could
 //! have changed: the signed distance of each vertex where the quality check last measured
-//! it, and for each edge whether it crossed the body at the ends it had when last tested
+//! it, for each edge whether it crossed the body at the ends it had when last tested
 //! (by the quality check, or found clear by the first edge round, which decides with the
-//! check's test).
+//! check's test), and for each face whether the body pierced it at the corners it had
+//! when last tested (by the check or the first face round, which share their test).
 //!
 //! A remembered answer is used only where the positions are the same, bit for bit: a
 //! distance and a crossing depend on nothing else (the body is fixed for a session), so
@@ -25,6 +26,16 @@ pub struct Reuse {
     /// Per edge: the pass of the first edge round that last found it clear (0: none, or
     /// it crossed).
     clear_in_round: Vec<u32>,
+    /// Per face: the pass that last tested it (0: none), and whether the body pierced it
+    /// then (see [`super::faces`]).
+    faces: Vec<(u32, bool)>,
+    /// Per face: the pass that last measured its distance to the body (0: none), and the
+    /// distance, capped at `face_cap` (see [`super::faces::faces_nearer`]).
+    face_distance: Vec<(u32, f64)>,
+    /// The cap of those distances, m.
+    face_cap: f64,
+    /// The faces those verdicts are for.
+    triangles: Vec<[u32; 3]>,
     /// The vertex moves between passes, checks and rounds alike.
     moves: Moves,
 }
@@ -65,10 +76,11 @@ impl Moves {
         false
     }
 
-    /// Whether a verdict given at pass `given` on edge `[a, b]` still holds.
-    fn holds(&self, given: u32, [a, b]: [u32; 2]) -> bool {
+    /// Whether a verdict given at pass `given` on the edge or face with corners `ends`
+    /// still holds.
+    fn holds(&self, given: u32, ends: impl IntoIterator<Item = u32>) -> bool {
         let moved = |v: u32| self.moved_at.get(v as usize).copied().unwrap_or(u32::MAX);
-        given > 0 && given >= moved(a) && given >= moved(b)
+        given > 0 && ends.into_iter().all(|v| given >= moved(v))
     }
 }
 
@@ -105,6 +117,8 @@ impl Reuse {
         if self.moves.begin(positions, edges) {
             self.crossing = vec![(0, false); edges.len()];
             self.clear_in_round = vec![0; edges.len()];
+            self.faces.clear();
+            self.face_distance.clear();
         }
     }
 
@@ -144,6 +158,51 @@ impl Reuse {
         let check = self.moves.passes;
         if let Some(slot) = self.crossing.get_mut(e) {
             *slot = (check, hit);
+        }
+    }
+
+    /// Starts remembering verdicts on `triangles` (the faces of this pass's edges): a
+    /// change of the faces forgets every face verdict.
+    pub fn begin_faces(&mut self, triangles: &[[u32; 3]]) {
+        if self.triangles != triangles || self.faces.len() != triangles.len() {
+            self.triangles = triangles.to_vec();
+            self.faces = vec![(0, false); triangles.len()];
+            self.face_distance.clear();
+        }
+    }
+
+    /// The distance of face `f` (corners `corners`) to the body capped at `cap`, if it was
+    /// measured with that cap at a pass since which none of its corners moved.
+    pub fn face_distance(&self, f: usize, corners: [u32; 3], cap: f64) -> Option<f64> {
+        if cap != self.face_cap {
+            return None;
+        }
+        let &(given, d) = self.face_distance.get(f)?;
+        self.moves.holds(given, corners).then_some(d)
+    }
+
+    /// Remembers the distance of face `f` to the body, capped at `cap`, at this pass (of
+    /// `faces` faces; another cap forgets the others).
+    pub fn set_face_distance(&mut self, faces: usize, f: usize, cap: f64, d: f64) {
+        if cap != self.face_cap || self.face_distance.len() != faces {
+            self.face_cap = cap;
+            self.face_distance = vec![(0, 0.0); faces];
+        }
+        self.face_distance[f] = (self.moves.passes, d);
+    }
+
+    /// Whether face `f` (corners `corners`) is pierced by the body, if it was tested by a
+    /// pass since which none of its corners moved.
+    pub fn face(&self, f: usize, corners: [u32; 3]) -> Option<bool> {
+        let &(tested, hit) = self.faces.get(f)?;
+        self.moves.holds(tested, corners).then_some(hit)
+    }
+
+    /// Remembers whether face `f` is pierced at this pass.
+    pub fn set_face(&mut self, f: usize, hit: bool) {
+        let pass = self.moves.passes;
+        if let Some(slot) = self.faces.get_mut(f) {
+            *slot = (pass, hit);
         }
     }
 

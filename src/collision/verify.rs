@@ -1,7 +1,7 @@
 //! The brute-force ground truth (\[collide\] 4.2: "the most exact test intersects every
 //! primitive of both"): every garment vertex against every body triangle by the
-//! generalized winding number (inside above one half), and every garment edge against
-//! every body triangle. No partitions, no BVH, no pseudo-normals: slow, independent,
+//! generalized winding number (inside above one half), every garment edge against
+//! every body triangle, and every body edge against every garment face. No partitions, no BVH, no pseudo-normals: slow, independent,
 //! and what the fast tests are checked against (`--verify`, tests, the benchmark).
 
 use glam::DVec3;
@@ -21,6 +21,9 @@ pub struct GroundTruth {
     pub inside: Vec<bool>,
     /// Whether each edge meets the body surface.
     pub crossing: Vec<bool>,
+    /// Whether an edge of the body passes through each face (empty where the faces were
+    /// not asked for).
+    pub pierced: Vec<bool>,
 }
 
 impl GroundTruth {
@@ -32,6 +35,36 @@ impl GroundTruth {
     /// Number of edges crossing.
     pub fn crossing_count(&self) -> usize {
         self.crossing.iter().filter(|c| **c).count()
+    }
+
+    /// Number of faces pierced.
+    pub fn pierced_count(&self) -> usize {
+        self.pierced.iter().filter(|c| **c).count()
+    }
+
+    /// The faces of `triangles` (at `positions`) an edge of the closed `body` passes
+    /// through: every body edge against every face (a box overlap test first only saves
+    /// time).
+    pub fn with_faces(mut self, body: &TriMesh, positions: &[DVec3], triangles: &[[u32; 3]]) -> Self {
+        let mut edges: Vec<[u32; 2]> = body
+            .triangles
+            .iter()
+            .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
+            .collect();
+        edges.sort_unstable();
+        edges.dedup();
+        let segments: Vec<[DVec3; 2]> = edges
+            .iter()
+            .map(|e| e.map(|v| body.positions[v as usize]))
+            .collect();
+        self.pierced = parallel(triangles.len(), |f| {
+            let tri = triangles[f].map(|v| positions[v as usize]);
+            let (lo, hi) = (tri[0].min(tri[1]).min(tri[2]), tri[0].max(tri[1]).max(tri[2]));
+            segments.iter().any(|&[p, q]| {
+                p.min(q).cmple(hi).all() && p.max(q).cmpge(lo).all() && segment_crosses_triangle(p, q, tri)
+            })
+        });
+        self
     }
 }
 
@@ -53,7 +86,11 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
             tlo.cmple(hi).all() && thi.cmpge(lo).all() && segment_crosses_triangle(a, b, body.corners(t))
         })
     });
-    GroundTruth { inside, crossing }
+    GroundTruth {
+        inside,
+        crossing,
+        pierced: Vec::new(),
+    }
 }
 
 /// Detection's misses by cause.
@@ -113,6 +150,10 @@ pub struct VerifyReport {
     pub inside_after: usize,
     /// Edges crossing after response (truth).
     pub crossing_after: usize,
+    /// Faces pierced by the body before response (truth).
+    pub pierced_before: usize,
+    /// Faces pierced by the body after response (truth).
+    pub pierced_after: usize,
     /// The quality figures after response equal the truth's.
     pub quality_agrees: bool,
     /// The step's quality check (partial unless the full one was asked for) gave exactly
@@ -144,6 +185,8 @@ pub fn compare(
         crossing_before: before.crossing_count(),
         inside_after: after.inside_count(),
         crossing_after: after.crossing_count(),
+        pierced_before: before.pierced_count(),
+        pierced_after: after.pierced_count(),
         ..VerifyReport::default()
     };
     for (v, (&truth, &said)) in before.inside.iter().zip(&reported).enumerate() {
@@ -170,7 +213,12 @@ pub fn compare(
         .filter(|&e| after.crossing[e])
         .map(|e| e as u32)
         .collect();
-    report.quality_agrees = inside_after == quality.inside && crossing_after == quality.crossing;
+    let pierced_after: Vec<u32> = (0..after.pierced.len())
+        .filter(|&f| after.pierced[f])
+        .map(|f| f as u32)
+        .collect();
+    report.quality_agrees =
+        inside_after == quality.inside && crossing_after == quality.crossing && pierced_after == quality.pierced;
     report
 }
 

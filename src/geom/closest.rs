@@ -94,6 +94,55 @@ pub fn closest_on_triangle(p: DVec3, [a, b, c]: [DVec3; 3]) -> (DVec3, Feature) 
     (a + ab * v + ac * w, Feature::Face)
 }
 
+/// The distance between the segments `p1 q1` and `p2 q2` (Ericson, *Real-Time Collision
+/// Detection*, 5.1.9: the closest points of the two lines, clamped to the segments in turn);
+/// a segment of zero length is its point.
+pub fn segments_distance(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> f64 {
+    let (d1, d2, r) = (q1 - p1, q2 - p2, p1 - p2);
+    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
+    let (s, t) = if a <= f64::MIN_POSITIVE && e <= f64::MIN_POSITIVE {
+        (0.0, 0.0)
+    } else if a <= f64::MIN_POSITIVE {
+        (0.0, (f / e).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(r);
+        if e <= f64::MIN_POSITIVE {
+            ((-c / a).clamp(0.0, 1.0), 0.0)
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+            let t = (b * s + f) / e;
+            if t < 0.0 {
+                ((-c / a).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((b - c) / a).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    (p1 + d1 * s).distance(p2 + d2 * t)
+}
+
+/// The distance between two triangles that do not intersect: the least of each one's
+/// corners to the other and of their edges to each other (two disjoint triangles are
+/// nearest at a corner of one or on an edge of each).
+pub fn triangles_distance(a: [DVec3; 3], b: [DVec3; 3]) -> f64 {
+    let mut best = f64::INFINITY;
+    for (from, to) in [(a, b), (b, a)] {
+        for &p in &from {
+            best = best.min(closest_on_triangle(p, to).0.distance(p));
+        }
+    }
+    for i in 0..3 {
+        for j in 0..3 {
+            best = best.min(segments_distance(a[i], a[(i + 1) % 3], b[j], b[(j + 1) % 3]));
+        }
+    }
+    best
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -157,3 +206,4 @@ mod tests {
         assert_eq!(q, DVec3::ONE);
     }
 }
+

@@ -12,8 +12,8 @@ use glam::DVec3;
 use super::M1;
 use crate::collision::quality::{Measured, quality_where};
 use crate::collision::{
-    BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, respond, respond_edges,
-    response_ease,
+    BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, pierced_faces, respond,
+    respond_edges, respond_faces, response_ease,
 };
 use crate::mesh::TriMesh;
 use crate::par::par_map;
@@ -42,6 +42,14 @@ pub struct M1Collision {
     pub crossing_after_edges: Vec<[u32; 2]>,
     /// The vertices inside the body after the response, sorted.
     pub inside_after: Vec<u32>,
+    /// Faces pierced by the body before the face rounds (after the vertex response and the
+    /// edge rounds).
+    pub pierced_before: usize,
+    /// Faces pierced at the start of each face round.
+    pub face_rounds: Vec<usize>,
+    /// The faces (indices into the refined mesh's faces) pierced by the body after the
+    /// response, ascending.
+    pub pierced_after: Vec<u32>,
 }
 
 /// What M0's collision left: its vertices inside the body and its edges crossing it (both
@@ -52,6 +60,10 @@ pub struct M0Collided<'a> {
     pub inside: &'a [u32],
     /// Edges (their ends) crossing after M0's response.
     pub crossing: &'a [[u32; 2]],
+    /// The base's faces.
+    pub triangles: &'a [[u32; 3]],
+    /// Those the body pierced after the base's response (indices into `triangles`).
+    pub pierced: &'a [u32],
     /// Partition of each vertex (from M0's detection).
     pub partition: &'a [usize],
     /// Ring plane normal of each vertex on a garment ring.
@@ -196,6 +208,38 @@ pub fn collide_refined(
         Some(known),
     );
     responses.extend(edge_responses);
+    // Faces: the base's faces whose corners are all pinned are pierced exactly when the
+    // base's check said so; the others are checked, lifted where pierced (face rounds, then
+    // edge rounds at the lifted corners) and checked again after.
+    let kept_faces = base_verdicts(m0);
+    let mut pierced_after: Vec<u32> = Vec::new();
+    let mut faces: Vec<u32> = Vec::new();
+    for (f, tri) in refined.mesh.triangles.iter().enumerate() {
+        let verdict = tri
+            .iter()
+            .all(|&v| pinned[v as usize])
+            .then(|| kept_faces.get(&sorted(*tri)).copied())
+            .flatten();
+        match verdict {
+            Some(true) => pierced_after.push(f as u32),
+            Some(false) => {}
+            None => faces.push(f as u32),
+        }
+    }
+    let subset: Vec<[u32; 3]> = faces.iter().map(|&f| refined.mesh.triangles[f as usize]).collect();
+    let rounds = respond_faces(
+        index,
+        &mut moved,
+        (&subset, &edges),
+        (0..subset.len() as u32).collect(),
+        &m1_partition,
+        &roles,
+        ease,
+        &options.response,
+        Some(known),
+    );
+    let pierced_before = pierced_after.len() + rounds.first.len();
+    responses.extend(rounds.lifts.iter().copied());
     // After the response only what moved (and what was inside) is measured again, with the
     // edges at those vertices; the others stand as the check before found them.
     let mut again = vec![false; positions.len()];
@@ -231,6 +275,31 @@ pub fn collide_refined(
     quality.crossing_edges = crossing_after_edges.len();
     quality.inside.clear();
     quality.crossing.clear();
+    // The faces again, each vertex's distance as last measured where it stands now.
+    let free_now: Vec<f64> = (0..positions.len())
+        .map(|v| match quality.clearance[v] {
+            c if again[v] && c.is_finite() => c.abs(),
+            _ if again[v] => 0.0,
+            _ => free[v],
+        })
+        .collect();
+    // Only the faces the first face round found pierced, or with a corner moved since it,
+    // can be pierced now.
+    let mut since = vec![false; positions.len()];
+    for r in &rounds.lifts {
+        since[r.vertex as usize] = true;
+    }
+    let again_faces: Vec<u32> = (0..subset.len() as u32)
+        .filter(|&k| {
+            rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize])
+        })
+        .collect();
+    let again_subset: Vec<[u32; 3]> = again_faces.iter().map(|&k| subset[k as usize]).collect();
+    let after = pierced_faces(index, &moved, &again_subset, &free_now, None);
+    pierced_after.extend(after.iter().map(|&k| faces[again_faces[k as usize] as usize]));
+    pierced_after.sort_unstable();
+    let face_rounds = rounds.found;
+    quality.pierced_faces = pierced_after.len();
     M1Collision {
         tested: tested.len(),
         hits: hits.len(),
@@ -242,5 +311,26 @@ pub fn collide_refined(
         quality,
         crossing_after_edges,
         inside_after,
+        pierced_before,
+        face_rounds,
+        pierced_after,
     }
+}
+
+/// A face's corners in ascending order (the same face whatever its orientation).
+fn sorted(mut tri: [u32; 3]) -> [u32; 3] {
+    tri.sort_unstable();
+    tri
+}
+
+/// The base's verdict on each of its faces (by sorted corners): pierced or not.
+fn base_verdicts(m0: &M0Collided<'_>) -> std::collections::BTreeMap<[u32; 3], bool> {
+    let mut verdicts: std::collections::BTreeMap<[u32; 3], bool> =
+        m0.triangles.iter().map(|&t| (sorted(t), false)).collect();
+    for &f in m0.pierced {
+        if let Some(&t) = m0.triangles.get(f as usize) {
+            verdicts.insert(sorted(t), true);
+        }
+    }
+    verdicts
 }

@@ -63,6 +63,8 @@ pub enum Shortfall {
         inside: usize,
         /// Edges crossing.
         crossing: usize,
+        /// Faces the body pokes through.
+        pierced: usize,
     },
     /// The step's edit was refused (it names the limit); the garment is as before.
     Refused(String),

@@ -11,12 +11,24 @@ use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
 impl RerunLogger {
-    /// The fit map: M0 after the response, each vertex coloured by its clearance (its
-    /// distance to the body, in the bands of [`CLEARANCE_BANDS`]), and the scale as a text
-    /// document beside it.
-    fn clearance_map(&self, mesh: &crate::mesh::TriMesh, clearance: &[f64]) -> Result<(), SinkError> {
+    /// The fit map: M0 after the response, each vertex coloured by the least clearance of
+    /// the faces around it (the distance to the body of their nearest point, where a face
+    /// dips nearer the body than its corners; else the vertex's own distance), in the bands
+    /// of [`CLEARANCE_BANDS`], and the scale as a text document beside it.
+    fn clearance_map(
+        &self,
+        mesh: &crate::mesh::TriMesh,
+        clearance: &[f64],
+        near_faces: &[(u32, f64)],
+    ) -> Result<(), SinkError> {
         let rec = self.recording();
-        let bands: Vec<usize> = clearance.iter().map(|&d| clearance_band(d)).collect();
+        let mut shown = clearance.to_vec();
+        for &(f, d) in near_faces {
+            for v in mesh.triangles[f as usize] {
+                shown[v as usize] = shown[v as usize].min(d);
+            }
+        }
+        let bands: Vec<usize> = shown.iter().map(|&d| clearance_band(d)).collect();
         let colors = bands.iter().map(|&k| CLEARANCE_BANDS[k].1).collect();
         rec.log("garment/clearance", &colored_mesh(mesh, colors))
             .map_err(to_sink)?;
@@ -25,7 +37,7 @@ impl RerunLogger {
             counts[k] += 1;
         }
         let mut text = String::from(
-            "## Clearance (fit map)\n\nEach M0 vertex after the response, by its distance to the body.\n\n| colour | band | vertices |\n|---|---|---:|\n",
+            "## Clearance (fit map)\n\nEach M0 vertex after the response, by the least distance to the body of the faces around it (the vertex's own where no face dips nearer).\n\n| colour | band | vertices |\n|---|---|---:|\n",
         );
         for ((_, [r, g, b], label), n) in CLEARANCE_BANDS.iter().zip(counts) {
             text.push_str(&format!("| rgb({r}, {g}, {b}) | {label} | {n} |\n"));
@@ -131,7 +143,7 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         self.m0(&c.mesh, &g.face_patch, &g.edges)?;
-        self.clearance_map(&c.mesh, &c.quality.clearance)?;
+        self.clearance_map(&c.mesh, &c.quality.clearance, &c.quality.near_faces)?;
         // The edges that crossed after the vertex response, where they stood then (M0 as
         // built with the penetrating vertices moved): what the edge rounds lifted.
         if c.crossing_before_rounds.is_empty() {
@@ -184,7 +196,31 @@ impl RerunLogger {
             )
             .map_err(to_sink)?;
         }
+        for (path, faces, radius, colour) in [
+            ("collision/mesh/pierced_before_rounds", &c.pierced_before_rounds, 0.0012, [255, 150, 40]),
+            ("collision/mesh/pierced_faces", &q.pierced, 0.002, [255, 0, 0]),
+        ] {
+            if faces.is_empty() {
+                rec.log(path, &Clear::flat()).map_err(to_sink)?;
+                continue;
+            }
+            // Each face's outline, closed.
+            let outlines: Vec<Vec<[f32; 3]>> = faces
+                .iter()
+                .map(|&f| {
+                    let [a, b, c3] = g.mesh.triangles[f as usize].map(|v| c.mesh.positions[v as usize]);
+                    f32s(&[a, b, c3, a])
+                })
+                .collect();
+            rec.log(
+                path,
+                &LineStrips3D::new(outlines).with_radii([radius]).with_colors([colour]),
+            )
+            .map_err(to_sink)?;
+        }
         self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
+        self.scalar("metrics/collision/pierced_faces", q.pierced_faces as f64)?;
+        self.scalar("metrics/collision/face_clearance_m", q.face_clearance_m)?;
         self.scalar("metrics/collision/crossing_edges", q.crossing_edges as f64)?;
         self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
         self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
@@ -193,7 +229,7 @@ impl RerunLogger {
         self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
             format!(
-                "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside and {} crossing after, quality agrees: {}, equals a full check: {}",
+                "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside, {} crossing and {} pierced faces after, quality agrees: {}, equals a full check: {}",
                 v.inside_before,
                 v.missed,
                 v.missed_by,
@@ -202,12 +238,14 @@ impl RerunLogger {
                 v.skips_changed,
                 v.inside_after,
                 v.crossing_after,
+                v.pierced_after,
                 v.quality_agrees,
                 v.full_check_agrees
             )
         });
-        // The guarantee: nothing inside, nothing crossing. Said loudly when it is not met.
-        if q.inside.is_empty() && q.crossing.is_empty() {
+        // The guarantee: nothing inside, nothing crossing, no face pierced. Said loudly when
+        // it is not met.
+        if q.is_clear() {
             rec.log("collision/guarantee", &Clear::flat()).map_err(to_sink)?;
         } else {
             let mut spots: Vec<_> = q.inside.iter().map(|&v| c.mesh.positions[v as usize]).collect();
@@ -215,10 +253,14 @@ impl RerunLogger {
                 let [a, b] = g.edges[e as usize];
                 c.mesh.positions[a as usize].lerp(c.mesh.positions[b as usize], 0.5)
             }));
+            spots.extend(q.pierced.iter().map(|&f| {
+                let corners = g.mesh.triangles[f as usize].map(|v| c.mesh.positions[v as usize]);
+                (corners[0] + corners[1] + corners[2]) / 3.0
+            }));
             let centre = spots.iter().copied().sum::<glam::DVec3>() / spots.len() as f64;
             let label = format!(
-                "GUARANTEE NOT MET: {} inside, {} crossing",
-                q.penetrating_vertices, q.crossing_edges
+                "GUARANTEE NOT MET: {} inside, {} crossing, {} faces pierced",
+                q.penetrating_vertices, q.crossing_edges, q.pierced_faces
             );
             rec.log(
                 "collision/guarantee",
@@ -232,17 +274,21 @@ impl RerunLogger {
             self.text(TextLogLevel::WARN, format!("{label} after the response"))?;
         }
         let rounds: Vec<String> = c.edge_rounds.iter().map(ToString::to_string).collect();
+        let face_rounds: Vec<String> = c.face_rounds.iter().map(ToString::to_string).collect();
         self.text(
             TextLogLevel::INFO,
             format!(
-                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, ease error max {:.3} mm, farthest move {:.1} mm, largest edge stretch {:.2}x{}",
+                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; pierced faces per face round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, {} pierced faces, face clearance {:.3} mm, ease error max {:.3} mm, farthest move {:.1} mm, largest edge stretch {:.2}x{}",
                 c.ease * 1e3,
                 c.responses.len(),
                 if counts.is_empty() { "none".to_string() } else { counts.join(", ") },
                 if rounds.is_empty() { "-".to_string() } else { rounds.join(" -> ") },
+                if face_rounds.is_empty() { "-".to_string() } else { face_rounds.join(" -> ") },
                 q.penetrating_vertices,
                 q.max_depth_m * 1e3,
                 q.crossing_edges,
+                q.pierced_faces,
+                q.face_clearance_m * 1e3,
                 q.max_ease_error_m * 1e3,
                 q.max_move_m * 1e3,
                 q.max_stretch,

@@ -48,6 +48,7 @@ pub fn rule_color(rule: AppliedRule) -> [u8; 3] {
         AppliedRule::LocalCentre => [150, 220, 60],
         AppliedRule::Guard => [230, 30, 200],
         AppliedRule::EdgeLift => [255, 230, 90],
+        AppliedRule::FaceLift => [255, 150, 40],
         AppliedRule::Fallback => [140, 140, 140],
     }
 }

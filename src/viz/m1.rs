@@ -80,6 +80,23 @@ impl RerunLogger {
                 .map_err(to_sink)?;
             }
         }
+        if c.pierced_after.is_empty() {
+            rec.log("collision/m1/pierced_faces", &Clear::flat()).map_err(to_sink)?;
+        } else {
+            let outlines: Vec<Vec<[f32; 3]>> = c
+                .pierced_after
+                .iter()
+                .map(|&f| {
+                    let [a, b, d] = m1.mesh.triangles[f as usize].map(|v| positions[v as usize]);
+                    f32s(&[a, b, d, a])
+                })
+                .collect();
+            rec.log(
+                "collision/m1/pierced_faces",
+                &LineStrips3D::new(outlines).with_radii([0.002]).with_colors([[255, 0, 0]]),
+            )
+            .map_err(to_sink)?;
+        }
         rec.log("garment/cut_lines", &Clear::recursive()).map_err(to_sink)?;
         rec.log("garment/m0/cut_lines", &Clear::recursive()).map_err(to_sink)?;
         for ((stored, on_m1), on_m0) in outcome.stored.iter().zip(&outcome.cuts).zip(&outcome.cuts_on_m0) {
@@ -120,6 +137,7 @@ impl RerunLogger {
         self.scalar("metrics/m1/crossing_edges_before", c.crossing_before as f64)?;
         self.scalar("metrics/m1/crossing_edges", q.crossing_edges as f64)?;
         self.scalar("metrics/m1/penetrating_vertices", q.penetrating_vertices as f64)?;
+        self.scalar("metrics/m1/pierced_faces", q.pierced_faces as f64)?;
         let by_rule: Vec<String> = m1
             .selection
             .by_rule()
@@ -127,13 +145,13 @@ impl RerunLogger {
             .map(|(rule, n)| format!("{rule} {n}"))
             .collect();
         self.text(
-            if q.crossing_edges + q.penetrating_vertices == 0 {
+            if q.is_clear() {
                 TextLogLevel::INFO
             } else {
                 TextLogLevel::WARN
             },
             format!(
-                "M1: {} vertices, {} faces; {} of {} patches refined ({}); {} new vertices tested, {} inside; crossing edges {} before -> {} after; {} inside after; {} cut line(s)",
+                "M1: {} vertices, {} faces; {} of {} patches refined ({}); {} new vertices tested, {} inside; crossing edges {} before -> {} after; pierced faces {} before -> {} after; {} inside after; {} cut line(s)",
                 positions.len(),
                 m1.mesh.triangles.len(),
                 m1.selection.count(),
@@ -143,6 +161,8 @@ impl RerunLogger {
                 c.hits,
                 c.crossing_before,
                 q.crossing_edges,
+                c.pierced_before,
+                q.pierced_faces,
                 q.penetrating_vertices,
                 outcome.stored.len()
             ),

@@ -155,7 +155,7 @@ impl RerunLogger {
         self.log_levels("sculpt/levels", &s.refined.levels, DVec3::ZERO)?;
         self.scalar("metrics/size/sculpt/faces", mesh.triangles.len() as f64)?;
         self.text(
-            if q.penetrating_vertices + q.crossing_edges == 0 {
+            if q.is_clear() {
                 TextLogLevel::INFO
             } else {
                 TextLogLevel::WARN

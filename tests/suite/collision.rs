@@ -203,10 +203,10 @@ fn check_rules(g: &GarmentMesh, c: &drape::collision::Collision) -> BTreeSet<App
                     assert!(r.proposed.dot(radial) <= 0.0, "v{v}: guard acted on a good direction");
                 }
             }
-            AppliedRule::EdgeLift => {
-                // Lifted along the way out at a crossing edge's deepest point: out of the
-                // body, never in.
-                assert!(r.edge_round > 0, "v{v}: an edge lift outside the edge rounds");
+            AppliedRule::EdgeLift | AppliedRule::FaceLift => {
+                // Lifted along the way out at a crossing edge's deepest point, or along a
+                // pierced face's outer normal: out of the body, never in.
+                assert!(r.edge_round > 0, "v{v}: a lift outside the rounds");
                 let s = index().signed_distance(r.to, 1.0).expect("near the body");
                 assert!(s >= 0.0, "v{v}: an edge lift left it inside");
             }
@@ -219,7 +219,7 @@ fn check_rules(g: &GarmentMesh, c: &drape::collision::Collision) -> BTreeSet<App
         // The guard: within 90 degrees of the ray from the local centre (legs to abdomen).
         // Fallbacks take the shortest way out, and edge lifts the body's way out at their
         // edge's deepest point (within 75 degrees of the end's own): no centre ray.
-        if !matches!(r.rule, AppliedRule::Fallback | AppliedRule::EdgeLift)
+        if !matches!(r.rule, AppliedRule::Fallback | AppliedRule::EdgeLift | AppliedRule::FaceLift)
             && let Some(cs) = index().slices.at(r.from.y).and_then(|s| s.centres)
         {
             let p = glam::DVec2::new(r.from.x, r.from.z);
@@ -269,8 +269,8 @@ fn after_response_the_demo_m0_has_no_vertex_inside_and_no_crossing_edge() {
 /// (every triangle tried) at its final position. A vertex pushed out stands at its gap
 /// within 0.1% of it either way; the gap is the ease, or less where the body leaves no room,
 /// which the test confirms with its own rays: along the line the vertex moved on, the body
-/// lies within two eases both ahead and behind. An edge lift never leaves its vertex inside,
-/// nor nearer the body than the ease (or than it stood, when it stood nearer).
+/// lies within two eases both ahead and behind. An edge or face lift never leaves its vertex
+/// inside, nor nearer the body than the ease (or than it stood, when it stood nearer).
 pub(super) fn assert_meets_the_ease(c: &drape::collision::Collision, body: &TriMesh) -> usize {
     let mut last: std::collections::BTreeMap<u32, &drape::collision::Response> = std::collections::BTreeMap::new();
     for r in &c.responses {
@@ -280,7 +280,7 @@ pub(super) fn assert_meets_the_ease(c: &drape::collision::Collision, body: &TriM
     for (v, r) in last {
         let d = brute_distance(body, c.mesh.positions[v as usize]);
         assert!(!inside_by_parity(body, r.to), "v{v} ({:?}) ends inside", r.rule);
-        if r.rule == AppliedRule::EdgeLift {
+        if matches!(r.rule, AppliedRule::EdgeLift | AppliedRule::FaceLift) {
             // Never nearer the body than the ease, or than it stood when nearer.
             let before = brute_distance(body, r.from);
             let least = before.min((1.0 - 1e-3) * c.ease);

@@ -201,7 +201,7 @@ pub fn shipped_bodies() -> Vec<std::path::PathBuf> {
 
 /// The last collided M0 of a session: positions after the response, and the edges.
 #[derive(Default)]
-pub struct LastGarment(pub Option<(Vec<DVec3>, Vec<[u32; 2]>)>);
+pub struct LastGarment(pub Option<(Vec<DVec3>, Vec<[u32; 2]>, Vec<[u32; 3]>)>);
 
 impl drape::session::StageSink for LastGarment {
     fn collision(
@@ -213,6 +213,7 @@ impl drape::session::StageSink for LastGarment {
             self.0 = Some((
                 stage.outcome.collision.mesh.positions.clone(),
                 stage.outcome.garment.edges.clone(),
+                stage.outcome.collision.mesh.triangles.clone(),
             ));
         }
         Ok(())
@@ -255,4 +256,75 @@ pub fn octahedron() -> TriMesh {
         [0, 3, 5],
     ];
     TriMesh { positions, triangles }
+}
+
+/// Whether the segment `p..q` passes through the triangle `[a, b, c]` (Möller and Trumbore,
+/// in plain `f64`): the crossing strictly between the ends, in the closed triangle.
+pub fn segment_through_triangle(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
+    let d = q - p;
+    let (e1, e2) = (b - a, c - a);
+    let h = d.cross(e2);
+    let det = e1.dot(h);
+    if det.abs() < 1e-300 {
+        return false;
+    }
+    let s = p - a;
+    let u = s.dot(h) / det;
+    let qv = s.cross(e1);
+    let v = d.dot(qv) / det;
+    let t = e2.dot(qv) / det;
+    t > 0.0 && t < 1.0 && u >= 0.0 && v >= 0.0 && u + v <= 1.0
+}
+
+/// The faces of `triangles` (at `positions`) that an edge of `body` passes through, by
+/// brute force: every body edge against every face whose box its box meets (found
+/// through a grid of cells, which only saves time), each tested by
+/// [`segment_through_triangle`].
+pub fn faces_pierced_by(body: &TriMesh, positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<usize> {
+    use std::collections::BTreeMap;
+    let cell = 0.02;
+    let key = |p: DVec3| (p / cell).floor().as_ivec3().to_array();
+    // Each undirected edge once (a set of its sorted ends).
+    let mut set = std::collections::BTreeSet::new();
+    for t in &body.triangles {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            set.insert((a.min(b), a.max(b)));
+        }
+    }
+    let edges: Vec<[u32; 2]> = set.into_iter().map(|(a, b)| [a, b]).collect();
+    let mut grid: BTreeMap<[i32; 3], Vec<usize>> = BTreeMap::new();
+    for (e, &[a, b]) in edges.iter().enumerate() {
+        let (p, q) = (body.positions[a as usize], body.positions[b as usize]);
+        let (lo, hi) = (key(p.min(q)), key(p.max(q)));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    grid.entry([x, y, z]).or_default().push(e);
+                }
+            }
+        }
+    }
+    let mut pierced = Vec::new();
+    for (f, t) in triangles.iter().enumerate() {
+        let tri = t.map(|v| positions[v as usize]);
+        let (lo, hi) = (key(tri[0].min(tri[1]).min(tri[2])), key(tri[0].max(tri[1]).max(tri[2])));
+        let mut near: Vec<usize> = Vec::new();
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    near.extend(grid.get(&[x, y, z]).into_iter().flatten());
+                }
+            }
+        }
+        near.sort_unstable();
+        near.dedup();
+        let hit = near.iter().any(|&e| {
+            let [a, b] = edges[e];
+            segment_through_triangle(body.positions[a as usize], body.positions[b as usize], tri)
+        });
+        if hit {
+            pierced.push(f);
+        }
+    }
+    pierced
 }

@@ -5,6 +5,7 @@ mod constraints;
 mod convexify;
 mod coons;
 mod ease;
+mod faces;
 mod fuzz;
 mod garment;
 mod index_cache;

@@ -388,9 +388,11 @@ fn coincident_and_nearly_coincident_control_points_are_refused_or_kept_clear() {
         }
         let mut last = LastGarment::default();
         run_session(&session, &RunOptions::default(), &mut [&mut last]);
-        let (positions, edges) = last.0.expect("a collided garment");
+        let (positions, edges, triangles) = last.0.expect("a collided garment");
         let truth = ground_truth(&body.mesh.mesh, &positions, &edges);
         assert_eq!((truth.inside_count(), truth.crossing_count()), (0, 0), "{off}");
+        let pierced = super::common::faces_pierced_by(&body.mesh.mesh, &positions, &triangles);
+        assert!(pierced.is_empty(), "{off}: faces pierced {pierced:?}");
     }
 }
 

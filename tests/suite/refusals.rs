@@ -102,7 +102,7 @@ fn a_step_that_leaves_the_garment_in_the_body_says_so_and_strict_fails_the_run()
         .shortfalls
         .iter()
         .filter_map(|(s, f)| match f {
-            Shortfall::Guarantee { inside, crossing } => Some((*s, *inside, *crossing)),
+            Shortfall::Guarantee { inside, crossing, .. } => Some((*s, *inside, *crossing)),
             Shortfall::Refused(_) => None,
         })
         .collect();

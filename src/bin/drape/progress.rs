@@ -79,7 +79,7 @@ impl StageSink for Progress {
         let c = &outcome.collision;
         let d = &c.detection;
         eprintln!(
-            "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges",
+            "  step {} collision: {} tested, {} inert, {} patch-skipped; {} hits -> {} moved; after: {} inside, {} crossing edges, {} pierced faces",
             info.step,
             d.tested,
             d.skipped_inert,
@@ -87,17 +87,18 @@ impl StageSink for Progress {
             d.hits.len(),
             c.responses.len(),
             c.quality.penetrating_vertices,
-            c.quality.crossing_edges
+            c.quality.crossing_edges,
+            c.quality.pierced_faces
         );
-        if c.quality.penetrating_vertices > 0 || c.quality.crossing_edges > 0 {
+        if !c.quality.is_clear() {
             eprintln!(
-                "  step {} WARNING: the garment is not clear of the body ({} inside, {} crossing)",
-                info.step, c.quality.penetrating_vertices, c.quality.crossing_edges
+                "  step {} WARNING: the garment is not clear of the body ({} inside, {} crossing, {} faces pierced)",
+                info.step, c.quality.penetrating_vertices, c.quality.crossing_edges, c.quality.pierced_faces
             );
         }
         if let Some(v) = &outcome.verify {
             eprintln!(
-                "  step {} verify: truth {} inside before, detection missed {} ({}), false hits {} (line-line {}), verdicts the skips changed {}; after: {} inside, {} crossing; quality agrees: {}, equals a full check: {}",
+                "  step {} verify: truth {} inside before, detection missed {} ({}), false hits {} (line-line {}), verdicts the skips changed {}; after: {} inside, {} crossing, {} pierced faces; quality agrees: {}, equals a full check: {}",
                 info.step,
                 v.inside_before,
                 v.missed,
@@ -107,6 +108,7 @@ impl StageSink for Progress {
                 v.skips_changed,
                 v.inside_after,
                 v.crossing_after,
+                v.pierced_after,
                 v.quality_agrees,
                 v.full_check_agrees
             );
@@ -118,7 +120,7 @@ impl StageSink for Progress {
         let m1 = &stage.outcome.m1;
         let c = &stage.outcome.collision;
         eprintln!(
-            "  step {} M1: {} of {} patches refined, {} faces; {} new vertices tested, {} inside; crossing edges {} -> {}; after: {} inside, {} crossing edges; {} cut line(s)",
+            "  step {} M1: {} of {} patches refined, {} faces; {} new vertices tested, {} inside; crossing edges {} -> {}; after: {} inside, {} crossing edges, {} pierced faces; {} cut line(s)",
             info.step,
             m1.selection.count(),
             m1.selection.rules.len(),
@@ -133,6 +135,7 @@ impl StageSink for Progress {
                 .join(", "),
             c.quality.penetrating_vertices,
             c.quality.crossing_edges,
+            c.quality.pierced_faces,
             stage.outcome.stored.len()
         );
         Ok(())

@@ -96,8 +96,13 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     }
     for (step, shortfall) in &report.shortfalls {
         match shortfall {
-            Shortfall::Guarantee { inside, crossing } => eprintln!(
-                "{}: step {step}: the garment is not clear of the body: {inside} vertices inside, {crossing} edges crossing",
+            Shortfall::Guarantee {
+                inside,
+                crossing,
+                pierced,
+            } => eprintln!(
+                "{}: step {step}: the garment is not clear of the body: {inside} vertices inside, {crossing} edges \
+                 crossing, {pierced} faces pierced",
                 if args.strict { "error" } else { "warning" }
             ),
             Shortfall::Refused(message) => eprintln!(

@@ -182,12 +182,19 @@ pub fn solve(
         broken_before = Some(broken);
     }
     let residuals = net.residuals(&run.fw);
-    let violations = residuals
+    let violations: Vec<(usize, f64)> = residuals
         .iter()
         .enumerate()
         .filter(|(k, r)| net.violated(*k, **r, options.tolerance))
         .map(|(k, r)| (k, *r))
         .collect();
+    // A solve is converged only when every constraint meets the tolerance in its own unit
+    // (the passes watch the constraints between the curves they solved; a constraint they
+    // did not visit can still be off).
+    if converged && !violations.is_empty() {
+        converged = false;
+        stop = Stop::Stalled;
+    }
     let largest = residuals.iter().map(|r| r.abs()).fold(0.0, f64::max);
     record("constraint.passes", stop, passes, largest);
     let solved: Vec<usize> = solved_all.into_iter().collect();

@@ -22,6 +22,15 @@ struct CollisionFigures<'a> {
     penetrating_vertices: usize,
     /// Edges crossing the body after response.
     crossing_edges: usize,
+    /// Faces the body pokes through after response (a body edge through them).
+    pierced_faces: usize,
+    /// The least distance from the body to any point of a face, and to any vertex, m.
+    face_clearance_m: f64,
+    vertex_clearance_m: f64,
+    /// Faces pierced at the start of each face round (the first: after the edge rounds).
+    pierced_faces_by_round: &'a [usize],
+    /// Moves made by the face rounds.
+    face_responses: usize,
     /// Deepest vertex left inside, m.
     max_depth_m: f64,
     /// Mean depth of the vertices left inside, m.
@@ -61,7 +70,7 @@ struct CollisionFigures<'a> {
     /// With `--verify`: the brute-force check.
     #[serde(skip_serializing_if = "Option::is_none")]
     verify: Option<&'a VerifyReport>,
-    /// No vertex inside and no edge crossing after the response.
+    /// No vertex inside, no edge crossing and no face pierced after the response.
     guarantee_met: bool,
     /// What the quality check and the first edge round did not measure again (the same
     /// positions as before; none with `--quality full`).
@@ -92,6 +101,11 @@ impl<'a> CollisionFigures<'a> {
         Self {
             penetrating_vertices: q.penetrating_vertices,
             crossing_edges: q.crossing_edges,
+            pierced_faces: q.pierced_faces,
+            face_clearance_m: q.face_clearance_m,
+            vertex_clearance_m: q.clearance.iter().filter(|c| c.is_finite()).fold(f64::INFINITY, |a, &c| a.min(c)),
+            pierced_faces_by_round: &c.face_rounds,
+            face_responses: c.responses.iter().filter(|r| r.rule == AppliedRule::FaceLift).count(),
             max_depth_m: q.max_depth_m,
             mean_depth_m: q.mean_depth_m,
             tested_vertices: d.tested,
@@ -106,7 +120,11 @@ impl<'a> CollisionFigures<'a> {
                 line_line: d.by_method[1],
             },
             responses: c.responses.iter().filter(|r| r.edge_round == 0).count(),
-            edge_responses: c.responses.iter().filter(|r| r.edge_round > 0).count(),
+            edge_responses: c
+                .responses
+                .iter()
+                .filter(|r| r.edge_round > 0 && r.rule != AppliedRule::FaceLift)
+                .count(),
             responses_by_rule,
             crossing_edges_by_round: &c.edge_rounds,
             response_ease_m: c.ease,
@@ -115,7 +133,7 @@ impl<'a> CollisionFigures<'a> {
             max_move_m: q.max_move_m,
             max_stretch: q.max_stretch,
             verify,
-            guarantee_met: q.penetrating_vertices == 0 && q.crossing_edges == 0,
+            guarantee_met: q.is_clear(),
             reused: c.reused,
         }
     }
@@ -123,9 +141,9 @@ impl<'a> CollisionFigures<'a> {
 
 /// Collides the new garment state's M0 with the body (then builds M1, when the scene asks
 /// for it), records the figures and emits the stages: what every step that makes an M0
-/// ends with. Returns what the response could not clear: `Some((inside, crossing))` when
-/// vertices are left inside the body or edges crossing it (the caller refuses an edit
-/// that leaves them, or reports a new garment that does).
+/// ends with. Returns what the response could not clear: `Some([inside, crossing,
+/// pierced])` when vertices are left inside the body, edges crossing it or faces pierced by
+/// it (the caller refuses an edit that leaves them, or reports a new garment that does).
 #[must_use]
 pub(super) fn collide_and_emit(
     scope: &mut StepScope<'_, '_, '_>,
@@ -133,27 +151,27 @@ pub(super) fn collide_and_emit(
     index: &BodyIndex,
     state: &mut GarmentState,
     cx: &StepContext<'_>,
-) -> Option<(usize, usize)> {
+) -> Option<[usize; 3]> {
     collide_garment(scope, body, index, state, cx.options, cx.session.scene.m1.as_ref());
     emit_collision(scope, state, index);
     let q = &state.collision.as_ref()?.collision.quality;
-    (q.penetrating_vertices > 0 || q.crossing_edges > 0).then_some((q.penetrating_vertices, q.crossing_edges))
+    (!q.is_clear()).then_some([q.penetrating_vertices, q.crossing_edges, q.pierced_faces])
 }
 
 /// The refusal of an edit whose M0 the response could not clear of the body (`unmet`:
-/// vertices inside, edges crossing): the kept garment is emitted again after the attempt
+/// vertices inside, edges crossing, faces pierced): the kept garment is emitted again after the attempt
 /// ([`emit_kept`]), so that the last thing logged is what the session holds; returns the
 /// message. The caller keeps the state and refuses the edit with it.
 pub(super) fn unclear(
     scope: &mut StepScope<'_, '_, '_>,
     kept: &GarmentState,
     index: &BodyIndex,
-    (inside, crossing): (usize, usize),
+    [inside, crossing, pierced]: [usize; 3],
 ) -> String {
     emit_kept(scope, kept, index);
     format!(
-        "the garment cannot be kept clear of the body after this edit: {inside} vertices inside and {crossing} \
-         edges crossing it after the response"
+        "the garment cannot be kept clear of the body after this edit: {inside} vertices inside, {crossing} \
+         edges crossing it and {pierced} faces pierced by it after the response"
     )
 }
 
@@ -188,6 +206,9 @@ fn collide_garment(
         ("collision.respond", t.respond),
         ("collision.respond_edges", t.respond_edges),
         ("collision.quality", t.quality),
+        ("collision.respond_faces", t.respond_faces),
+        ("collision.check_faces", t.check_faces),
+        ("collision.face_clearance", t.face_clearance),
     ] {
         scope.metrics.timings_ms.insert(name.to_string(), ms);
     }
@@ -202,10 +223,18 @@ fn collide_garment(
                 &garment.edges,
                 &collision.responses,
             )
+            .with_faces(index, &collision.mesh.positions, &garment.mesh.triangles, None)
+            .with_face_clearance(index, &collision.mesh.positions, &garment.mesh.triangles, collision.ease, None)
         });
         scope.timed("collision.verify", || {
-            let before = collision::ground_truth(&body.mesh.mesh, &garment.mesh.positions, &garment.edges);
-            let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges);
+            let (positions, triangles) = (&garment.mesh.positions, &garment.mesh.triangles);
+            let before = collision::ground_truth(&body.mesh.mesh, positions, &garment.edges).with_faces(
+                &body.mesh.mesh,
+                positions,
+                triangles,
+            );
+            let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges)
+                .with_faces(&body.mesh.mesh, &collision.mesh.positions, triangles);
             let surface = options.collision.detect.reach(index.height).surface;
             let on_skin = |v: usize| {
                 let p = garment.mesh.positions[v];

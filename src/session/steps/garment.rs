@@ -88,10 +88,14 @@ pub(super) fn run(
     }
     next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
     if let Some(probe) = &state.probe
-        && let Some((inside, crossing)) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
+        && let Some([inside, crossing, pierced]) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
     {
         // A new garment has nothing to fall back on: kept, and reported loudly.
-        scope.shortfalls.push(Shortfall::Guarantee { inside, crossing });
+        scope.shortfalls.push(Shortfall::Guarantee {
+            inside,
+            crossing,
+            pierced,
+        });
     }
     state.garment = Some(next);
     Ok(())

@@ -36,6 +36,11 @@ struct M1Figures<'a> {
     /// After M1's response, by the exact check over all of M1.
     m1_penetrating_vertices: usize,
     m1_crossing_edges: usize,
+    /// M1's faces the body pierced before its face rounds, and after its response.
+    m1_pierced_faces_before: usize,
+    m1_pierced_faces: usize,
+    /// Pierced faces at the start of each of M1's face rounds.
+    m1_pierced_faces_by_round: &'a [usize],
     /// Cut lines rebuilt on M1.
     m1_cut_lines: usize,
     /// With `--verify`: M1 after its collision by brute force (winding number for every
@@ -49,6 +54,7 @@ struct M1Figures<'a> {
 struct M1Verify {
     inside: usize,
     crossing: usize,
+    pierced: usize,
 }
 
 /// Builds and collides M1 over the state's collided M0, and rebuilds the cut lines on it.
@@ -94,6 +100,8 @@ pub(super) fn build_m1(
         measured: Some(&measured),
         inside: &outcome.collision.quality.inside,
         crossing: &m0_crossing,
+        triangles: &m0.triangles,
+        pierced: &outcome.collision.quality.pierced,
         partition: &outcome.collision.detection.partition,
         ring_normal: &outcome.garment.ring_normal,
     };
@@ -112,10 +120,12 @@ pub(super) fn build_m1(
         .collect();
     let verify = options.verify.then(|| {
         scope.timed("m1.verify", || {
-            let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, built.edges());
+            let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, built.edges())
+                .with_faces(&body.mesh.mesh, &collision.positions, &built.mesh.triangles);
             M1Verify {
                 inside: truth.inside_count(),
                 crossing: truth.crossing_count(),
+                pierced: truth.pierced_count(),
             }
         })
     });
@@ -132,6 +142,9 @@ pub(super) fn build_m1(
         m1_responses: collision.responses.len(),
         m1_penetrating_vertices: collision.quality.penetrating_vertices,
         m1_crossing_edges: collision.quality.crossing_edges,
+        m1_pierced_faces_before: collision.pierced_before,
+        m1_pierced_faces: collision.quality.pierced_faces,
+        m1_pierced_faces_by_round: &collision.face_rounds,
         m1_cut_lines: state.cuts.len(),
         m1_verify: verify,
     });

@@ -31,6 +31,8 @@ struct Base {
     ring_normal: Vec<Option<DVec3>>,
     inside: Vec<u32>,
     crossing: Vec<[u32; 2]>,
+    /// Its faces the body pierced (indices into `mesh.triangles`).
+    pierced: Vec<u32>,
 }
 
 /// The garment's latest mesh: the last sculpt, else M1, else M0 (`None` before a garment
@@ -44,6 +46,7 @@ fn base(state: &GarmentState) -> Option<Base> {
             ring_normal: s.ring_normal.clone(),
             inside: s.collision.inside_after.clone(),
             crossing: s.collision.crossing_after_edges.clone(),
+            pierced: s.collision.pierced_after.clone(),
         });
     }
     let m0 = state.collision.as_ref()?;
@@ -62,6 +65,7 @@ fn base(state: &GarmentState) -> Option<Base> {
             ring_normal,
             inside: m1.collision.inside_after.clone(),
             crossing: m1.collision.crossing_after_edges.clone(),
+            pierced: m1.collision.pierced_after.clone(),
         });
     }
     Some(Base {
@@ -77,6 +81,7 @@ fn base(state: &GarmentState) -> Option<Base> {
             .iter()
             .map(|&e| m0.garment.edges[e as usize])
             .collect(),
+        pierced: m0.collision.quality.pierced.clone(),
     })
 }
 
@@ -127,6 +132,8 @@ fn apply(
         let left = M0Collided {
             inside: &base.inside,
             crossing: &base.crossing,
+            triangles: &base.mesh.triangles,
+            pierced: &base.pierced,
             partition: &base.partition,
             ring_normal: &base.ring_normal,
             measured: None,
@@ -186,6 +193,8 @@ struct SculptFigures<'a> {
     sculpt_responses: usize,
     sculpt_penetrating_vertices: usize,
     sculpt_crossing_edges: usize,
+    /// Faces pierced by the body after the response.
+    sculpt_pierced_faces: usize,
     /// With `--verify`: the sculpted mesh by brute force (winding number for every vertex,
     /// every edge against every body triangle).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -196,6 +205,7 @@ struct SculptFigures<'a> {
 struct SculptVerify {
     inside: usize,
     crossing: usize,
+    pierced: usize,
 }
 
 fn record(scope: &mut StepScope<'_, '_, '_>, outcome: &SculptOutcome, verify: Option<SculptVerify>) {
@@ -226,6 +236,7 @@ fn record(scope: &mut StepScope<'_, '_, '_>, outcome: &SculptOutcome, verify: Op
         sculpt_responses: c.responses.len(),
         sculpt_penetrating_vertices: c.quality.penetrating_vertices,
         sculpt_crossing_edges: c.quality.crossing_edges,
+        sculpt_pierced_faces: c.quality.pierced_faces,
         sculpt_verify: verify,
     });
 }
@@ -250,7 +261,7 @@ pub(super) fn run(
         return Err(StepError::NoGarment { verb: "sculpt" });
     };
     let index = probe.index();
-    let (before_inside, before_crossing) = (base.inside.len(), base.crossing.len());
+    let (before_inside, before_crossing, before_pierced) = (base.inside.len(), base.crossing.len(), base.pierced.len());
     let outcome = apply(
         scope,
         base,
@@ -265,20 +276,23 @@ pub(super) fn run(
         scope.timed("sculpt.verify", || {
             let mesh = outcome.mesh();
             let truth =
-                crate::collision::ground_truth(&state.body.mesh.mesh, &mesh.positions, &undirected_edges(&mesh));
+                crate::collision::ground_truth(&state.body.mesh.mesh, &mesh.positions, &undirected_edges(&mesh))
+                    .with_faces(&state.body.mesh.mesh, &mesh.positions, &mesh.triangles);
             SculptVerify {
                 inside: truth.inside_count(),
                 crossing: truth.crossing_count(),
+                pierced: truth.pierced_count(),
             }
         })
     });
     record(scope, &outcome, verify);
     let q = &outcome.collision.quality;
-    if q.penetrating_vertices > before_inside || q.crossing_edges > before_crossing {
+    if q.penetrating_vertices > before_inside || q.crossing_edges > before_crossing || q.pierced_faces > before_pierced
+    {
         let message = format!(
-            "the garment cannot be kept clear of the body after this sculpt: {} vertices inside and {} edges \
-             crossing it after the response",
-            q.penetrating_vertices, q.crossing_edges
+            "the garment cannot be kept clear of the body after this sculpt: {} vertices inside, {} edges \
+             crossing it and {} faces pierced by it after the response",
+            q.penetrating_vertices, q.crossing_edges, q.pierced_faces
         );
         scope.refuse(
             &message,
