@@ -17,17 +17,21 @@
 //! the body surface is flat between its vertices, so the height above the face's plane
 //! is greatest at a corner of the cap, and the cap's corners off the plane are body
 //! vertices. The cap is grown from the outer ends of the body edges through the face along
-//! the body's edges, over the vertices above the face's plane (so that a part of the body
-//! over the plane that does not pass through the face, an arm beside the torso, is not
-//! taken); its deepest vertex is the target. With `b` that point's barycentric coordinates
+//! the body's edges, over the vertices above the face (over its plane, their foot in the
+//! face; so that a part of the body over the plane that does not pass through the face, an
+//! arm beside the torso, is not taken); its deepest vertex is the target. A cap higher than
+//! the face's longest edge is no bump but a part of the body the face lies across (a
+//! squeeze between the thighs): that face is not lifted, and stays pierced. With `b` that point's barycentric coordinates
 //! on the face (clamped into it) and `h` its height, the face is lifted there by
 //! `lift = h + ease`: its corners move along the face's outer normal by the least-squares
 //! split `u_i = lift b_i / sum_j b_j^2` (so that `sum_i b_i u_i = lift`), over the corners
-//! that may move (pinned ones stay: M0's vertices in M1), at most four times the lift. A
+//! that may move (pinned ones stay: M0's vertices in M1), at most twice the lift. A
 //! corner shared by several pierced faces takes the longest of its moves, and a move that
 //! would leave it inside the body or nearer it than the ease is not made (as the edge
 //! rounds do, [`super::edges`]). Only the faces at moved corners are checked again, for a
-//! few rounds.
+//! few rounds; where three rounds in a row leave more faces pierced than the best round
+//! before them (lifts that push faces into other parts of the body), the rounds stop and
+//! the positions of that best round are taken back.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -228,9 +232,13 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
             }
         }
     });
-    // The rest of the cap: the body vertices over the face's plane joined to those by body
-    // edges over it (a part of the body over the plane but not through the face, an arm
-    // beside the torso, is not reached).
+    // The rest of the cap: the body vertices over the face (above its plane, their foot in
+    // it) joined to those by body edges over it (a part of the body over the plane but not
+    // through the face, an arm beside the torso, is not reached).
+    let over = |v: u32| {
+        let p = index.positions[v as usize];
+        height(v) > 0.0 && barycentric(tri, n, p).iter().all(|&b| b >= 0.0)
+    };
     let mut cap: BTreeSet<u32> = BTreeSet::new();
     while let Some(v) = stack.pop() {
         if cap.len() >= MOST_CAP || !cap.insert(v) {
@@ -240,12 +248,20 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
         index.visit_box(p, p, |t, _| {
             let ids = index.triangles[t as usize];
             if ids.contains(&v) {
-                stack.extend(ids.into_iter().filter(|&w| !cap.contains(&w) && height(w) > 0.0));
+                stack.extend(ids.into_iter().filter(|&w| !cap.contains(&w) && over(w)));
             }
         });
     }
     let deepest = cap.into_iter().max_by(|&a, &b| height(a).total_cmp(&height(b)).then(b.cmp(&a)))?;
     let (p, height) = (index.positions[deepest as usize], height(deepest));
+    // A cap higher than the face is wide is no bump: the face lies across a part of the
+    // body (between the thighs, say), and lifting it off would fling it.
+    let longest = (0..3)
+        .map(|k| tri[k].distance(tri[(k + 1) % 3]))
+        .fold(0.0, f64::max);
+    if height > longest {
+        return None;
+    }
     // Its foot on the face (clamped into it where the cap leans past an edge).
     let at = barycentric(tri, n, p).map(|b| b.max(0.0));
     let sum: f64 = at.iter().sum();
@@ -260,7 +276,8 @@ pub struct FaceRounds {
     /// The moves, as responses: the face lifts (rule [`AppliedRule::FaceLift`]), then the
     /// edge rounds' lifts at the corners they moved.
     pub lifts: Vec<Response>,
-    /// Pierced faces at the start of each round.
+    /// Pierced faces at the start of each round (those the round tested that are, and those
+    /// found before whose corners have not moved since).
     pub found: Vec<usize>,
     /// The faces the first round found pierced, ascending (the others it tested are clear).
     pub first: Vec<u32>,
@@ -285,6 +302,12 @@ pub fn respond_faces(
     known: Option<KnownClearance<'_>>,
 ) -> FaceRounds {
     let mut out = FaceRounds::default();
+    // The faces pierced now (those tested last), and the best state so far: the fewest
+    // pierced, the positions then and how many lifts had been made. Rounds that do not
+    // better it three times over stop, and the best state is taken back.
+    let mut standing: BTreeSet<u32> = BTreeSet::new();
+    let mut best: Option<(usize, Vec<DVec3>, usize)> = None;
+    let mut worse = 0;
     for round in 1..=options.edge_rounds {
         let now = &*positions;
         let corners = |f: u32| triangles[f as usize].map(|v| now[v as usize]);
@@ -302,9 +325,22 @@ pub fn respond_faces(
             }
         });
         let hit: Vec<u32> = check.iter().zip(&tested).filter(|(_, t)| t.0).map(|(&f, _)| f).collect();
-        out.found.push(hit.len());
+        for f in &check {
+            standing.remove(f);
+        }
+        standing.extend(&hit);
+        out.found.push(standing.len());
         if round == 1 {
             out.first = hit;
+        }
+        if best.as_ref().is_none_or(|b| standing.len() < b.0) {
+            best = Some((standing.len(), positions.to_vec(), out.lifts.len()));
+            worse = 0;
+        } else {
+            worse += 1;
+            if worse >= 3 {
+                break;
+            }
         }
         let pierced: Vec<(u32, Poke)> = check.iter().zip(tested).filter_map(|(&f, (_, p))| Some((f, p?))).collect();
         if pierced.is_empty() {
@@ -318,7 +354,7 @@ pub fn respond_faces(
             let weight: f64 = free.iter().map(|&k| poke.at[k] * poke.at[k]).sum();
             for &k in &free {
                 let share = if weight > 0.0 {
-                    (lift * poke.at[k] / weight).min(4.0 * lift)
+                    (lift * poke.at[k] / weight).min(2.0 * lift)
                 } else {
                     lift
                 };
@@ -349,6 +385,12 @@ pub fn respond_faces(
             .filter(|&f| triangles[f as usize].iter().any(|&v| at_moved[v as usize]))
             .collect();
         out.lifts.extend(moved);
+    }
+    if let Some((count, at, made)) = best
+        && standing.len() > count
+    {
+        positions.copy_from_slice(&at);
+        out.lifts.truncate(made);
     }
     if !out.lifts.is_empty() {
         let mut lifted = vec![false; positions.len()];

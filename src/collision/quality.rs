@@ -60,6 +60,14 @@ pub struct Quality {
     pub nearest: Vec<u32>,
 }
 
+/// The one tolerance for "inside", as a fraction of the body's height: a point nearer the
+/// body's surface than this (1.7 pm on a 1.7 m body, a thousand times the rounding of a
+/// distance) is on the skin, neither inside nor out. The quality check, the brute-force truth
+/// ([`super::verify::ground_truth`]) and the response (whose target gap is at least
+/// [`super::ResponseOptions::min_ease`] of the height, far outside it, with an ease of 0
+/// too) share it.
+pub const SKIN: f64 = 1e-12;
+
 /// No body triangle: none within reach, or not measured.
 pub const NO_TRIANGLE: u32 = u32::MAX;
 
@@ -286,7 +294,7 @@ fn measure(
     measured: Option<&Measured>,
 ) -> Quality {
     let reach = check_reach(index);
-    let surface = 1e-12 * index.height;
+    let surface = SKIN * index.height;
     let mut q = Quality::default();
     let mut depth_sum = 0.0;
     // Distance to the body (`reach` where nothing is nearer) of the vertices measured and

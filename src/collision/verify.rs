@@ -9,6 +9,7 @@ use glam::DVec3;
 use super::detect::Detection;
 use super::quality::Quality;
 use crate::body::DetectionMethod;
+use crate::geom::closest::closest_on_triangle;
 use crate::geom::inside::winding_number;
 use crate::geom::predicates::segment_crosses_triangle;
 use crate::mesh::TriMesh;
@@ -68,9 +69,19 @@ impl GroundTruth {
     }
 }
 
-/// The ground truth of `positions` and `edges` against the closed `body`.
+/// The ground truth of `positions` and `edges` against the closed `body`: a vertex is
+/// inside when its winding number is above one half and it stands farther from every body
+/// triangle than the skin tolerance ([`super::quality::SKIN`] of the body's height).
 pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> GroundTruth {
-    let inside = parallel(positions.len(), |v| winding_number(body, positions[v]) > 0.5);
+    // The body's height as the index takes it (its extent up, along y).
+    let height = body.bounds().map_or(1.0, |(lo, hi)| hi.y - lo.y);
+    let skin = super::quality::SKIN * height;
+    let off_skin = |p: DVec3| {
+        (0..body.triangles.len()).all(|t| closest_on_triangle(p, body.corners(t)).0.distance(p) > skin)
+    };
+    let inside = parallel(positions.len(), |v| {
+        winding_number(body, positions[v]) > 0.5 && off_skin(positions[v])
+    });
     // Every edge against every triangle; a box overlap test first only saves time.
     let boxes: Vec<(DVec3, DVec3)> = (0..body.triangles.len())
         .map(|t| {

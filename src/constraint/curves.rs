@@ -146,17 +146,68 @@ pub fn spread(fw: &Framework, c: &CurveNode, moved: &[(usize, DVec3)]) -> Vec<DV
     out
 }
 
-/// Replaces a curve's control points and refits it (anchors and apex follow). The error
-/// says why the spline cannot be fitted (two control points on top of each other, ...).
-pub fn set_points(fw: &mut Framework, c: &CurveNode, control: Vec<DVec3>, options: &RingOptions) -> Result<(), String> {
-    match c.kind {
+/// Why a curve's new control points cannot be fitted.
+#[derive(Clone, Debug, PartialEq)]
+pub enum RefitFailure {
+    /// Two consecutive control points meet (closer than the curve's length can tell apart:
+    /// the chord-length parameter would not increase between them): the edit folds the
+    /// curve onto itself there.
+    Meet {
+        /// The two control points (the second follows the first along the curve).
+        points: [usize; 2],
+        /// Where they meet, m.
+        at: DVec3,
+    },
+    /// The fit failed otherwise (the fitting error, as text).
+    Fit(String),
+}
+
+/// Two consecutive points of `control` (and the last and the first, `closed`) that the
+/// chord-length parameter cannot tell apart: the running sum of the chords, summed as the
+/// spline sums them, does not increase between them.
+pub fn meeting_points(control: &[DVec3], closed: bool) -> Option<[usize; 2]> {
+    let n = control.len();
+    let ends = if closed { n } else { n.saturating_sub(1) };
+    let mut length = 0.0;
+    for i in 0..ends {
+        let j = (i + 1) % n;
+        let next = length + control[i].distance(control[j]);
+        // Written so that a NaN sum is caught too.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(next > length) {
+            return Some([i, j]);
+        }
+        length = next;
+    }
+    None
+}
+
+/// Replaces a curve's control points and refits it (anchors and apex follow).
+///
+/// # Failures
+/// [`RefitFailure::Meet`] where two consecutive control points meet, else
+/// [`RefitFailure::Fit`] with the fitting error.
+pub fn set_points(
+    fw: &mut Framework,
+    c: &CurveNode,
+    control: Vec<DVec3>,
+    options: &RingOptions,
+) -> Result<(), RefitFailure> {
+    if let Some(points) = meeting_points(&control, c.kind == CurveKind::Ring) {
+        return Err(RefitFailure::Meet {
+            points,
+            at: control[points[0]],
+        });
+    }
+    let fitted = match c.kind {
         CurveKind::Ring => fw.rings[c.index].refit(control, options).map_err(|e| e.to_string()),
         CurveKind::Open => fw.open_curves[c.index].refit(control).map_err(|e| e.to_string()),
         CurveKind::Contour => {
             let t = fw.contours[c.index].tangents;
             fw.contours[c.index].refit(control, t).map_err(|e| e.to_string())
         }
-    }
+    };
+    fitted.map_err(RefitFailure::Fit)
 }
 
 /// Dense samples of the fitted curve with their spline parameters (`per_span` per
@@ -190,5 +241,31 @@ pub fn knots<'f>(fw: &'f Framework, c: &CurveNode) -> &'f [f64] {
         CurveKind::Ring => fw.rings[c.index].spline.knots(),
         CurveKind::Open => fw.open_curves[c.index].spline.knots(),
         CurveKind::Contour => fw.contours[c.index].spline.knots(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::meeting_points;
+
+    #[test]
+    fn points_that_meet_are_found_where_the_chord_sum_stalls() {
+        let square = [DVec3::ZERO, DVec3::X, DVec3::ONE.with_z(0.0), DVec3::Y];
+        assert_eq!(meeting_points(&square, true), None);
+        let mut twice = square.to_vec();
+        twice.insert(2, twice[1]);
+        assert_eq!(meeting_points(&twice, true), Some([1, 2]));
+        // The last and the first meet only on a closed curve.
+        let mut closing = square.to_vec();
+        closing.push(DVec3::ZERO);
+        assert_eq!(meeting_points(&closing, false), None);
+        assert_eq!(meeting_points(&closing, true), Some([4, 0]));
+        // Apart by less than the running length can tell: 1e-17 m after 3 m of chords.
+        let mut tiny = square.to_vec();
+        tiny.push(DVec3::new(1e-17, 1.0, 0.0));
+        assert_eq!(meeting_points(&tiny, false), Some([3, 4]));
+        assert_eq!(meeting_points(&[DVec3::ZERO, DVec3::NAN], false), Some([0, 1]));
     }
 }

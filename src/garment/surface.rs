@@ -256,7 +256,7 @@ impl<'a> Surfacer<'a> {
             self.patches.push(p.clone());
             return Ok(());
         }
-        let mut grid = PatchGrid::coons(name, sides, 1e-9 * self.layout.height)?.with_curves(curves);
+        let mut grid = PatchGrid::coons(name, sides, self.layout.weld)?.with_curves(curves);
         // The blend of four boundaries that stand off the body can still dip into it where
         // the body bulges between them (the inner thigh and the belly over a tall crotch
         // junction): interior samples stand the clearance off, as contour spans do.

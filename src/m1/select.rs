@@ -132,7 +132,8 @@ pub struct SelectInput<'a> {
     pub face_patch: &'a [u32],
     /// Number of patches.
     pub patches: usize,
-    /// M0's vertex positions as first built (the standard size), if known.
+    /// M0's vertex positions as first built (the standard size), if known; not read when
+    /// M0 has since another vertex count (an edit that changed its layout).
     pub standard: Option<&'a [DVec3]>,
     /// The vertices' distances M0's quality check measured, if kept: rule 4 reads the
     /// nearest body triangle of a vertex still where it was measured instead of searching.
@@ -198,6 +199,7 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
         }
         if on(Rule::Stretch)
             && let Some(standard) = input.standard
+            && standard.len() == input.mesh.positions.len()
         {
             let was = standard[edge[0] as usize].distance(standard[edge[1] as usize]);
             if len > options.stretch * was {

@@ -546,3 +546,78 @@ fn a_body_with_a_hole_under_the_arm_is_closed_and_keeps_its_inside() {
         assert!(checked >= 50, "{name}: {checked} points checked");
     }
 }
+
+/// One tolerance for "inside": points at the skin (a body vertex, an edge's middle, a
+/// face's centroid) and 1e-7 m either side of a face, with an ease of 0: the quality check
+/// and the brute-force truth (winding number, every triangle) agree on every one, the truth
+/// here decided in the test (the winding number over one half, and the least distance to a
+/// triangle over the stated tolerance, both summed over every triangle); and after the
+/// response to the check's inside points, none is inside by the truth. On every shipped
+/// body.
+#[test]
+fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pushed_out() {
+    use drape::collision::quality::SKIN;
+    use drape::collision::{Hit, ResponseOptions, VertexRoles, respond, response_ease};
+    for (name, body, index) in shipped() {
+        let mesh = &body.mesh.mesh;
+        let skin = SKIN * body.mesh.height();
+        let mut points = Vec::new();
+        for t in picked(mesh, 8) {
+            let [a, b, c] = mesh.corners(t);
+            let n = (b - a).cross(c - a).normalize();
+            let centroid = (a + b + c) / 3.0;
+            points.extend([a, (a + b) / 2.0, centroid]);
+            points.extend([-1e-7, 1e-7].map(|o| centroid + n * o));
+        }
+        // The truth, written here.
+        let truth_inside = |p: DVec3| {
+            let nearest = (0..mesh.triangles.len())
+                .map(|t| super::common::triangle_distance(p, mesh.corners(t)))
+                .fold(f64::INFINITY, f64::min);
+            winding_number(mesh, p) > 0.5 && nearest > skin
+        };
+        let truth: Vec<bool> = points.iter().map(|&p| truth_inside(p)).collect();
+        let q = quality(&index, &points, &points, &[], &[]);
+        let checked: Vec<bool> = (0..points.len() as u32).map(|v| q.inside.contains(&v)).collect();
+        assert_eq!(checked, truth, "{name}: the check and the truth disagree");
+        assert_eq!(truth.iter().filter(|i| **i).count(), 8, "{name}: one point inside a face each");
+        // The response with an ease of 0 (its least gap) takes every inside point out.
+        let hits: Vec<Hit> = q
+            .inside
+            .iter()
+            .map(|&v| {
+                let p = points[v as usize];
+                let near = index.nearest(p, 0.1).expect("near");
+                Hit {
+                    vertex: v,
+                    partition: index.partition_at(p.y).unwrap_or(0),
+                    method: drape::body::DetectionMethod::PointFace,
+                    depth: -near.signed(p),
+                    foot: near.foot,
+                    normal: near.normal,
+                    triangle: Some(near.triangle),
+                }
+            })
+            .collect();
+        let normals: Vec<DVec3> = hits
+            .iter()
+            .fold(vec![DVec3::ZERO; points.len()], |mut n, h| {
+                n[h.vertex as usize] = h.normal;
+                n
+            });
+        let (boundary, rings) = (vec![false; points.len()], vec![None; points.len()]);
+        let roles = VertexRoles {
+            normals: &normals,
+            boundary: &boundary,
+            ring_normal: &rings,
+            pinned: &[],
+        };
+        let options = ResponseOptions::default();
+        let ease = response_ease(&index, 0.0, &options);
+        let (after, _) = respond(&index, &points, &hits, &roles, ease, &options);
+        for h in &hits {
+            let p = after[h.vertex as usize];
+            assert!(!truth_inside(p), "{name}: point {} still inside after the response", h.vertex);
+        }
+    }
+}

@@ -221,3 +221,37 @@ fn verified_stress_sessions_on_every_shipped_body_agree_with_the_truth() {
         );
     }
 }
+
+/// Refusals name a limit of the user's edit, never a failure inside drape: a sweep of 75
+/// random sessions on each shipped body (among them sessions whose solves left a patch's
+/// corners a micrometre apart, and drags that fold a ring onto itself) refuses no edit for
+/// a patch that cannot be surfaced or a curve that cannot be refitted, and leaves no
+/// garment in the body.
+#[test]
+fn a_sweep_on_every_shipped_body_refuses_only_for_the_users_reasons() {
+    let dir = scratch("reasons");
+    let report = stress_json(&[
+        "--bodies",
+        "assets/bodies",
+        "--sessions",
+        "75",
+        "--seed",
+        "1",
+        "--json",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let all = &report["overall"];
+    for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
+        assert_eq!(all[key], 0, "{key}: {all}");
+    }
+    let refused = all["refused"].as_object().expect("refusals by reason");
+    let internal: Vec<&String> = refused
+        .keys()
+        .filter(|r| ["cannot be surfaced", "cannot be refitted", "knots", "Coons"].iter().any(|w| r.contains(w)))
+        .collect();
+    assert!(internal.is_empty(), "internal reasons: {internal:?}");
+    // The sweep did meet the edits that fold a curve: they are refused by name.
+    assert!(refused.keys().any(|r| r.contains("would fold onto itself")), "{refused:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

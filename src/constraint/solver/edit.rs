@@ -140,6 +140,19 @@ pub enum EditError {
         /// The surface point nearest the end, m.
         nearest: DVec3,
     },
+    /// The edit folds a curve onto itself: two consecutive control points would meet.
+    #[error(
+        "curve '{curve}' would fold onto itself: its control points {} and {} would meet at ({:.4}, {:.4}, {:.4}) m: edit refused",
+        points[0], points[1], at.x, at.y, at.z
+    )]
+    Folds {
+        /// Curve.
+        curve: String,
+        /// The two control points.
+        points: [usize; 2],
+        /// Where they meet, m.
+        at: DVec3,
+    },
     /// A curve cannot be refitted.
     #[error("curve '{curve}' cannot be refitted: {message}")]
     Refit {

@@ -56,10 +56,17 @@ struct Run<'a> {
     iterations: Vec<Iteration>,
 }
 
-pub(super) fn refit_error(c: &CurveNode, message: String) -> EditError {
-    EditError::Refit {
-        curve: c.name.clone(),
-        message,
+pub(super) fn refit_error(c: &CurveNode, failure: curves::RefitFailure) -> EditError {
+    match failure {
+        curves::RefitFailure::Meet { points, at } => EditError::Folds {
+            curve: c.name.clone(),
+            points,
+            at,
+        },
+        curves::RefitFailure::Fit(message) => EditError::Refit {
+            curve: c.name.clone(),
+            message,
+        },
     }
 }
 

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""Figures of the face certificate (docs/faces.md), from runs a reader can repeat.
+
+    python3 scripts/faces.py [--binary target/release/drape]
+        The demo with --verify on the built-in body and on every body of assets/bodies:
+        per collided step, the faces pierced before the face rounds and after them (the
+        step's own check), the brute-force truth after (every body edge against every
+        face), the same for M1, and the face and vertex clearance (mm).
+
+    python3 scripts/faces.py --refusals BEFORE_BINARY [--sessions N]
+        `drape stress --bodies assets/bodies --sessions N --json` with both binaries (the
+        same sessions): the refusals by reason side by side, with the steps accepted and the
+        solves reported not converged.
+"""
+
+import argparse
+import json
+import subprocess
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+BODIES = ["builtin"] + sorted(p.name for p in (ROOT / "assets/bodies").glob("*.obj"))
+
+
+def demo(binary, body, folder):
+    metrics = folder / "metrics.json"
+    extra = [] if body == "builtin" else ["--body", str(ROOT / "assets/bodies" / body)]
+    subprocess.run([str(binary), "run", "--verify", *extra, "--metrics", str(metrics),
+                    "--save", str(folder / "run.rrd")], cwd=ROOT, capture_output=True, check=True)
+    return json.loads(metrics.read_text())
+
+
+def faces_table(binary):
+    print("| body | step | edit | pierced before rounds -> after | truth after | M1 before -> after | "
+          "M1 truth | face clearance mm | vertex clearance mm |")
+    print("|---|---:|---|---|---:|---|---:|---:|---:|")
+    with tempfile.TemporaryDirectory() as tmp:
+        for body in BODIES:
+            for s in demo(binary, body, Path(tmp)):
+                if "pierced_faces" not in s:
+                    continue
+                rounds = s["pierced_faces_by_round"]
+                m1 = s.get("m1_pierced_faces_before"), s.get("m1_pierced_faces")
+                print(f"| {body} | {s['step']} | {s['op']} | {rounds[0]} -> {s['pierced_faces']} | "
+                      f"{s['verify']['pierced_after']} | {m1[0]} -> {m1[1]} | "
+                      f"{(s.get('m1_verify') or {}).get('pierced', '-')} | "
+                      f"{s['face_clearance_m'] * 1e3:.3f} | {s['vertex_clearance_m'] * 1e3:.3f} |")
+
+
+def stress(binary, sessions):
+    out = subprocess.run([str(binary), "stress", "--bodies", str(ROOT / "assets/bodies"), "--sessions",
+                          str(sessions), "--json", "--out", tempfile.mkdtemp()],
+                         cwd=ROOT, capture_output=True, text=True)
+    return json.loads(out.stdout)["overall"]
+
+
+def refusals(before, after, sessions):
+    old, new = stress(before, sessions), stress(after, sessions)
+    print(f"`drape stress --bodies assets/bodies --sessions {sessions}`: {old['sessions']} sessions, "
+          f"{old['steps']} steps\n")
+    print("| | before | after |\n|---|---:|---:|")
+    print(f"| steps accepted | {old['accepted']} | {new['accepted']} |")
+    print(f"| solves reported not converged | {old['solves_not_converged']} | {new['solves_not_converged']} |")
+    print(f"| largest residual of a converged solve | {old['max_residual_converged']:.2e} | "
+          f"{new['max_residual_converged']:.2e} |")
+    print(f"| guarantee failures, panics | {old['guarantee_failures']}, {old['panics']} | "
+          f"{new['guarantee_failures']}, {new['panics']} |")
+    print("\n| refused: reason | before | after |\n|---|---:|---:|")
+    reasons = sorted(set(old["refused"]) | set(new["refused"]),
+                     key=lambda r: -(old["refused"].get(r, 0) + new["refused"].get(r, 0)))
+    for r in reasons:
+        print(f"| {r} | {old['refused'].get(r, 0)} | {new['refused'].get(r, 0)} |")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--binary", default=str(ROOT / "target/release/drape"))
+    ap.add_argument("--refusals", metavar="BEFORE_BINARY")
+    ap.add_argument("--sessions", type=int, default=100)
+    args = ap.parse_args()
+    if args.refusals:
+        refusals(args.refusals, args.binary, args.sessions)
+    else:
+        faces_table(args.binary)
+
+
+if __name__ == "__main__":
+    main()
