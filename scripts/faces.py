@@ -11,10 +11,17 @@
         `drape stress --bodies assets/bodies --sessions N --json` with both binaries (the
         same sessions): the refusals by reason side by side, with the steps accepted and the
         solves reported not converged.
+
+    python3 scripts/faces.py --doc BEFORE_BINARY
+        All three (the third: scripts/compare_steps.py BEFORE_BINARY --runs 3), written into
+        docs/faces.md between its `<!-- figures:faces-* -->` markers.
 """
 
 import argparse
+import contextlib
+import io
 import json
+import re
 import subprocess
 import tempfile
 from pathlib import Path
@@ -73,13 +80,39 @@ def refusals(before, after, sessions):
         print(f"| {r} | {old['refused'].get(r, 0)} | {new['refused'].get(r, 0)} |")
 
 
+def captured(f, *a):
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        f(*a)
+    return out.getvalue().strip()
+
+
+def write_doc(before, after, sessions):
+    steps = subprocess.run(["python3", str(ROOT / "scripts/compare_steps.py"), before, after, "--runs", "3"],
+                           cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+    sections = {
+        "faces-demo": captured(faces_table, after),
+        "faces-refusals": captured(refusals, before, after, sessions),
+        "faces-steps": steps,
+    }
+    doc = ROOT / "docs/faces.md"
+    text = doc.read_text()
+    for name, body in sections.items():
+        pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
+        text = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
+    doc.write_text(text)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--binary", default=str(ROOT / "target/release/drape"))
     ap.add_argument("--refusals", metavar="BEFORE_BINARY")
     ap.add_argument("--sessions", type=int, default=100)
+    ap.add_argument("--doc", metavar="BEFORE_BINARY")
     args = ap.parse_args()
-    if args.refusals:
+    if args.doc:
+        write_doc(args.doc, args.binary, args.sessions)
+    elif args.refusals:
         refusals(args.refusals, args.binary, args.sessions)
     else:
         faces_table(args.binary)

@@ -53,9 +53,10 @@ def step_texts():
 
 def collision_table(steps, texts):
     rows = [
-        "| step | tested / inert / patch-skipped | hits (truth) | missed / false | moved (vertex + edge rounds) "
-        "| crossing edges before -> per round -> after | inside after |",
-        "|---|---|---|---|---|---|---|",
+        "| step | tested / inert / patch-skipped | hits (truth) | missed / false | moved (vertex + edge + face rounds) "
+        "| crossing edges before -> per round -> after | pierced faces per round -> after (truth) | inside after "
+        "| face / vertex clearance mm |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for s in steps:
         if "hits" not in s:
@@ -70,17 +71,21 @@ def collision_table(steps, texts):
             f"| {s['step']} `{texts.get(s['step'], s['op'])}` "
             f"| {s['tested_vertices']} / {s['skipped_inert']} / {s['skipped_patch']} "
             f"| {s['hits']} ({v.get('inside_before', '?')}) | {missed} / {false}{note} "
-            f"| {s['responses']} + {s['edge_responses']} "
+            f"| {s['responses']} + {s['edge_responses']} + {s['face_responses']} "
             f"| {v.get('crossing_before', '?')} -> {rounds} -> {s['crossing_edges']} "
-            f"| {s['penetrating_vertices']} |")
+            f"| {', '.join(str(r) for r in s['pierced_faces_by_round'])} -> {s['pierced_faces']} "
+            f"({v.get('pierced_after', '?')}) "
+            f"| {s['penetrating_vertices']} "
+            f"| {s['face_clearance_m'] * 1e3:.3f} / {s['vertex_clearance_m'] * 1e3:.3f} |")
     return "\n".join(rows)
 
 
 def m1_table(steps, texts):
     rows = [
         "| step | patches refined (by rule) | M1 faces (M0) | new vertices tested / inside "
-        "| M1 crossing edges before -> per round -> after | inside / crossing after (brute force) | cut lines |",
-        "|---|---|---|---|---|---|---|",
+        "| M1 crossing edges before -> per round -> after | M1 pierced faces before -> after "
+        "| inside / crossing / pierced after (brute force) | cut lines |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     known = {"patches": "?", "m0_faces": "?"}
     for s in steps:
@@ -95,8 +100,10 @@ def m1_table(steps, texts):
             f"| {s['step']} `{texts.get(s['step'], s['op'])}` | {total} of {known['patches']} ({rules}) "
             f"| {s['m1_faces']} ({known['m0_faces']}) | {s['m1_new_vertices_tested']} / {s['m1_hits']} "
             f"| {s['m1_crossing_edges_before']} -> {rounds} -> {s['m1_crossing_edges']} "
-            f"| {s['m1_penetrating_vertices']} / {s['m1_crossing_edges']} "
-            f"({s.get('m1_verify', {}).get('inside', '?')} / {s.get('m1_verify', {}).get('crossing', '?')}) "
+            f"| {s['m1_pierced_faces_before']} -> {s['m1_pierced_faces']} "
+            f"| {s['m1_penetrating_vertices']} / {s['m1_crossing_edges']} / {s['m1_pierced_faces']} "
+            f"({s.get('m1_verify', {}).get('inside', '?')} / {s.get('m1_verify', {}).get('crossing', '?')} / "
+            f"{s.get('m1_verify', {}).get('pierced', '?')}) "
             f"| {s['m1_cut_lines']} |")
     return "\n".join(rows)
 
