@@ -18,7 +18,7 @@ use super::shell::{Shell, find_shell};
 use super::slices::{SliceOptions, SliceStack};
 use super::{Body, DetectionMethod, PartitionId, ResponseRule};
 use crate::geom::closest::{Feature, closest_on_triangle};
-use crate::geom::predicates::{segment_crosses_triangle, side};
+use crate::geom::predicates::{line_through_triangle, segment_crosses_triangle, side, strictly_apart};
 use crate::geom::ray::ray_triangle;
 
 use crate::mesh::topology::NO_NEIGHBOUR;
@@ -618,9 +618,12 @@ impl BodyIndex {
 }
 
 /// The edges of the triangle with corners `c` that pass through the triangle `tri`
-/// ([`segment_crosses_triangle`]), as their ends.
-pub fn edges_through(c: &[DVec3; 3], tri: [DVec3; 3]) -> impl Iterator<Item = [DVec3; 2]> + '_ {
-    (0..3)
-        .map(|k| [c[k], c[(k + 1) % 3]])
-        .filter(move |&[p, q]| segment_crosses_triangle(p, q, tri))
+/// ([`segment_crosses_triangle`]: the same verdicts, each corner's side of `tri`'s plane
+/// decided once), as the local index `k` of each (corner `k` to `k + 1`).
+pub fn edges_through(c: &[DVec3; 3], tri: [DVec3; 3]) -> impl Iterator<Item = usize> + '_ {
+    let sides = c.map(|p| side(tri[0], tri[1], tri[2], p));
+    (0..3).filter(move |&k| {
+        let l = (k + 1) % 3;
+        strictly_apart(sides[k], sides[l]) && line_through_triangle(c[k], c[l], tri)
+    })
 }

@@ -40,9 +40,8 @@ use glam::DVec3;
 use super::edges::{KnownClearance, lift, respond_edges};
 use super::response::{AppliedRule, Response, ResponseOptions, VertexRoles};
 use super::reuse::Reuse;
-use crate::body::index::BodyIndex;
+use crate::body::index::{BodyIndex, edges_through};
 use crate::geom::closest::triangles_distance;
-use crate::geom::predicates::segment_crosses_triangle;
 use crate::par::par_map;
 
 /// Most body vertices a cap is grown to (a cap is a bump a few millimetres high: a few
@@ -226,10 +225,8 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
     let mut stack: Vec<u32> = Vec::new();
     index.visit_box(lo, hi, |t, c| {
         let ids = index.triangles[t as usize];
-        for k in 0..3 {
-            if segment_crosses_triangle(c[k], c[(k + 1) % 3], tri) {
-                stack.extend([ids[k], ids[(k + 1) % 3]].into_iter().filter(|&v| height(v) > 0.0));
-            }
+        for k in edges_through(c, tri) {
+            stack.extend([ids[k], ids[(k + 1) % 3]].into_iter().filter(|&v| height(v) > 0.0));
         }
     });
     // The rest of the cap: the body vertices over the face (above its plane, their foot in

@@ -29,11 +29,19 @@ pub fn side(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Ordering {
 /// crossed (its neighbours cover the surface).
 pub fn segment_crosses_triangle(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
     let (sp, sq) = (side(a, b, c, p), side(a, b, c, q));
-    if sp == Ordering::Equal || sq == Ordering::Equal || sp == sq {
-        return false;
-    }
-    // The line p q passes through the closed triangle when it turns the same way (or not
-    // at all) about each of the three edges.
+    strictly_apart(sp, sq) && line_through_triangle(p, q, [a, b, c])
+}
+
+/// Whether two sides of a plane ([`side`]) are strictly opposite: neither in the plane.
+pub fn strictly_apart(sp: Ordering, sq: Ordering) -> bool {
+    sp != Ordering::Equal && sq != Ordering::Equal && sp != sq
+}
+
+/// Whether the line through `p` and `q` passes through the closed triangle `[a, b, c]`: it
+/// turns the same way (or not at all) about each of the three edges. Exact. With `p` and
+/// `q` strictly on either side of the triangle's plane, this is
+/// [`segment_crosses_triangle`].
+pub fn line_through_triangle(p: DVec3, q: DVec3, [a, b, c]: [DVec3; 3]) -> bool {
     let turns = [side(p, q, a, b), side(p, q, b, c), side(p, q, c, a)];
     let positive = turns.iter().all(|&s| s != Ordering::Less);
     let negative = turns.iter().all(|&s| s != Ordering::Greater);

@@ -328,3 +328,29 @@ pub fn faces_pierced_by(body: &TriMesh, positions: &[DVec3], triangles: &[[u32; 
     }
     pierced
 }
+
+/// The vertex roles of a plain point set: none on an opening or a garment ring, none pinned.
+pub struct PlainRoles {
+    boundary: Vec<bool>,
+    rings: Vec<Option<DVec3>>,
+}
+
+impl PlainRoles {
+    /// For `n` vertices.
+    pub fn new(n: usize) -> Self {
+        Self {
+            boundary: vec![false; n],
+            rings: vec![None; n],
+        }
+    }
+
+    /// The roles, with `normals` for the vertex normals.
+    pub fn with<'a>(&'a self, normals: &'a [DVec3]) -> drape::collision::VertexRoles<'a> {
+        drape::collision::VertexRoles {
+            normals,
+            boundary: &self.boundary,
+            ring_normal: &self.rings,
+            pinned: &[],
+        }
+    }
+}

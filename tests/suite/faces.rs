@@ -4,7 +4,7 @@
 //! test, and every body vertex's height over the lifted face's plane.
 
 use drape::collision::faces::{pierced_faces, respond_faces};
-use drape::collision::{BodyIndex, ResponseOptions, VertexRoles};
+use drape::collision::{BodyIndex, ResponseOptions};
 use drape::mesh::TriMesh;
 use glam::DVec3;
 
@@ -56,13 +56,9 @@ fn a_bump_under_a_large_triangle_is_found_lifted_and_certified() {
     let free: Vec<f64> = positions.iter().map(|p| p.length() - r).collect();
     assert_eq!(pierced_faces(&index, &positions, &triangles, &free, None), vec![0]);
     let ease = 0.003;
-    let (normals, boundary, rings) = (vec![DVec3::Y; 3], vec![false; 3], vec![None; 3]);
-    let roles = VertexRoles {
-        normals: &normals,
-        boundary: &boundary,
-        ring_normal: &rings,
-        pinned: &[],
-    };
+    let normals = vec![DVec3::Y; 3];
+    let plain = super::common::PlainRoles::new(3);
+    let roles = plain.with(&normals);
     let rounds = respond_faces(
         &index,
         &mut positions,

@@ -557,7 +557,7 @@ fn a_body_with_a_hole_under_the_arm_is_closed_and_keeps_its_inside() {
 #[test]
 fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pushed_out() {
     use drape::collision::quality::SKIN;
-    use drape::collision::{Hit, ResponseOptions, VertexRoles, respond, response_ease};
+    use drape::collision::{Hit, ResponseOptions, respond, response_ease};
     for (name, body, index) in shipped() {
         let mesh = &body.mesh.mesh;
         let skin = SKIN * body.mesh.height();
@@ -605,13 +605,8 @@ fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pu
                 n[h.vertex as usize] = h.normal;
                 n
             });
-        let (boundary, rings) = (vec![false; points.len()], vec![None; points.len()]);
-        let roles = VertexRoles {
-            normals: &normals,
-            boundary: &boundary,
-            ring_normal: &rings,
-            pinned: &[],
-        };
+        let plain = super::common::PlainRoles::new(points.len());
+        let roles = plain.with(&normals);
         let options = ResponseOptions::default();
         let ease = response_ease(&index, 0.0, &options);
         let (after, _) = respond(&index, &points, &hits, &roles, ease, &options);

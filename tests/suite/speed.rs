@@ -303,7 +303,7 @@ fn segment_and_partition_queries_through_the_nearest_point_tree_agree_with_a_bru
 #[test]
 fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
     use drape::collision::quality::measure_vertices;
-    use drape::collision::{KnownClearance, ResponseOptions, VertexRoles, respond_edges, response_ease};
+    use drape::collision::{KnownClearance, ResponseOptions, respond_edges, response_ease};
     use drape::geom::predicates::segment_crosses_triangle;
     let jumpsuit = &real_jumpsuit().m0;
     let edges = &jumpsuit.edges;
@@ -333,13 +333,8 @@ fn edge_rounds_skipping_edges_known_clear_change_no_result_on_every_body() {
             positions[a as usize] = shell.positions[v] + body_normals[v] * 0.01;
         }
         let partition: Vec<usize> = positions.iter().map(|p| index.partition_at(p.y).unwrap_or(0)).collect();
-        let (boundary, rings) = (vec![false; positions.len()], vec![None; positions.len()]);
-        let roles = VertexRoles {
-            normals: &normals,
-            boundary: &boundary,
-            ring_normal: &rings,
-            pinned: &[],
-        };
+        let plain = super::common::PlainRoles::new(positions.len());
+        let roles = plain.with(&normals);
         let options = ResponseOptions::default();
         let ease = response_ease(&index, 0.01, &options);
         let measured = measure_vertices(&index, &positions, None);

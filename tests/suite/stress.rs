@@ -37,20 +37,7 @@ fn scratch(name: &str) -> PathBuf {
 /// triangle): nothing inside, nothing crossing.
 #[test]
 fn the_ci_sweep_on_the_shipped_body_finds_no_bug_and_its_garments_are_clear() {
-    let dir = scratch("ci");
-    let report = stress_json(&[
-        "--sessions",
-        "20",
-        "--seed",
-        "1",
-        "--json",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    let all = &report["overall"];
-    for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
-        assert_eq!(all[key], 0, "{key}: {all}");
-    }
+    let all = &sweep_without_bugs("ci", &["--sessions", "20"]);
     let steps = all["steps"].as_u64().unwrap();
     let accepted = all["accepted"].as_u64().unwrap();
     assert!(steps >= 150 && accepted * 2 > steps, "{all}");
@@ -95,7 +82,21 @@ fn the_ci_sweep_on_the_shipped_body_finds_no_bug_and_its_garments_are_clear() {
         checked += 1;
     }
     assert!(checked >= 15, "{checked} sessions ended with a garment");
+}
+
+/// `drape stress ARGS --seed 1 --json` (sessions that found a bug written to a scratch
+/// folder named `name`): its overall figures, with no panic, non-finite value, guarantee
+/// failure or session that did not parse.
+fn sweep_without_bugs(name: &str, args: &[&str]) -> serde_json::Value {
+    let dir = scratch(name);
+    let mut all_args = args.to_vec();
+    all_args.extend(["--seed", "1", "--json", "--out", dir.to_str().expect("a UTF-8 path")]);
+    let all = stress_json(&all_args)["overall"].clone();
+    for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
+        assert_eq!(all[key], 0, "{key}: {all}");
+    }
     std::fs::remove_dir_all(&dir).ok();
+    all
 }
 
 /// A sweep split in three shards, each run alone and written with --report, merged by
@@ -229,22 +230,7 @@ fn verified_stress_sessions_on_every_shipped_body_agree_with_the_truth() {
 /// garment in the body.
 #[test]
 fn a_sweep_on_every_shipped_body_refuses_only_for_the_users_reasons() {
-    let dir = scratch("reasons");
-    let report = stress_json(&[
-        "--bodies",
-        "assets/bodies",
-        "--sessions",
-        "75",
-        "--seed",
-        "1",
-        "--json",
-        "--out",
-        dir.to_str().unwrap(),
-    ]);
-    let all = &report["overall"];
-    for key in ["panics", "non_finite", "guarantee_failures", "parse_errors"] {
-        assert_eq!(all[key], 0, "{key}: {all}");
-    }
+    let all = &sweep_without_bugs("reasons", &["--bodies", "assets/bodies", "--sessions", "75"]);
     let refused = all["refused"].as_object().expect("refusals by reason");
     let internal: Vec<&String> = refused
         .keys()
@@ -253,5 +239,4 @@ fn a_sweep_on_every_shipped_body_refuses_only_for_the_users_reasons() {
     assert!(internal.is_empty(), "internal reasons: {internal:?}");
     // The sweep did meet the edits that fold a curve: they are refused by name.
     assert!(refused.keys().any(|r| r.contains("would fold onto itself")), "{refused:?}");
-    std::fs::remove_dir_all(&dir).ok();
 }
