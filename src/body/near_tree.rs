@@ -396,7 +396,10 @@ impl NearTree {
         if self.nodes.is_empty() {
             return false;
         }
-        let (qlo, qhi) = (lo.as_vec3().to_array().map(Vec4::splat), hi.as_vec3().to_array().map(Vec4::splat));
+        let (qlo, qhi) = (
+            lo.as_vec3().to_array().map(Vec4::splat),
+            hi.as_vec3().to_array().map(Vec4::splat),
+        );
         self.walk(
             |w| {
                 let mut meets = Vec4::ONE.cmpeq(Vec4::ONE);

@@ -292,7 +292,16 @@ pub fn respond_edges(
         let responses = respond_round(index, &mut pushed_out, &hits, roles, &|_| ease, round, options);
         let moved: Vec<Response> = par_map(moves.len(), |k| {
             let (v, m) = moves[k];
-            lift(index, positions_now, v, m, roles, partition, ease, (round, AppliedRule::EdgeLift))
+            lift(
+                index,
+                positions_now,
+                v,
+                m,
+                roles,
+                partition,
+                ease,
+                (round, AppliedRule::EdgeLift),
+            )
         })
         .into_iter()
         .flatten()

@@ -55,9 +55,7 @@ const COVER: f64 = 0.577_350_269_189_625_8;
 /// Whether the balls of radii `free` about the corners `tri` cover the triangle, with
 /// `margin` (m) to spare (see the module's text).
 fn covered(tri: [DVec3; 3], free: [f64; 3], margin: f64) -> bool {
-    let longest = (0..3)
-        .map(|k| tri[k].distance(tri[(k + 1) % 3]))
-        .fold(0.0, f64::max);
+    let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
     let least = free.into_iter().fold(f64::INFINITY, f64::min);
     least > COVER * longest + margin
 }
@@ -121,8 +119,17 @@ pub fn face_distance(index: &BodyIndex, tri: [DVec3; 3], cap: f64) -> f64 {
             .max(DVec3::ZERO)
             .length();
         let heights = c.map(|p| (p - tri[0]).dot(normal));
-        let (below, above) = (heights.iter().fold(f64::INFINITY, |a, &h| a.min(h)), heights.iter().fold(f64::NEG_INFINITY, |a, &h| a.max(h)));
-        let off_plane = if below > 0.0 { below } else if above < 0.0 { -above } else { 0.0 };
+        let (below, above) = (
+            heights.iter().fold(f64::INFINITY, |a, &h| a.min(h)),
+            heights.iter().fold(f64::NEG_INFINITY, |a, &h| a.max(h)),
+        );
+        let off_plane = if below > 0.0 {
+            below
+        } else if above < 0.0 {
+            -above
+        } else {
+            0.0
+        };
         if gap.max(off_plane) < best {
             best = best.min(triangles_distance(tri, *c));
         }
@@ -149,9 +156,7 @@ pub fn faces_nearer(
     let candidates: Vec<u32> = (0..triangles.len())
         .filter(|&f| {
             let tri = corners(f);
-            let longest = (0..3)
-                .map(|k| tri[k].distance(tri[(k + 1) % 3]))
-                .fold(0.0, f64::max);
+            let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
             let least = triangles[f]
                 .iter()
                 .map(|&v| free.get(v as usize).copied().unwrap_or(0.0))
@@ -180,11 +185,7 @@ pub fn faces_nearer(
             r.set_face_distance(triangles.len(), f as usize, cap, d);
         }
     }
-    candidates
-        .into_iter()
-        .zip(found)
-        .filter(|&(_, d)| d < cap)
-        .collect()
+    candidates.into_iter().zip(found).filter(|&(_, d)| d < cap).collect()
 }
 
 /// The deepest point of the body above a pierced face: the face's outer normal, the point's
@@ -249,13 +250,13 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
             }
         });
     }
-    let deepest = cap.into_iter().max_by(|&a, &b| height(a).total_cmp(&height(b)).then(b.cmp(&a)))?;
+    let deepest = cap
+        .into_iter()
+        .max_by(|&a, &b| height(a).total_cmp(&height(b)).then(b.cmp(&a)))?;
     let (p, height) = (index.positions[deepest as usize], height(deepest));
     // A cap higher than the face is wide is no bump: the face lies across a part of the
     // body (between the thighs, say), and lifting it off would fling it.
-    let longest = (0..3)
-        .map(|k| tri[k].distance(tri[(k + 1) % 3]))
-        .fold(0.0, f64::max);
+    let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
     if height > longest {
         return None;
     }
@@ -321,7 +322,12 @@ pub fn respond_faces(
                 false => (false, None),
             }
         });
-        let hit: Vec<u32> = check.iter().zip(&tested).filter(|(_, t)| t.0).map(|(&f, _)| f).collect();
+        let hit: Vec<u32> = check
+            .iter()
+            .zip(&tested)
+            .filter(|(_, t)| t.0)
+            .map(|(&f, _)| f)
+            .collect();
         for f in &check {
             standing.remove(f);
         }
@@ -339,7 +345,11 @@ pub fn respond_faces(
                 break;
             }
         }
-        let pierced: Vec<(u32, Poke)> = check.iter().zip(tested).filter_map(|(&f, (_, p))| Some((f, p?))).collect();
+        let pierced: Vec<(u32, Poke)> = check
+            .iter()
+            .zip(tested)
+            .filter_map(|(&f, (_, p))| Some((f, p?)))
+            .collect();
         if pierced.is_empty() {
             break;
         }

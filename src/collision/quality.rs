@@ -95,7 +95,13 @@ pub struct Measured {
 impl Quality {
     /// Checks the faces `triangles` too ([`super::faces::pierced_faces`], with this
     /// check's vertex distances): the whole surface certified.
-    pub fn with_faces(mut self, index: &BodyIndex, positions: &[DVec3], triangles: &[[u32; 3]], reuse: Option<&mut Reuse>) -> Self {
+    pub fn with_faces(
+        mut self,
+        index: &BodyIndex,
+        positions: &[DVec3],
+        triangles: &[[u32; 3]],
+        reuse: Option<&mut Reuse>,
+    ) -> Self {
         self.pierced = super::faces::pierced_faces(index, positions, triangles, &self.free(), reuse);
         self.pierced_faces = self.pierced.len();
         self
@@ -122,8 +128,7 @@ impl Quality {
             .fold(f64::INFINITY, |a, &c| a.min(c.max(0.0)));
         let cap = ease.max(least_vertex);
         let free = self.free();
-        self.near_faces =
-            super::faces::faces_nearer(index, positions, triangles, (&free, &self.pierced), cap, reuse);
+        self.near_faces = super::faces::faces_nearer(index, positions, triangles, (&free, &self.pierced), cap, reuse);
         self.face_clearance_m = self
             .near_faces
             .iter()

@@ -54,10 +54,7 @@ impl GroundTruth {
             .collect();
         edges.sort_unstable();
         edges.dedup();
-        let segments: Vec<[DVec3; 2]> = edges
-            .iter()
-            .map(|e| e.map(|v| body.positions[v as usize]))
-            .collect();
+        let segments: Vec<[DVec3; 2]> = edges.iter().map(|e| e.map(|v| body.positions[v as usize])).collect();
         self.pierced = parallel(triangles.len(), |f| {
             let tri = triangles[f].map(|v| positions[v as usize]);
             let (lo, hi) = (tri[0].min(tri[1]).min(tri[2]), tri[0].max(tri[1]).max(tri[2]));
@@ -76,9 +73,8 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
     // The body's height as the index takes it (its extent up, along y).
     let height = body.bounds().map_or(1.0, |(lo, hi)| hi.y - lo.y);
     let skin = super::quality::SKIN * height;
-    let off_skin = |p: DVec3| {
-        (0..body.triangles.len()).all(|t| closest_on_triangle(p, body.corners(t)).0.distance(p) > skin)
-    };
+    let off_skin =
+        |p: DVec3| (0..body.triangles.len()).all(|t| closest_on_triangle(p, body.corners(t)).0.distance(p) > skin);
     let inside = parallel(positions.len(), |v| {
         winding_number(body, positions[v]) > 0.5 && off_skin(positions[v])
     });

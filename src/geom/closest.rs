@@ -111,7 +111,11 @@ pub fn segments_distance(p1: DVec3, q1: DVec3, p2: DVec3, q2: DVec3) -> f64 {
         } else {
             let b = d1.dot(d2);
             let denom = a * e - b * b;
-            let s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+            let s = if denom > 0.0 {
+                ((b * f - c * e) / denom).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let t = (b * s + f) / e;
             if t < 0.0 {
                 ((-c / a).clamp(0.0, 1.0), 0.0)
@@ -206,4 +210,3 @@ mod tests {
         assert_eq!(q, DVec3::ONE);
     }
 }
-

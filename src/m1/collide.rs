@@ -290,9 +290,7 @@ pub fn collide_refined(
         since[r.vertex as usize] = true;
     }
     let again_faces: Vec<u32> = (0..subset.len() as u32)
-        .filter(|&k| {
-            rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize])
-        })
+        .filter(|&k| rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize]))
         .collect();
     let again_subset: Vec<[u32; 3]> = again_faces.iter().map(|&k| subset[k as usize]).collect();
     let after = pierced_faces(index, &moved, &again_subset, &free_now, None);

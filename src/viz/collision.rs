@@ -197,7 +197,12 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         for (path, faces, radius, colour) in [
-            ("collision/mesh/pierced_before_rounds", &c.pierced_before_rounds, 0.0012, [255, 150, 40]),
+            (
+                "collision/mesh/pierced_before_rounds",
+                &c.pierced_before_rounds,
+                0.0012,
+                [255, 150, 40],
+            ),
             ("collision/mesh/pierced_faces", &q.pierced, 0.002, [255, 0, 0]),
         ] {
             if faces.is_empty() {

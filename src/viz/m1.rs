@@ -93,7 +93,9 @@ impl RerunLogger {
                 .collect();
             rec.log(
                 "collision/m1/pierced_faces",
-                &LineStrips3D::new(outlines).with_radii([0.002]).with_colors([[255, 0, 0]]),
+                &LineStrips3D::new(outlines)
+                    .with_radii([0.002])
+                    .with_colors([[255, 0, 0]]),
             )
             .map_err(to_sink)?;
         }

@@ -26,10 +26,10 @@ struct StepCollision {
 
 /// Each step's collision, and each step's M1 (positions after its collision, edges).
 #[derive(Default)]
-struct Collisions(
-    Vec<StepCollision>,
-    Vec<(usize, drape::m1::M1Collision, Vec<[u32; 2]>, Vec<[u32; 3]>)>,
-);
+struct Collisions(Vec<StepCollision>, Vec<StepM1>);
+
+/// One step's M1: the step, its collision, its edges and its faces.
+type StepM1 = (usize, drape::m1::M1Collision, Vec<[u32; 2]>, Vec<[u32; 3]>);
 
 impl StageSink for Collisions {
     fn m1(&mut self, info: &StageInfo, stage: drape::session::M1Stage<'_>) -> Result<(), SinkError> {
@@ -139,12 +139,17 @@ fn check(session: &str, body: &Path) {
             "{name}: step {step} leaves M1 inside, crossing or pierced"
         );
         let pierced = super::common::faces_pierced_by(&mesh.mesh, &m1.positions, triangles);
-        assert!(pierced.is_empty(), "{name}: step {step}, M1 faces pierced by body edges: {pierced:?}");
+        assert!(
+            pierced.is_empty(),
+            "{name}: step {step}, M1 faces pierced by body edges: {pierced:?}"
+        );
     }
     for StepCollision { step, collision, .. } in &sink.0 {
-        let pierced =
-            super::common::faces_pierced_by(&mesh.mesh, &collision.mesh.positions, &collision.mesh.triangles);
-        assert!(pierced.is_empty(), "{name}: step {step}, M0 faces pierced by body edges: {pierced:?}");
+        let pierced = super::common::faces_pierced_by(&mesh.mesh, &collision.mesh.positions, &collision.mesh.triangles);
+        assert!(
+            pierced.is_empty(),
+            "{name}: step {step}, M0 faces pierced by body edges: {pierced:?}"
+        );
     }
     if let Some((step, m1, edges, _)) = sink.1.last() {
         let truth = ground_truth(&mesh.mesh, &m1.positions, edges);

@@ -219,8 +219,10 @@ fn check_rules(g: &GarmentMesh, c: &drape::collision::Collision) -> BTreeSet<App
         // The guard: within 90 degrees of the ray from the local centre (legs to abdomen).
         // Fallbacks take the shortest way out, and edge lifts the body's way out at their
         // edge's deepest point (within 75 degrees of the end's own): no centre ray.
-        if !matches!(r.rule, AppliedRule::Fallback | AppliedRule::EdgeLift | AppliedRule::FaceLift)
-            && let Some(cs) = index().slices.at(r.from.y).and_then(|s| s.centres)
+        if !matches!(
+            r.rule,
+            AppliedRule::Fallback | AppliedRule::EdgeLift | AppliedRule::FaceLift
+        ) && let Some(cs) = index().slices.at(r.from.y).and_then(|s| s.centres)
         {
             let p = glam::DVec2::new(r.from.x, r.from.z);
             let g2 = p - cs.local_of(p);

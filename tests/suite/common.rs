@@ -201,7 +201,10 @@ pub fn shipped_bodies() -> Vec<std::path::PathBuf> {
 
 /// The last collided M0 of a session: positions after the response, and the edges.
 #[derive(Default)]
-pub struct LastGarment(pub Option<(Vec<DVec3>, Vec<[u32; 2]>, Vec<[u32; 3]>)>);
+pub struct LastGarment(pub Option<Garment>);
+
+/// A collided garment: its positions after the response, its edges and its faces.
+pub type Garment = (Vec<DVec3>, Vec<[u32; 2]>, Vec<[u32; 3]>);
 
 impl drape::session::StageSink for LastGarment {
     fn collision(

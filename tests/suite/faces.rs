@@ -52,7 +52,11 @@ fn a_bump_under_a_large_triangle_is_found_lifted_and_certified() {
     for p in &positions {
         assert!(p.length() > 2.0 * r);
     }
-    assert_eq!(faces_pierced_by(&body, &positions, &triangles), vec![0], "the truth sees the bump");
+    assert_eq!(
+        faces_pierced_by(&body, &positions, &triangles),
+        vec![0],
+        "the truth sees the bump"
+    );
     let free: Vec<f64> = positions.iter().map(|p| p.length() - r).collect();
     assert_eq!(pierced_faces(&index, &positions, &triangles, &free, None), vec![0]);
     let ease = 0.003;
@@ -80,7 +84,10 @@ fn a_bump_under_a_large_triangle_is_found_lifted_and_certified() {
     let n = (b - a).cross(c - a).normalize();
     assert!(n.y > 0.0, "the face turned over");
     let highest = body.positions.iter().map(|&p| (p - a).dot(n)).fold(f64::MIN, f64::max);
-    assert!(highest <= -(1.0 - 0.05) * ease, "the bump stands {highest} m over the face");
+    assert!(
+        highest <= -(1.0 - 0.05) * ease,
+        "the bump stands {highest} m over the face"
+    );
 }
 
 /// Faces the body does not reach, faces it passes through at a corner's ball (covered) and
@@ -98,7 +105,11 @@ fn the_check_agrees_with_the_brute_force_over_a_sheet() {
         let mut positions = Vec::new();
         for i in 0..=n {
             for j in 0..=n {
-                positions.push(DVec3::new(-0.08 + step * i as f64, y + 0.0003 * j as f64, -0.08 + step * j as f64));
+                positions.push(DVec3::new(
+                    -0.08 + step * i as f64,
+                    y + 0.0003 * j as f64,
+                    -0.08 + step * j as f64,
+                ));
             }
         }
         let id = |i: usize, j: usize| (i * (n + 1) + j) as u32;
@@ -117,7 +128,11 @@ fn the_check_agrees_with_the_brute_force_over_a_sheet() {
             .into_iter()
             .map(|f| f as usize)
             .collect();
-        assert_eq!(found, faces_pierced_by(&body, &positions, &triangles), "sheet at y = {y}");
+        assert_eq!(
+            found,
+            faces_pierced_by(&body, &positions, &triangles),
+            "sheet at y = {y}"
+        );
     }
 }
 
@@ -125,7 +140,19 @@ fn the_check_agrees_with_the_brute_force_over_a_sheet() {
 #[test]
 fn the_segment_test_of_the_tests() {
     let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
-    assert!(segment_through_triangle(DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, -1.0), t));
-    assert!(!segment_through_triangle(DVec3::new(0.8, 0.8, 1.0), DVec3::new(0.8, 0.8, -1.0), t));
-    assert!(!segment_through_triangle(DVec3::new(0.2, 0.2, 1.0), DVec3::new(0.2, 0.2, 0.5), t));
+    assert!(segment_through_triangle(
+        DVec3::new(0.2, 0.2, 1.0),
+        DVec3::new(0.2, 0.2, -1.0),
+        t
+    ));
+    assert!(!segment_through_triangle(
+        DVec3::new(0.8, 0.8, 1.0),
+        DVec3::new(0.8, 0.8, -1.0),
+        t
+    ));
+    assert!(!segment_through_triangle(
+        DVec3::new(0.2, 0.2, 1.0),
+        DVec3::new(0.2, 0.2, 0.5),
+        t
+    ));
 }

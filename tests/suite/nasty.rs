@@ -580,7 +580,11 @@ fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pu
         let q = quality(&index, &points, &points, &[], &[]);
         let checked: Vec<bool> = (0..points.len() as u32).map(|v| q.inside.contains(&v)).collect();
         assert_eq!(checked, truth, "{name}: the check and the truth disagree");
-        assert_eq!(truth.iter().filter(|i| **i).count(), 8, "{name}: one point inside a face each");
+        assert_eq!(
+            truth.iter().filter(|i| **i).count(),
+            8,
+            "{name}: one point inside a face each"
+        );
         // The response with an ease of 0 (its least gap) takes every inside point out.
         let hits: Vec<Hit> = q
             .inside
@@ -599,12 +603,10 @@ fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pu
                 }
             })
             .collect();
-        let normals: Vec<DVec3> = hits
-            .iter()
-            .fold(vec![DVec3::ZERO; points.len()], |mut n, h| {
-                n[h.vertex as usize] = h.normal;
-                n
-            });
+        let normals: Vec<DVec3> = hits.iter().fold(vec![DVec3::ZERO; points.len()], |mut n, h| {
+            n[h.vertex as usize] = h.normal;
+            n
+        });
         let plain = super::common::PlainRoles::new(points.len());
         let roles = plain.with(&normals);
         let options = ResponseOptions::default();
@@ -612,7 +614,11 @@ fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pu
         let (after, _) = respond(&index, &points, &hits, &roles, ease, &options);
         for h in &hits {
             let p = after[h.vertex as usize];
-            assert!(!truth_inside(p), "{name}: point {} still inside after the response", h.vertex);
+            assert!(
+                !truth_inside(p),
+                "{name}: point {} still inside after the response",
+                h.vertex
+            );
         }
     }
 }

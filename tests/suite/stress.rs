@@ -70,7 +70,9 @@ fn the_ci_sweep_on_the_shipped_body_finds_no_bug_and_its_garments_are_clear() {
         let session = parse_session(&text, "stress.drape", Path::new(".")).expect("parses");
         let mut last = LastGarment::default();
         run_session(&session, &RunOptions::default(), &mut [&mut last]);
-        let Some((positions, edges, triangles)) = last.0 else { continue };
+        let Some((positions, edges, triangles)) = last.0 else {
+            continue;
+        };
         let truth = ground_truth(&body.mesh.mesh, &positions, &edges);
         assert_eq!(
             (truth.inside_count(), truth.crossing.iter().filter(|c| **c).count()),
@@ -234,9 +236,16 @@ fn a_sweep_on_every_shipped_body_refuses_only_for_the_users_reasons() {
     let refused = all["refused"].as_object().expect("refusals by reason");
     let internal: Vec<&String> = refused
         .keys()
-        .filter(|r| ["cannot be surfaced", "cannot be refitted", "knots", "Coons"].iter().any(|w| r.contains(w)))
+        .filter(|r| {
+            ["cannot be surfaced", "cannot be refitted", "knots", "Coons"]
+                .iter()
+                .any(|w| r.contains(w))
+        })
         .collect();
     assert!(internal.is_empty(), "internal reasons: {internal:?}");
     // The sweep did meet the edits that fold a curve: they are refused by name.
-    assert!(refused.keys().any(|r| r.contains("would fold onto itself")), "{refused:?}");
+    assert!(
+        refused.keys().any(|r| r.contains("would fold onto itself")),
+        "{refused:?}"
+    );
 }

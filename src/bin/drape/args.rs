@@ -255,7 +255,8 @@ pub(crate) struct RunArgs {
     #[arg(long, value_name = "DETAIL", value_parser = ["all", "final", "metrics"])]
     pub(crate) log_detail: Option<String>,
     /// Check every collision against the brute-force ground truth (every garment vertex
-    /// and edge against every body triangle; a few seconds per step), and the step's quality
+    /// and edge against every body triangle, every body edge against every garment face; a
+    /// few seconds per step), and the step's quality
     /// check (partial by default) against a full one. The figures go to the log, the metrics
     /// and the progress lines.
     #[arg(long)]
@@ -267,14 +268,14 @@ pub(crate) struct RunArgs {
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
     #[arg(long)]
     pub(crate) no_skipping: bool,
-    /// The quality check after each collision: `partial` measures only the vertices and
-    /// edges whose positions changed since they were last measured (the same figures),
+    /// The quality check after each collision: `partial` measures only the vertices, edges
+    /// and faces whose positions changed since they were last measured (the same figures),
     /// `full` measures everything every step. --verify runs a full check beside the
     /// step's own and says whether they agree.
     #[arg(long, value_name = "CHECK", default_value = "partial", value_parser = ["partial", "full"])]
     pub(crate) quality: String,
-    /// Exit 1 when a step leaves the garment inside the body or crossing it after its
-    /// collision, or refuses an edit (the run goes on and reports every one).
+    /// Exit 1 when a step leaves the garment inside the body, crossing it or pierced by it
+    /// after its collision, or refuses an edit (the run goes on and reports every one).
     #[arg(long)]
     pub(crate) strict: bool,
 }

@@ -103,7 +103,11 @@ impl<'a> CollisionFigures<'a> {
             crossing_edges: q.crossing_edges,
             pierced_faces: q.pierced_faces,
             face_clearance_m: q.face_clearance_m,
-            vertex_clearance_m: q.clearance.iter().filter(|c| c.is_finite()).fold(f64::INFINITY, |a, &c| a.min(c)),
+            vertex_clearance_m: q
+                .clearance
+                .iter()
+                .filter(|c| c.is_finite())
+                .fold(f64::INFINITY, |a, &c| a.min(c)),
             pierced_faces_by_round: &c.face_rounds,
             face_responses: c.responses.iter().filter(|r| r.rule == AppliedRule::FaceLift).count(),
             max_depth_m: q.max_depth_m,
@@ -214,44 +218,51 @@ fn collide_garment(
     }
     // --verify checks the step's own quality check (partial unless --quality full) twice:
     // against a full check of every vertex and edge, and against the brute-force truth.
-    let verify = options.verify.then(|| {
-        let full = scope.timed("collision.quality_full", || {
-            collision::quality(
-                index,
-                &garment.mesh.positions,
-                &collision.mesh.positions,
-                &garment.edges,
-                &collision.responses,
-            )
-            .with_faces(index, &collision.mesh.positions, &garment.mesh.triangles, None)
-            .with_face_clearance(index, &collision.mesh.positions, &garment.mesh.triangles, collision.ease, None)
+    let verify =
+        options.verify.then(|| {
+            let full = scope.timed("collision.quality_full", || {
+                collision::quality(
+                    index,
+                    &garment.mesh.positions,
+                    &collision.mesh.positions,
+                    &garment.edges,
+                    &collision.responses,
+                )
+                .with_faces(index, &collision.mesh.positions, &garment.mesh.triangles, None)
+                .with_face_clearance(
+                    index,
+                    &collision.mesh.positions,
+                    &garment.mesh.triangles,
+                    collision.ease,
+                    None,
+                )
+            });
+            scope.timed("collision.verify", || {
+                let (positions, triangles) = (&garment.mesh.positions, &garment.mesh.triangles);
+                let before = collision::ground_truth(&body.mesh.mesh, positions, &garment.edges).with_faces(
+                    &body.mesh.mesh,
+                    positions,
+                    triangles,
+                );
+                let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges)
+                    .with_faces(&body.mesh.mesh, &collision.mesh.positions, triangles);
+                let surface = options.collision.detect.reach(index.height).surface;
+                let on_skin = |v: usize| {
+                    let p = garment.mesh.positions[v];
+                    index.nearest(p, f64::INFINITY).is_some_and(|n| n.distance <= surface)
+                };
+                let mut report = collision::compare(&before, &collision.detection, &after, &collision.quality, on_skin);
+                report.full_check_agrees = collision.quality == full;
+                let unskipped = collision::detect(
+                    index,
+                    &garment.input(),
+                    &options.collision.detect.clone().with_skipping(false),
+                    &mut collision::DetectState::default(),
+                );
+                report.skips_changed = collision::changed_verdicts(&collision.detection, &unskipped);
+                report
+            })
         });
-        scope.timed("collision.verify", || {
-            let (positions, triangles) = (&garment.mesh.positions, &garment.mesh.triangles);
-            let before = collision::ground_truth(&body.mesh.mesh, positions, &garment.edges).with_faces(
-                &body.mesh.mesh,
-                positions,
-                triangles,
-            );
-            let after = collision::ground_truth(&body.mesh.mesh, &collision.mesh.positions, &garment.edges)
-                .with_faces(&body.mesh.mesh, &collision.mesh.positions, triangles);
-            let surface = options.collision.detect.reach(index.height).surface;
-            let on_skin = |v: usize| {
-                let p = garment.mesh.positions[v];
-                index.nearest(p, f64::INFINITY).is_some_and(|n| n.distance <= surface)
-            };
-            let mut report = collision::compare(&before, &collision.detection, &after, &collision.quality, on_skin);
-            report.full_check_agrees = collision.quality == full;
-            let unskipped = collision::detect(
-                index,
-                &garment.input(),
-                &options.collision.detect.clone().with_skipping(false),
-                &mut collision::DetectState::default(),
-            );
-            report.skips_changed = collision::changed_verdicts(&collision.detection, &unskipped);
-            report
-        })
-    });
     scope.record(&CollisionFigures::new(index, &collision, verify.as_ref()));
     state.collision = Some(CollisionOutcome {
         garment,
