@@ -21,8 +21,9 @@
 //! face; so that a part of the body over the plane that does not pass through the face, an
 //! arm beside the torso, is not taken); its deepest vertex is the target. A cap higher than
 //! the face's longest edge is no bump but a part of the body the face lies across (a
-//! squeeze between the thighs): that face is not lifted, and stays pierced. With `b` that point's barycentric coordinates
-//! on the face (clamped into it) and `h` its height, the face is lifted there by
+//! squeeze between the thighs): that face is not lifted, and stays pierced. With `b` that
+//! point's barycentric coordinates on the face (clamped into it) and `h` its height, the
+//! face is lifted there by
 //! `lift = h + ease`: its corners move along the face's outer normal by the least-squares
 //! split `u_i = lift b_i / sum_j b_j^2` (so that `sum_i b_i u_i = lift`), over the corners
 //! that may move (pinned ones stay: M0's vertices in M1), at most twice the lift. A
@@ -52,12 +53,16 @@ const MOST_CAP: usize = 4096;
 /// of one of its corners.
 const COVER: f64 = 0.577_350_269_189_625_8;
 
-/// Whether the balls of radii `free` about the corners `tri` cover the triangle, with
-/// `margin` (m) to spare (see the module's text).
-fn covered(tri: [DVec3; 3], free: [f64; 3], margin: f64) -> bool {
-    let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
-    let least = free.into_iter().fold(f64::INFINITY, f64::min);
-    least > COVER * longest + margin
+/// The longest edge of `tri`, m.
+fn longest_edge(tri: [DVec3; 3]) -> f64 {
+    (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max)
+}
+
+/// A lower bound of the distance from the body to any point of face `tri` whose corners
+/// stand at least `free` from it: the least of them less `L / sqrt(3)` (see the module's
+/// text); positive only where the corners' free balls cover the face.
+fn least_distance(tri: [DVec3; 3], free: [f64; 3]) -> f64 {
+    free.into_iter().fold(f64::INFINITY, f64::min) - COVER * longest_edge(tri)
 }
 
 /// How far each corner's distance to the body may be off by rounding: a millionth of the
@@ -69,7 +74,7 @@ fn margin(index: &BodyIndex) -> f64 {
 /// Whether face `tri` is pierced by the body, exactly; `free` are its corners' distances to
 /// the body where known (zero where not).
 fn pierced(index: &BodyIndex, tri: [DVec3; 3], free: [f64; 3]) -> bool {
-    !covered(tri, free, margin(index)) && index.pierces(tri)
+    least_distance(tri, free) <= margin(index) && index.pierces(tri)
 }
 
 /// The faces of `triangles` (at `positions`) the body pokes through, ascending; `free[v]` is
@@ -153,16 +158,9 @@ pub fn faces_nearer(
     mut reuse: Option<&mut Reuse>,
 ) -> Vec<(u32, f64)> {
     let corners = |f: usize| triangles[f].map(|v| positions[v as usize]);
+    let balls = |f: usize| triangles[f].map(|v| free.get(v as usize).copied().unwrap_or(0.0));
     let candidates: Vec<u32> = (0..triangles.len())
-        .filter(|&f| {
-            let tri = corners(f);
-            let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
-            let least = triangles[f]
-                .iter()
-                .map(|&v| free.get(v as usize).copied().unwrap_or(0.0))
-                .fold(f64::INFINITY, f64::min);
-            least - COVER * longest < cap
-        })
+        .filter(|&f| least_distance(corners(f), balls(f)) < cap)
         .map(|f| f as u32)
         .collect();
     let known: Vec<Option<f64>> = candidates
@@ -256,8 +254,7 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
     let (p, height) = (index.positions[deepest as usize], height(deepest));
     // A cap higher than the face is wide is no bump: the face lies across a part of the
     // body (between the thighs, say), and lifting it off would fling it.
-    let longest = (0..3).map(|k| tri[k].distance(tri[(k + 1) % 3])).fold(0.0, f64::max);
-    if height > longest {
+    if height > longest_edge(tri) {
         return None;
     }
     // Its foot on the face (clamped into it where the cap leans past an edge).

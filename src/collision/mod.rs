@@ -8,7 +8,8 @@
 //! (moved vertices and the rule of each) -> [`respond_edges`] (edges through the body
 //! lifted) -> [`respond_faces`] (faces the body pokes through lifted, then the edges at
 //! their corners) -> [`quality()`] and [`Quality::with_faces`] (what is left inside,
-//! crossing edges, pierced faces, ease error): the whole surface certified. The body side is built once per body and shared with the garment:
+//! crossing edges, pierced faces, ease error): the whole surface certified. The body side
+//! is built once per body and shared with the garment:
 //! [`BodyIndex::new`] (in [`crate::body::index`]).
 
 pub mod detect;

@@ -6,7 +6,7 @@
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
-use super::logger::{RerunLogger, colored_mesh, f32s, to_sink};
+use super::logger::{RerunLogger, colored_mesh, f32s, log_face_outlines, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
@@ -205,23 +205,8 @@ impl RerunLogger {
             ),
             ("collision/mesh/pierced_faces", &q.pierced, 0.002, [255, 0, 0]),
         ] {
-            if faces.is_empty() {
-                rec.log(path, &Clear::flat()).map_err(to_sink)?;
-                continue;
-            }
-            // Each face's outline, closed.
-            let outlines: Vec<Vec<[f32; 3]>> = faces
-                .iter()
-                .map(|&f| {
-                    let [a, b, c3] = g.mesh.triangles[f as usize].map(|v| c.mesh.positions[v as usize]);
-                    f32s(&[a, b, c3, a])
-                })
-                .collect();
-            rec.log(
-                path,
-                &LineStrips3D::new(outlines).with_radii([radius]).with_colors([colour]),
-            )
-            .map_err(to_sink)?;
+            let mesh = (g.mesh.triangles.as_slice(), c.mesh.positions.as_slice());
+            log_face_outlines(rec, path, mesh, faces, (radius, colour))?;
         }
         self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
         self.scalar("metrics/collision/pierced_faces", q.pierced_faces as f64)?;

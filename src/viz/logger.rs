@@ -171,6 +171,30 @@ pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
     points.iter().map(|p| p.as_vec3().to_array()).collect()
 }
 
+/// Logs the closed outlines of `faces` (indices into `triangles`, corners at `positions`)
+/// at `path`, or clears it when there are none.
+pub(super) fn log_face_outlines(
+    rec: &OrderedRecording,
+    path: &str,
+    (triangles, positions): (&[[u32; 3]], &[DVec3]),
+    faces: &[u32],
+    (radius, colour): (f32, [u8; 3]),
+) -> Result<(), SinkError> {
+    if faces.is_empty() {
+        return rec.log(path, &rerun::Clear::flat());
+    }
+    let outlines: Vec<Vec<[f32; 3]>> = faces
+        .iter()
+        .map(|&f| closed(&triangles[f as usize].map(|v| positions[v as usize])))
+        .collect();
+    rec.log(
+        path,
+        &rerun::LineStrips3D::new(outlines)
+            .with_radii([radius])
+            .with_colors([colour]),
+    )
+}
+
 pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
     let mut v = f32s(points);
     if let Some(first) = v.first().copied() {

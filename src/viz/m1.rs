@@ -7,7 +7,7 @@ use glam::DVec3;
 use rerun::{Clear, LineStrips3D, Points3D, TextLogLevel};
 
 use super::colors::m1_rule_color;
-use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, to_sink};
+use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, log_face_outlines, to_sink};
 use crate::m1::Rule;
 use crate::session::{M1Stage, SinkError};
 
@@ -80,25 +80,13 @@ impl RerunLogger {
                 .map_err(to_sink)?;
             }
         }
-        if c.pierced_after.is_empty() {
-            rec.log("collision/m1/pierced_faces", &Clear::flat()).map_err(to_sink)?;
-        } else {
-            let outlines: Vec<Vec<[f32; 3]>> = c
-                .pierced_after
-                .iter()
-                .map(|&f| {
-                    let [a, b, d] = m1.mesh.triangles[f as usize].map(|v| positions[v as usize]);
-                    f32s(&[a, b, d, a])
-                })
-                .collect();
-            rec.log(
-                "collision/m1/pierced_faces",
-                &LineStrips3D::new(outlines)
-                    .with_radii([0.002])
-                    .with_colors([[255, 0, 0]]),
-            )
-            .map_err(to_sink)?;
-        }
+        log_face_outlines(
+            rec,
+            "collision/m1/pierced_faces",
+            (&m1.mesh.triangles, positions),
+            &c.pierced_after,
+            (0.002, [255, 0, 0]),
+        )?;
         rec.log("garment/cut_lines", &Clear::recursive()).map_err(to_sink)?;
         rec.log("garment/m0/cut_lines", &Clear::recursive()).map_err(to_sink)?;
         for ((stored, on_m1), on_m0) in outcome.stored.iter().zip(&outcome.cuts).zip(&outcome.cuts_on_m0) {
