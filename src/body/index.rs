@@ -42,7 +42,24 @@ pub struct Nearest {
     pub behind: Option<bool>,
 }
 
+/// The least distance from the skin, as a fraction of the body's height, at which the way
+/// from a point's foot to the point is a direction: nearer, the difference of the two rounded
+/// points is mostly rounding (a point on the skin, 1e-18 m off its foot, would get an
+/// arbitrary axis), and the feature's pseudo-normal gives the way instead.
+pub const RESOLVED: f64 = 1e-9;
+
 impl Nearest {
+    /// The unit way out of the body from `p` (away from it, for a point outside): from the
+    /// foot through `p` (reversed for a point inside) where `p` stands more than `resolved`
+    /// (m, [`BodyIndex::resolved`]) from the skin, else the feature's outward pseudo-normal.
+    pub fn way_out(&self, p: DVec3, resolved: f64) -> DVec3 {
+        if self.distance > resolved {
+            (p - self.foot) / self.distance * self.signed(p).signum()
+        } else {
+            self.normal
+        }
+    }
+
     /// Signed distance of `p` (m): negative inside the body (the point lies behind the
     /// feature's angle-weighted pseudo-normal, Baerentzen and Aanaes 2005), zero on the surface.
     pub fn signed(&self, p: DVec3) -> f64 {
@@ -410,7 +427,7 @@ impl BodyIndex {
     /// trusted (next to a self-crossing): the side counted along rays.
     pub(super) fn settle(&self, p: DVec3, n: Nearest) -> Nearest {
         let mut n = self.exact_side(p, n);
-        if n.distance > 0.0 && self.tangled.get(n.triangle as usize).copied().unwrap_or(false) {
+        if n.distance > self.resolved() && self.tangled.get(n.triangle as usize).copied().unwrap_or(false) {
             let away = (p - n.foot) / n.distance;
             n.normal = if self.winding(p) >= 1 { -away } else { away };
             n.behind = None;
@@ -521,6 +538,12 @@ impl BodyIndex {
 
     fn on_shell(&self, t: u32) -> bool {
         !self.shell.buried.get(t as usize).copied().unwrap_or(false)
+    }
+
+    /// The least distance from the skin at which a point's way out is the way from its foot
+    /// (m): [`RESOLVED`] of the body's height.
+    pub fn resolved(&self) -> f64 {
+        RESOLVED * self.height
     }
 
     /// The nearest body point within `reach`, over the whole body. Warm-started from the

@@ -86,8 +86,8 @@ fn crossing(index: &BodyIndex, ends: [u32; 2], pa: DVec3, pb: DVec3) -> Option<C
     let mid = pa.lerp(pb, t);
     let near = index.nearest(mid, reach)?;
     let signed = near.signed(mid);
-    let out = if signed < 0.0 && near.distance > 0.0 {
-        (near.foot - mid) / near.distance
+    let out = if signed < 0.0 {
+        near.way_out(mid, index.resolved())
     } else {
         near.normal
     };
@@ -116,11 +116,7 @@ fn way(index: &BodyIndex, p: DVec3, n: DVec3, ease: f64) -> Option<Way> {
         // An end inside (a miss of the approximate line-line test) is pushed out as a hit.
         return None;
     }
-    let own = if near.distance > 0.0 {
-        (p - near.foot) / near.distance
-    } else {
-        near.normal
-    };
+    let own = near.way_out(p, index.resolved());
     let dir = if n.dot(own) >= MIN_COSINE { n } else { own };
     let behind = near.distance;
     let room = match index.cast_ray(p, dir, 1e-6 * index.height, 4.0 * ease) {

@@ -43,11 +43,7 @@ pub(super) fn push_out(index: &BodyIndex, p: DVec3, d: DVec3, ease: f64) -> Opti
         let mut s = if outside {
             // From outside (an edge's end) the direction must lead away from the body.
             let near = index.nearest(p, reach)?;
-            let away = if near.distance > 0.0 {
-                (p - near.foot) / near.distance
-            } else {
-                near.normal
-            };
+            let away = near.way_out(p, index.resolved());
             if d.dot(away) < 0.2 {
                 return None;
             }
@@ -200,11 +196,7 @@ pub(super) fn settle(index: &BodyIndex, mut q: DVec3, ease: f64) -> Pushed {
             stop = (Stop::Converged, step);
             break;
         };
-        let out = if near.distance > 0.0 {
-            (q - near.foot) / near.distance * near.signed(q).signum()
-        } else {
-            near.normal
-        };
+        let out = near.way_out(q, index.resolved());
         let next = near.foot + out * ease;
         let now = index.signed_distance(next, reach).unwrap_or(reach);
         if now <= reached {

@@ -273,11 +273,7 @@ pub(super) fn respond_round(
         // The shortest way out of (or away from) the body, exact.
         let near = index.nearest(p, reach);
         let (way_out, depth) = match near {
-            Some(near) if near.distance > 0.0 => {
-                let s = near.signed(p);
-                ((p - near.foot) * s.signum() / near.distance, (-s).max(0.0))
-            }
-            Some(near) => (near.normal, 0.0),
+            Some(near) => (near.way_out(p, index.resolved()), (-near.signed(p)).max(0.0)),
             None => (hit.normal, hit.depth.max(0.0)),
         };
         let keep_plane = |d: DVec3| match iso {
@@ -315,6 +311,9 @@ pub(super) fn respond_round(
             rule = AppliedRule::Fallback;
             centre = None;
         }
+        // A push farther than this has gone on through another part of the body (out of one
+        // thigh and through the other, where they touch): no way out is taken that far,
+        // the rule's nor the shortest.
         let limit = 3.0 * (depth + ease);
         let pushed = push_out(index, p, d, ease).filter(|q| q.to.distance(p) <= limit);
         // Squeezed along the rule's direction (another part of the body in the way): the
@@ -323,7 +322,7 @@ pub(super) fn respond_round(
             Some(q) if q.target < (1.0 - EASE_TOLERANCE) * ease && rule != AppliedRule::Fallback => {
                 let foot = near.map_or(hit.foot, |n| n.foot);
                 match push_out(index, foot + way_out * ease, way_out, ease) {
-                    Some(w) if w.target > q.target => {
+                    Some(w) if w.target > q.target && w.to.distance(p) <= limit => {
                         rule = AppliedRule::Fallback;
                         Some(w)
                     }
@@ -335,10 +334,14 @@ pub(super) fn respond_round(
         let (pushed, rule) = match pushed {
             Some(q) => (q, rule),
             None => {
-                // The shortest way out: from the nearest surface point out along it.
+                // The shortest way out: from the nearest surface point out along it; where
+                // that too leads on through the body, stepping out from the nearest surface
+                // ([`settle`]).
                 let foot = near.map_or(hit.foot, |n| n.foot);
-                let q = push_out(index, foot + way_out * ease, way_out, ease)
-                    .unwrap_or_else(|| settle(index, foot + way_out * ease, ease));
+                let start = foot + way_out * ease;
+                let q = push_out(index, start, way_out, ease)
+                    .filter(|q| q.to.distance(p) <= limit)
+                    .unwrap_or_else(|| settle(index, start, ease));
                 (q, AppliedRule::Fallback)
             }
         };

@@ -622,3 +622,39 @@ fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pu
         }
     }
 }
+
+/// The way out of a point on the skin is the surface's normal, not an axis the rounding of
+/// its foot happens to point along: at a triangle's centroid (its nearest point a rounding
+/// away, 1e-17 m or so), and 1e-15 m off it, the way out is the triangle's own normal,
+/// computed here from its corners; 1 um off it, where the way from the foot is a direction,
+/// the same. On every shipped body, 200 triangles each.
+#[test]
+fn the_way_out_of_a_point_on_the_skin_is_the_skins_normal() {
+    for (name, body, index) in shipped() {
+        let mesh = &body.mesh.mesh;
+        let mut checked = 0;
+        for t in picked(mesh, 200) {
+            let [a, b, c] = mesh.corners(t);
+            let normal = (b - a).cross(c - a).normalize();
+            let centroid = (a + b + c) / 3.0;
+            for offset in [0.0, 1e-15, 1e-6] {
+                let p = centroid + normal * offset;
+                let Some(near) = index.nearest(p, 0.01) else {
+                    continue;
+                };
+                // Only where this triangle is the nearest (another part of a self-crossing
+                // body may be nearer).
+                if near.triangle as usize != t {
+                    continue;
+                }
+                let way = near.way_out(p, index.resolved());
+                assert!(
+                    way.dot(normal) > 1.0 - 1e-9,
+                    "{name}: triangle {t}, {offset} m off: way out {way} against the normal {normal}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 300, "{name}: only {checked} points checked");
+    }
+}

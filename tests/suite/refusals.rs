@@ -151,3 +151,71 @@ fn strict_turns_a_refusal_into_exit_code_1() {
     assert!(stderr.contains("error: step 2: edit refused: ring 'waist'"), "{stderr}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The last framework a garment stage showed.
+#[derive(Default)]
+struct LastFramework(Option<drape::garment::Framework>);
+
+impl StageSink for LastFramework {
+    fn garment(&mut self, _: &StageInfo, stage: GarmentStage<'_>) -> Result<(), SinkError> {
+        if let GarmentStage::Part(fw, _) = stage {
+            self.0 = Some(fw.clone());
+        }
+        Ok(())
+    }
+}
+
+/// A hem ring dragged sideways off its leg is refused naming the section it would leave;
+/// one dragged 1 cm is not. The truth, from the body's own vertices: at the hem's height the
+/// leg inside the ring (the body vertices within 5 mm of that height, between the ring's
+/// left and right ends) lies wholly to one side of the ring moved by 0.3 m, and within it
+/// moved by 1 cm.
+#[test]
+fn a_hem_dragged_off_its_leg_is_refused_naming_the_section_it_leaves() {
+    let text = "drape 1\ngarment jumpsuit resolution=3\n";
+    let session = parse_session(text, "hem.drape", std::path::Path::new(".")).expect("parses");
+    let mut last = LastFramework::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut last]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let fw = last.0.expect("a garment");
+    let hem: Vec<glam::DVec3> = fw
+        .control_points()
+        .into_iter()
+        .filter(|(n, _)| n.starts_with("left_hem."))
+        .map(|(_, p)| p)
+        .collect();
+    assert!(hem.len() >= 4, "{hem:?}");
+    let y = hem.iter().map(|p| p.y).sum::<f64>() / hem.len() as f64;
+    let (lo, hi) = hem
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.x), h.max(p.x)));
+    let body = super::common::real_body();
+    let leg: Vec<f64> = body
+        .mesh
+        .mesh
+        .positions
+        .iter()
+        .filter(|p| (p.y - y).abs() < 0.005 && p.x > lo && p.x < hi)
+        .map(|p| p.x)
+        .collect();
+    assert!(leg.len() >= 5, "the leg at y = {y}: {leg:?}");
+    let (leg_lo, leg_hi) = leg
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
+    let (far, near) = (0.3, 0.01);
+    assert!(lo + far > leg_hi, "moved by {far} m the ring lies beside the leg");
+    assert!(lo + near < leg_lo && hi + near > leg_hi, "moved by {near} m it is still around it");
+    let text = format!("{text}drag left_hem by={far},0,0\ndrag left_hem by={near},0,0\n");
+    let session = parse_session(&text, "hem.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = Refusals::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    assert_eq!(sink.0.len(), 1, "{:?}", sink.0);
+    let (step, message) = &sink.0[0];
+    assert_eq!(*step, 2);
+    assert!(
+        message.starts_with("ring 'left_hem' dragged by (0.300, 0.000, 0.000) m would no longer go around the body")
+            && message.contains("so the garment would pass through the body"),
+        "{message}"
+    );
+}

@@ -111,6 +111,26 @@ pub enum EditError {
         /// What is above.
         above: String,
     },
+    /// A whole ring dragged off the part of the body it goes around (the leg a hem goes
+    /// round, the torso a waist goes round): that part passes through the ring's plane
+    /// outside the ring, so the garment between it and the next ring would pass through the
+    /// body.
+    #[error(
+        "ring '{curve}' dragged by ({:.3}, {:.3}, {:.3}) m would no longer go around the body: the body's section at y = {y:.4} m, centred at (x, z) = ({:.4}, {:.4}) m, would lie {off:.4} m outside it, so the garment would pass through the body: edit refused",
+        by.x, by.y, by.z, centre.x, centre.y
+    )]
+    OffTheBody {
+        /// Ring.
+        curve: String,
+        /// The drag, m.
+        by: DVec3,
+        /// The height of the section left out, m.
+        y: f64,
+        /// Its centre `(x, z)`, m.
+        centre: glam::DVec2,
+        /// How far the centre lies from the dragged ring's control polygon, m.
+        off: f64,
+    },
     /// A point dragged through the body.
     #[error(
         "'{point}' would pass through the body (in at ({:.4}, {:.4}, {:.4}), out at ({:.4}, {:.4}, {:.4}) m): edit refused",

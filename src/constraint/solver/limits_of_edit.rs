@@ -1,14 +1,16 @@
 //! What a drag may not do, checked before solving: move a whole ring out of its band (past
-//! the ring next to it on one of its contours, or off the body's height), or take an open
+//! the ring next to it on one of its contours, or off the body's height) or off the part of
+//! the body it goes around (a hem off its leg, a waist off the torso), or take an open
 //! curve (the crotch curve, a strap) through the body: in at one side and out at the other,
 //! or so deep in that its nearest way out is elsewhere. (A ring point dragged through the
 //! body is refused by the solver: the ring would cross itself.)
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::EditError;
 use crate::constraint::curves::{self, CurveKind, CurveNode};
 use crate::garment::{BodyProbe, Framework};
+use crate::geom::polygon;
 
 /// A ring may come no nearer its neighbours (or the body's ends) than this fraction of the
 /// body's height.
@@ -75,6 +77,61 @@ pub(super) fn check_band(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyP
         });
     }
     Ok(())
+}
+
+/// Refuses a whole-ring drag by `by` that would take the ring off a part of the body it goes
+/// around. The body's horizontal section at the ring's height has one loop per part there
+/// (the torso, each arm, each leg); the ring goes around those whose centre its control
+/// polygon, seen from above, contains. Each of them passes on through the ring's plane at
+/// its new height: its section there (the loop of the section at the new height whose
+/// centre is nearest) must still lie around a centre inside the dragged ring, or the part
+/// would leave the garment through its wall.
+pub(super) fn check_around(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyProbe) -> Result<(), EditError> {
+    if c.kind != CurveKind::Ring {
+        return Ok(());
+    }
+    let slices = &probe.index().slices;
+    let ring: Vec<DVec2> = curves::points(fw, c).iter().map(|p| DVec2::new(p.x, p.z)).collect();
+    let moved: Vec<DVec2> = ring.iter().map(|p| *p + DVec2::new(by.x, by.z)).collect();
+    let y = height_of(fw, c);
+    let (Some(before), Some(after)) = (slices.at(y), slices.at(y + by.y)) else {
+        return Ok(());
+    };
+    let centre = |l: &crate::body::slices::Loop2| polygon::centroid(l.points());
+    let centres_after: Vec<DVec2> = after.loops.iter().map(centre).collect();
+    for around in before.loops.iter().map(centre).filter(|&m| polygon::contains(&ring, m)) {
+        let Some(&next) = centres_after
+            .iter()
+            .min_by(|a, b| a.distance(around).total_cmp(&b.distance(around)))
+        else {
+            continue;
+        };
+        if !polygon::contains(&moved, next) {
+            let n = moved.len();
+            let off = (0..n)
+                .map(|i| point_segment(next, moved[i], moved[(i + 1) % n]))
+                .fold(f64::INFINITY, f64::min);
+            return Err(EditError::OffTheBody {
+                curve: c.name.clone(),
+                by,
+                y: after.y,
+                centre: next,
+                off,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// The distance from `p` to segment `ab`.
+fn point_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let ab = b - a;
+    let t = if ab.length_squared() > 0.0 {
+        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    p.distance(a + ab * t)
 }
 
 /// Refuses moving point `name` from `from` to `to` along a straight path that enters the

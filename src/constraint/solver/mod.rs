@@ -127,6 +127,7 @@ pub fn solve(
     // What a drag may not do.
     if let Some(by) = whole {
         limits_of_edit::check_band(fw, &net.curves[active], by, probe)?;
+        limits_of_edit::check_around(fw, &net.curves[active], by, probe)?;
         if net.curves[active].kind == CurveKind::Open {
             let node = &net.curves[active];
             let apex = curves::points(fw, node)[curves::points(fw, node).len() / 2];
