@@ -12,9 +12,15 @@
         same sessions): the refusals by reason side by side, with the steps accepted and the
         solves reported not converged.
 
-    python3 scripts/faces.py --doc BEFORE_BINARY
-        All three (the third: scripts/compare_steps.py BEFORE_BINARY --runs 3), written into
-        docs/faces.md between its `<!-- figures:faces-* -->` markers.
+    python3 scripts/faces.py --sweep REPORT.json... [--doc-sweep]
+        The verified sweep, from the --report files of its shards (`drape stress --bodies
+        assets/bodies --sessions 100 --verify --threads 1 --shard I/N --report sI.json`),
+        merged: per body the collisions checked against the brute-force truth (faces
+        included) and against a full check; with --doc-sweep written into docs/faces.md.
+
+    python3 scripts/faces.py --doc BEFORE_BINARY [--only faces-refusals,...]
+        All three (the third: scripts/compare_steps.py BEFORE_BINARY --runs 3), or those named,
+        written into docs/faces.md between its `<!-- figures:faces-* -->` markers.
 """
 
 import argparse
@@ -23,6 +29,7 @@ import io
 import json
 import re
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
@@ -80,6 +87,21 @@ def refusals(before, after, sessions):
         print(f"| {r} | {old['refused'].get(r, 0)} | {new['refused'].get(r, 0)} |")
 
 
+def sweep(binary, reports):
+    sys.path.insert(0, str(ROOT / "scripts"))
+    from readme_figures import verified_table
+    merged = json.loads(subprocess.run([str(binary), "stress", "merge", "--json", *reports], cwd=ROOT,
+                                       check=True, capture_output=True, text=True).stdout)
+    report = merged["report"] if "report" in merged else merged
+    title = (f"`drape stress --bodies assets/bodies --sessions {report['sessions_per_body']} "
+             f"--steps {report['steps_per_session']} --verify --threads 1`, {len(reports)} shard(s) merged "
+             f"(`stress merge`), seed {report['seed']}:")
+    o = merged["overall"]
+    print(verified_table(merged, title))
+    print(f"\nSteps accepted {o['accepted']} of {o['steps']}; guarantee failures {o['guarantee_failures']}; "
+          f"panics {o['panics']}; non-finite outputs {o['non_finite']}.")
+
+
 def captured(f, *a):
     out = io.StringIO()
     with contextlib.redirect_stdout(out):
@@ -87,14 +109,15 @@ def captured(f, *a):
     return out.getvalue().strip()
 
 
-def write_doc(before, after, sessions):
-    steps = subprocess.run(["python3", str(ROOT / "scripts/compare_steps.py"), before, after, "--runs", "3"],
-                           cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
-    sections = {
-        "faces-demo": captured(faces_table, after),
-        "faces-refusals": captured(refusals, before, after, sessions),
-        "faces-steps": steps,
+def write_doc(before, after, sessions, only):
+    makers = {
+        "faces-demo": lambda: captured(faces_table, after),
+        "faces-refusals": lambda: captured(refusals, before, after, sessions),
+        "faces-steps": lambda: subprocess.run(
+            ["python3", str(ROOT / "scripts/compare_steps.py"), before, after, "--runs", "3"],
+            cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip(),
     }
+    sections = {name: make() for name, make in makers.items() if not only or name in only}
     doc = ROOT / "docs/faces.md"
     text = doc.read_text()
     for name, body in sections.items():
@@ -109,9 +132,20 @@ def main():
     ap.add_argument("--refusals", metavar="BEFORE_BINARY")
     ap.add_argument("--sessions", type=int, default=100)
     ap.add_argument("--doc", metavar="BEFORE_BINARY")
+    ap.add_argument("--only", default="", help="with --doc: the sections to write, comma-separated "
+                    "(faces-demo, faces-refusals, faces-steps); all by default")
+    ap.add_argument("--sweep", nargs="+", metavar="REPORT")
+    ap.add_argument("--doc-sweep", action="store_true", help="with --sweep: write it into docs/faces.md")
     args = ap.parse_args()
-    if args.doc:
-        write_doc(args.doc, args.binary, args.sessions)
+    if args.sweep:
+        body = captured(sweep, args.binary, args.sweep)
+        print(body)
+        if args.doc_sweep:
+            doc = ROOT / "docs/faces.md"
+            pattern = re.compile(r"(<!-- figures:faces-sweep -->\n)(?:.*?\n)?(<!-- /figures:faces-sweep -->)", re.S)
+            doc.write_text(pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), doc.read_text()))
+    elif args.doc:
+        write_doc(args.doc, args.binary, args.sessions, [s for s in args.only.split(",") if s])
     elif args.refusals:
         refusals(args.refusals, args.binary, args.sessions)
     else:

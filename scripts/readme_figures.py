@@ -237,9 +237,14 @@ def stress_verified():
                 sys.exit("drape stress found a bug: run it without the script to see it")
         merged = subprocess.run([drape, "stress", "merge", "--json", *reports], cwd=ROOT, check=True,
                                 capture_output=True, text=True)
-    out = json.loads(merged.stdout)
-    rows = [f"`drape --threads 1 stress --bodies assets/bodies --sessions {STRESS_SESSIONS} --steps {STRESS_STEPS} "
-            f"--verify`, {shards} shards merged:",
+    return verified_table(json.loads(merged.stdout),
+                          f"`drape --threads 1 stress --bodies assets/bodies --sessions {STRESS_SESSIONS} "
+                          f"--steps {STRESS_STEPS} --verify`, {shards} shards merged:")
+
+
+def verified_table(out, title):
+    """The verified sweep's table from a merged `drape stress --json` report, under `title`."""
+    rows = [title,
             "",
             "| body | collisions | vertices / edges checked | inside (truth) | missed: on the skin / line-line / "
             "skipped / point-face | false hits | verdicts the skips changed | quality wrong | partial unlike full "
