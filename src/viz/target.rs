@@ -15,8 +15,14 @@ pub enum RecordingTarget {
     File(PathBuf),
     /// A viewer or proxy at a `rerun+http://host:port/proxy` URL.
     Connect(String),
-    /// A gRPC server on `0.0.0.0:port` that viewers connect to, now or later.
-    Serve(u16),
+    /// A gRPC server on `bind:port` that viewers connect to, now or later (`127.0.0.1`:
+    /// this machine only; Rerun's servers have no authentication).
+    Serve {
+        /// The address to listen on.
+        bind: std::net::IpAddr,
+        /// The port.
+        port: u16,
+    },
 }
 
 /// Batching without clock- or size-driven flushes: the logger flushes after every log call
@@ -79,12 +85,13 @@ pub fn open_recording_kept(
                 vec![Box::new(file.clone()), Box::new(rerun::sink::GrpcSink::new(uri))];
             builder.set_sinks(sinks)?
         }
-        (RecordingTarget::Serve(port), None) => {
-            builder.serve_grpc_opts("0.0.0.0", *port, rerun::ServerOptions::default())?
+        (RecordingTarget::Serve { bind, port }, None) => {
+            builder.serve_grpc_opts(bind.to_string(), *port, rerun::ServerOptions::default())?
         }
-        (RecordingTarget::Serve(port), Some(file)) => {
-            let server = rerun::grpc_server::GrpcServerSink::new("0.0.0.0", *port, rerun::ServerOptions::default())
-                .map_err(|e| rerun::RecordingStreamError::WebSink(e.into()))?;
+        (RecordingTarget::Serve { bind, port }, Some(file)) => {
+            let server =
+                rerun::grpc_server::GrpcServerSink::new(&bind.to_string(), *port, rerun::ServerOptions::default())
+                    .map_err(|e| rerun::RecordingStreamError::WebSink(e.into()))?;
             let sinks: Vec<Box<dyn rerun::sink::LogSink>> = vec![Box::new(file.clone()), Box::new(server)];
             builder.set_sinks(sinks)?
         }
@@ -168,16 +175,17 @@ pub fn memory_recording(name: &str) -> RecordingStreamResult<(RecordingStream, r
     Ok((rec, storage))
 }
 
-/// Serves Rerun's web viewer (shipped inside the binary) over HTTP on `web_port`, set to
-/// load the gRPC server on `grpc_port` of the same host: a browser is all a remote person
-/// needs. Returns the server (it stops when dropped) and the URL to open.
+/// Serves Rerun's web viewer (shipped inside the binary) over HTTP on `bind:web_port`, set
+/// to load the gRPC server on `grpc_port` of `host`: a browser is all a remote person needs.
+/// Returns the server (it stops when dropped) and the URL to open.
 pub fn serve_web_viewer(
+    bind: std::net::IpAddr,
     grpc_port: u16,
     web_port: u16,
     host: &str,
 ) -> Result<(re_web_viewer_server::WebViewerServer, String), WebViewerError> {
     let server = rerun::serve_web_viewer(rerun::web_viewer::WebViewerConfig {
-        bind_ip: "0.0.0.0".to_owned(),
+        bind_ip: bind.to_string(),
         web_port: re_web_viewer_server::WebViewerServerPort(web_port),
         open_browser: false,
         ..Default::default()

@@ -204,7 +204,10 @@ fn a_hem_dragged_off_its_leg_is_refused_naming_the_section_it_leaves() {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
     let (far, near) = (0.3, 0.01);
     assert!(lo + far > leg_hi, "moved by {far} m the ring lies beside the leg");
-    assert!(lo + near < leg_lo && hi + near > leg_hi, "moved by {near} m it is still around it");
+    assert!(
+        lo + near < leg_lo && hi + near > leg_hi,
+        "moved by {near} m it is still around it"
+    );
     let text = format!("{text}drag left_hem by={far},0,0\ndrag left_hem by={near},0,0\n");
     let session = parse_session(&text, "hem.drape", std::path::Path::new(".")).expect("parses");
     let mut sink = Refusals::default();

@@ -181,3 +181,107 @@ fn a_viewer_that_goes_away_mid_edit_loses_nothing_from_the_file() {
     assert_eq!(first_difference(&a, &b, 0.0), None);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The addresses the kernel says listen on `ports`, from its socket tables (`/proc/net/tcp`
+/// and `tcp6`): the truth from outside drape.
+fn listening_on(ports: &[u16]) -> Vec<(std::net::IpAddr, u16)> {
+    let mut out = Vec::new();
+    for (table, v6) in [("/proc/net/tcp", false), ("/proc/net/tcp6", true)] {
+        let Ok(text) = std::fs::read_to_string(table) else {
+            assert!(v6, "{table} is missing: this test reads the kernel's socket table");
+            continue;
+        };
+        for line in text.lines().skip(1) {
+            let f: Vec<&str> = line.split_whitespace().collect();
+            // Field 3 is the state: 0A is LISTEN.
+            let (Some(local), Some(&"0A")) = (f.get(1), f.get(3)) else {
+                continue;
+            };
+            let Some((ip, port)) = local.split_once(':') else {
+                continue;
+            };
+            let port = u16::from_str_radix(port, 16).expect("a hex port");
+            if !ports.contains(&port) {
+                continue;
+            }
+            // The address is in the kernel's byte order, 32 bits at a time.
+            let words: Vec<u32> = (0..ip.len() / 8)
+                .map(|k| {
+                    u32::from_str_radix(&ip[8 * k..8 * k + 8], 16)
+                        .expect("hex")
+                        .swap_bytes()
+                })
+                .collect();
+            let ip = if v6 {
+                let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_be_bytes()).collect();
+                std::net::IpAddr::from(<[u8; 16]>::try_from(bytes.as_slice()).expect("16 bytes"))
+            } else {
+                std::net::IpAddr::from(words[0].to_be_bytes())
+            };
+            out.push((ip, port));
+        }
+    }
+    out.sort();
+    out
+}
+
+/// `--serve-web` listens on this machine only unless told otherwise: both its servers (gRPC
+/// and HTTP) on 127.0.0.1, as the kernel's socket table shows; `--bind 0.0.0.0` opens the
+/// gRPC server to every network, with a warning that Rerun's servers have no
+/// authentication.
+#[test]
+fn servers_listen_on_this_machine_only_unless_bound_elsewhere() {
+    let dir = scratch("bind");
+    let (grpc, web) = (free_port(), free_port());
+    let file = dir.join("local.rrd");
+    let (mut child, printed) = serving(&[
+        "run",
+        "--serve-web",
+        "--port",
+        &grpc.to_string(),
+        "--web-port",
+        &web.to_string(),
+        "--save",
+        file.to_str().unwrap(),
+    ]);
+    let local = listening_on(&[grpc, web]);
+    interrupt(&mut child);
+    let loopback = std::net::IpAddr::from([127, 0, 0, 1]);
+    let mut want = vec![(loopback, grpc), (loopback, web)];
+    want.sort();
+    assert_eq!(local, want, "{printed}");
+    assert!(
+        printed.contains("this machine only") && printed.contains("ssh -L"),
+        "{printed}"
+    );
+
+    let port = free_port();
+    let mut child = super::common::drape_cli()
+        .args([
+            "run",
+            "--serve",
+            "--bind",
+            "0.0.0.0",
+            "--port",
+            &port.to_string(),
+            "--save",
+        ])
+        .arg(dir.join("open.rrd"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("drape starts");
+    let stdout = BufReader::new(child.stdout.take().expect("stdout"));
+    for line in stdout.lines() {
+        if line.expect("utf-8").contains("still serving") {
+            break;
+        }
+    }
+    let open = listening_on(&[port]);
+    interrupt(&mut child);
+    let mut warned = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().expect("stderr"), &mut warned).ok();
+    assert_eq!(open, vec![(std::net::IpAddr::from([0, 0, 0, 0]), port)]);
+    assert!(warned.contains("no authentication"), "{warned}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -179,7 +179,7 @@ pub(crate) struct EditArgs {
 }
 
 /// Where a live recording goes besides its file.
-#[derive(Args, Debug, Default)]
+#[derive(Args, Debug)]
 pub(crate) struct ViewerArgs {
     /// Stream to a running viewer, e.g. rerun+http://host:9876/proxy (the file is written
     /// too, and keeps everything if the viewer goes away).
@@ -199,7 +199,30 @@ pub(crate) struct ViewerArgs {
     /// HTTP port of the web viewer for --serve-web.
     #[arg(long, default_value_t = 9090, requires = "serve_web")]
     pub(crate) web_port: u16,
+    /// The address --serve and --serve-web listen on. The default, 127.0.0.1, serves this
+    /// machine only: from another machine, tunnel first (ssh -L 9876:localhost:9876 -L
+    /// 9090:localhost:9090 HOST). 0.0.0.0 (or one interface's address) opens the servers to a
+    /// network: Rerun's servers have no authentication, so anyone who can reach the ports
+    /// can open the recording (a body scan is personal data).
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub(crate) bind: std::net::IpAddr,
 }
+
+impl Default for ViewerArgs {
+    fn default() -> Self {
+        Self {
+            connect: None,
+            serve: false,
+            serve_web: false,
+            port: 9876,
+            web_port: 9090,
+            bind: LOCAL,
+        }
+    }
+}
+
+/// Where servers listen unless told: this machine only.
+pub(crate) const LOCAL: std::net::IpAddr = std::net::IpAddr::V4(std::net::Ipv4Addr::LOCALHOST);
 
 #[derive(Args, Debug)]
 pub(crate) struct ReplayArgs {
@@ -225,6 +248,13 @@ pub(crate) struct ReplayArgs {
     /// HTTP port of the web viewer for --serve-web.
     #[arg(long, default_value_t = 9090, requires = "serve_web")]
     pub(crate) web_port: u16,
+    /// The address --serve and --serve-web listen on. The default, 127.0.0.1, serves this
+    /// machine only: from another machine, tunnel first (ssh -L 9876:localhost:9876 -L
+    /// 9090:localhost:9090 HOST). 0.0.0.0 (or one interface's address) opens the servers to a
+    /// network: Rerun's servers have no authentication, so anyone who can reach the ports
+    /// can open the recording (a body scan is personal data).
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub(crate) bind: std::net::IpAddr,
 }
 
 #[derive(Args, Debug, Default)]

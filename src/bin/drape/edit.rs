@@ -140,6 +140,7 @@ fn save(to: &str, text: &str) -> anyhow::Result<PathBuf> {
         serve_web: false,
         port: 9876,
         web_port: 9090,
+        bind: crate::args::LOCAL,
     };
     crate::replay::replay(&args).map_err(|f| f.error)?;
     Ok(dir)

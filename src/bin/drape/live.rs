@@ -36,7 +36,10 @@ impl ViewerArgs {
         if let Some(url) = &self.connect {
             Some(RecordingTarget::Connect(url.clone()))
         } else if self.serve || self.serve_web {
-            Some(RecordingTarget::Serve(self.port))
+            Some(RecordingTarget::Serve {
+                bind: self.bind,
+                port: self.port,
+            })
         } else {
             None
         }
@@ -69,15 +72,47 @@ pub(crate) fn open_live(viewer: &ViewerArgs, file: Option<&Path>, name: &str) ->
     let serving = (viewer.serve || viewer.serve_web).then_some(viewer.port);
     let mut web = None;
     if let Some(port) = serving {
-        println!("serving on port {port}; open it from any machine with:");
-        println!("  rerun rerun+http://{}:{port}/proxy", host_name());
+        // Loopback: this machine only, and other machines through an SSH tunnel; another
+        // address: open to a network, without authentication.
+        let host = if viewer.bind.is_loopback() {
+            println!(
+                "serving on {}:{port}, this machine only; open it here with:",
+                viewer.bind
+            );
+            "localhost".to_string()
+        } else {
+            eprintln!(
+                "warning: serving on {}:{port}{}: Rerun's servers have no authentication, so anyone who can \
+                 reach these ports can open this recording (a body scan is personal data)",
+                viewer.bind,
+                if viewer.serve_web {
+                    format!(" and {}", viewer.web_port)
+                } else {
+                    String::new()
+                }
+            );
+            println!("serving on {}:{port}; open it from any machine with:", viewer.bind);
+            host_name()
+        };
+        println!("  rerun rerun+http://{host}:{port}/proxy");
         if viewer.serve_web {
-            let (server, url) = serve_web_viewer(port, viewer.web_port, &host_name())
+            let (server, url) = serve_web_viewer(viewer.bind, port, viewer.web_port, &host)
                 .with_context(|| format!("cannot serve the web viewer on port {}", viewer.web_port))
                 .internal()?;
             println!("or in a browser:");
             println!("  {url}");
             web = Some(server);
+        }
+        if viewer.bind.is_loopback() {
+            let web = if viewer.serve_web {
+                format!(" -L {0}:localhost:{0}", viewer.web_port)
+            } else {
+                String::new()
+            };
+            println!(
+                "from another machine, tunnel first (then open the same): ssh -L {port}:localhost:{port}{web} {}",
+                host_name()
+            );
         }
         std::io::stdout().flush().ok();
     }

@@ -117,6 +117,7 @@ fn serve(dir: &Path, args: &ReplayArgs) -> Result<ExitCode> {
         serve_web: args.serve_web,
         port: args.port,
         web_port: args.web_port,
+        bind: args.bind,
         connect: None,
     };
     let stop = crate::interrupt::stop_flag();
