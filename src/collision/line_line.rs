@@ -45,19 +45,6 @@ fn cross_segment(p: DVec2, d: DVec2, a: DVec2, b: DVec2) -> Option<f64> {
     (0.0..=1.0).contains(&s).then(|| w.perp_dot(e) / den)
 }
 
-/// Squared distance from `p` to the segment `a..b` (its square root is the distance, bit
-/// for bit: the square root is monotone and correctly rounded).
-fn segment_distance2(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let e = b - a;
-    let len2 = e.length_squared();
-    let t = if len2 > 0.0 {
-        ((p - a).dot(e) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + e * t)).length_squared()
-}
-
 /// Squared distance from `p` to the box `[lo, hi]` (zero inside).
 fn box_distance2(p: DVec2, [lo, hi]: [DVec2; 2]) -> f64 {
     (lo - p).max(p - hi).max(DVec2::ZERO).length_squared()
@@ -135,7 +122,7 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
     let mut nearest = seed;
     if let Some((j, c)) = seed {
         for (_, a, b) in run(&slice.loops[j], c) {
-            near2 = near2.min(segment_distance2(q, a, b));
+            near2 = near2.min(polygon::segment_distance2(q, a, b));
         }
     }
     // The crossings that count lie at `t` in `[-w2, w1]` along the line: boxes are tested
@@ -156,7 +143,7 @@ pub fn line_line(slice: &Slice, k: usize, p: DVec3, normal: DVec3, reach: &Reach
             }
             for (i, a, b) in run(l, c) {
                 if near {
-                    let e2 = segment_distance2(q, a, b);
+                    let e2 = polygon::segment_distance2(q, a, b);
                     if e2 < near2 {
                         near2 = e2;
                         nearest = Some((j, c));

@@ -1,5 +1,5 @@
 //! Measures of closed planar polygons given in 2D: area, perimeter, convex hull (the
-//! "tape measure" girth), containment.
+//! "tape measure" girth), containment, the distance to an edge.
 
 use glam::DVec2;
 
@@ -62,6 +62,19 @@ pub fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
 /// reads.
 pub fn hull_perimeter(points: &[DVec2]) -> f64 {
     perimeter(&convex_hull(points))
+}
+
+/// Squared distance from `p` to the segment `a..b` (its square root is the distance, bit
+/// for bit: the square root is monotone and correctly rounded).
+pub fn segment_distance2(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    let e = b - a;
+    let len2 = e.length_squared();
+    let t = if len2 > 0.0 {
+        ((p - a).dot(e) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p - (a + e * t)).length_squared()
 }
 
 /// Whether `p` lies inside the closed polygon (crossing-number rule).

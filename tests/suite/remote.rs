@@ -46,6 +46,23 @@ fn serving(args: &[&str]) -> (Child, String) {
     panic!("drape never said it was serving: {printed}");
 }
 
+/// `drape run --serve-web` on two free ports, saving into `file`, started and serving:
+/// the child, what it printed, and the gRPC and HTTP ports.
+fn serving_web(file: &Path) -> (Child, String, u16, u16) {
+    let (grpc, web) = (free_port(), free_port());
+    let (child, printed) = serving(&[
+        "run",
+        "--serve-web",
+        "--port",
+        &grpc.to_string(),
+        "--web-port",
+        &web.to_string(),
+        "--save",
+        file.to_str().expect("a UTF-8 path"),
+    ]);
+    (child, printed, grpc, web)
+}
+
 fn interrupt(child: &mut Child) -> Option<i32> {
     Command::new("kill")
         .args(["-INT", &child.id().to_string()])
@@ -75,18 +92,8 @@ fn the_web_viewer_served_by_drape_shows_the_scene_in_headless_chromium() {
          test command does), or set DRAPE_TOOLS_PYTHON to a Python with playwright"
     );
     let dir = scratch("web");
-    let (grpc, web) = (free_port(), free_port());
     let served = dir.join("served.rrd");
-    let (mut child, printed) = serving(&[
-        "run",
-        "--serve-web",
-        "--port",
-        &grpc.to_string(),
-        "--web-port",
-        &web.to_string(),
-        "--save",
-        served.to_str().unwrap(),
-    ]);
+    let (mut child, printed, grpc, web) = serving_web(&served);
     assert!(printed.contains(&format!(":{web}/?url=rerun%2Bhttp://")), "{printed}");
     let url = format!("http://localhost:{web}/?url=rerun%2Bhttp://localhost:{grpc}/proxy");
     let shot = dir.join("web.png");
@@ -232,18 +239,7 @@ fn listening_on(ports: &[u16]) -> Vec<(std::net::IpAddr, u16)> {
 #[test]
 fn servers_listen_on_this_machine_only_unless_bound_elsewhere() {
     let dir = scratch("bind");
-    let (grpc, web) = (free_port(), free_port());
-    let file = dir.join("local.rrd");
-    let (mut child, printed) = serving(&[
-        "run",
-        "--serve-web",
-        "--port",
-        &grpc.to_string(),
-        "--web-port",
-        &web.to_string(),
-        "--save",
-        file.to_str().unwrap(),
-    ]);
+    let (mut child, printed, grpc, web) = serving_web(&dir.join("local.rrd"));
     let local = listening_on(&[grpc, web]);
     interrupt(&mut child);
     let loopback = std::net::IpAddr::from([127, 0, 0, 1]);

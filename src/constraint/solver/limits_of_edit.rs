@@ -109,7 +109,7 @@ pub(super) fn check_around(fw: &Framework, c: &CurveNode, by: DVec3, probe: &Bod
         if !polygon::contains(&moved, next) {
             let n = moved.len();
             let off = (0..n)
-                .map(|i| point_segment(next, moved[i], moved[(i + 1) % n]))
+                .map(|i| polygon::segment_distance2(next, moved[i], moved[(i + 1) % n]).sqrt())
                 .fold(f64::INFINITY, f64::min);
             return Err(EditError::OffTheBody {
                 curve: c.name.clone(),
@@ -121,17 +121,6 @@ pub(super) fn check_around(fw: &Framework, c: &CurveNode, by: DVec3, probe: &Bod
         }
     }
     Ok(())
-}
-
-/// The distance from `p` to segment `ab`.
-fn point_segment(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let t = if ab.length_squared() > 0.0 {
-        ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    p.distance(a + ab * t)
 }
 
 /// Refuses moving point `name` from `from` to `to` along a straight path that enters the
