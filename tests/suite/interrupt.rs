@@ -61,17 +61,11 @@ fn sigint_mid_run_leaves_a_recording_that_verifies_and_holds_the_finished_steps(
         assert!(summary.contains(&format!("step {step} (")), "step {step} missing");
     }
     assert!(!summary.contains(&format!("step {} (", after + 1)));
-    // With the `rerun` command installed, its own verifier agrees.
-    if Command::new("rerun")
-        .arg("--version")
+    // Rerun's own verifier agrees.
+    let out = super::common::rerun_cli()
+        .args(["rrd", "verify", rrd.to_str().unwrap()])
         .output()
-        .is_ok_and(|o| o.status.success())
-    {
-        let out = Command::new("rerun")
-            .args(["rrd", "verify", rrd.to_str().unwrap()])
-            .output()
-            .expect("rerun runs");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    }
+        .expect("rerun runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     std::fs::remove_dir_all(&dir).ok();
 }

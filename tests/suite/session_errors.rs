@@ -179,10 +179,25 @@ fn a_valid_session_parses_to_typed_steps() {
     );
 }
 
+/// The built-in demo (no session given) is the shipped file: the binary, run without a
+/// session and with `assets/sessions/demo.drape` read at run time, prints the same
+/// constraint network of the same garment, line for line.
 #[test]
-fn the_demo_session_file_is_the_embedded_one() {
-    let on_disk = std::fs::read_to_string("assets/sessions/demo.drape").unwrap();
-    assert_eq!(on_disk, drape::session::DEMO_SESSION);
+fn the_built_in_demo_is_the_shipped_session_file() {
+    let network = |args: &[&str]| {
+        let out = super::common::drape_cli().args(args).output().expect("drape runs");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    let (built_in, file) = (
+        network(&["constraints"]),
+        network(&["constraints", "assets/sessions/demo.drape"]),
+    );
+    assert!(
+        built_in.contains("constraint network: ") && built_in.lines().count() > 100,
+        "{built_in}"
+    );
+    assert_eq!(built_in, file);
 }
 
 /// Runs the binary; returns (exit code, stderr).

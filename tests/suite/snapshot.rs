@@ -322,15 +322,13 @@ fn two_runs_write_the_same_chunks_in_the_same_order_on_one_thread_or_two() {
     let (x, y) = (data(&files[0]), data(&files[1]));
     assert!(x.len() > 1000, "{} chunks", x.len());
     assert_eq!(drape::viz::replay::first_difference(&x, &y, 0.0), None);
-    let cli = std::process::Command::new("rerun").arg("--version").output();
-    if cli.is_ok_and(|o| o.status.success()) {
-        let out = std::process::Command::new("rerun")
-            .args(["rrd", "compare"])
-            .args(&files)
-            .output()
-            .expect("rerun runs");
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    }
+    // Rerun's own comparison agrees.
+    let out = super::common::rerun_cli()
+        .args(["rrd", "compare"])
+        .args(&files)
+        .output()
+        .expect("rerun runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     std::fs::remove_dir_all(&dir).ok();
 }
 
