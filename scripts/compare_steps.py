@@ -13,12 +13,11 @@ commit (`git checkout REV && cargo build --release && cp target/release/drape /t
 
 import argparse
 import json
-import statistics
-import subprocess
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from harness import ROOT, median, run_metrics
+
 GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
            "collision.respond_edges", "collision.quality", "collision.respond_faces",
            "collision.check_faces", "collision.face_clearance"]
@@ -26,12 +25,8 @@ M1 = ["m1.select", "m1.subdivide", "m1.collide"]
 
 
 def drag_timings(binary, session, folder, log_all=False):
-    metrics = folder / "metrics.json"
     detail = [] if log_all else ["--log-detail", "metrics"]
-    subprocess.run(["taskset", "-c", "0", str(binary), "--threads", "1", "--no-index-cache", "run",
-                    str(session), *detail, "--metrics", str(metrics),
-                    "--save", str(folder / "run.rrd")], cwd=ROOT, capture_output=True, check=True)
-    steps = json.loads(metrics.read_text())
+    steps = run_metrics(binary, folder, "--no-index-cache", "run", session, *detail)
     return [s["timings_ms"] for s in steps if s["op"] == "drag" and "m1.select" in s.get("timings_ms", {})]
 
 
@@ -63,8 +58,8 @@ def main():
         print(f"\n{name}: drag steps, one core, median ms over {args.runs} runs of the demo's drags\n")
         print("| stage | before | after |\n|---|---:|---:|")
         for k in GARMENT + ["garment"] + M1 + ["M1"] + (["logging"] if args.log_all else []):
-            a = statistics.median(times[(name, "before", k)])
-            b = statistics.median(times[(name, "after", k)])
+            a = median(times[(name, "before", k)])
+            b = median(times[(name, "after", k)])
             label = f"**{k}**" if k in ("garment", "M1") else k
             print(f"| {label} | {a:.2f} | {b:.2f} |")
 

@@ -21,15 +21,13 @@ import argparse
 import json
 import io
 import math
-import re
-import sys
-from contextlib import redirect_stdout
 import statistics
-import subprocess
 import tempfile
+from contextlib import redirect_stdout
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from harness import ROOT, run_metrics, splice
+
 GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
            "collision.respond_edges", "collision.quality"]
 KINDS = ["local", "natural"]
@@ -43,13 +41,8 @@ def session(kind, resolution):
 def run(binary, text, folder, extra=(), export=None):
     path = folder / "s.drape"
     path.write_text(text)
-    metrics = folder / "metrics.json"
-    cmd = ["taskset", "-c", "0", str(binary), "--threads", "1", "run", str(path), *extra,
-           "--log-detail", "metrics", "--metrics", str(metrics), "--save", str(folder / "run.rrd")]
-    if export:
-        cmd += ["--export", str(export)]
-    subprocess.run(cmd, cwd=ROOT, capture_output=True, check=True)
-    return json.loads(metrics.read_text())
+    more = ["--export", export] if export else []
+    return run_metrics(binary, folder, "run", path, *extra, "--log-detail", "metrics", *more)
 
 
 def vertices(path):
@@ -69,12 +62,7 @@ def main():
     text = out.getvalue()
     print(text, end="")
     if args.readme:
-        readme = ROOT / "README.md"
-        pattern = re.compile(r"(<!-- figures:contours -->\n)(?:.*?\n)?(<!-- /figures:contours -->)", re.S)
-        if not pattern.search(readme.read_text()):
-            sys.exit("README.md has no section figures:contours")
-        readme.write_text(pattern.sub(lambda m: m.group(1) + text + m.group(2), readme.read_text()))
-        print("README.md: figures:contours rewritten")
+        splice(ROOT / "README.md", "contours", text)
 
 
 def report(args):

@@ -27,13 +27,12 @@ import argparse
 import contextlib
 import io
 import json
-import re
 import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from harness import ROOT, splice
+
 BODIES = ["builtin"] + sorted(p.name for p in (ROOT / "assets/bodies").glob("*.obj"))
 
 
@@ -88,7 +87,6 @@ def refusals(before, after, sessions):
 
 
 def sweep(binary, reports):
-    sys.path.insert(0, str(ROOT / "scripts"))
     from readme_figures import verified_table
     merged = json.loads(subprocess.run([str(binary), "stress", "merge", "--json", *reports], cwd=ROOT,
                                        check=True, capture_output=True, text=True).stdout)
@@ -118,12 +116,8 @@ def write_doc(before, after, sessions, only):
             cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip(),
     }
     sections = {name: make() for name, make in makers.items() if not only or name in only}
-    doc = ROOT / "docs/faces.md"
-    text = doc.read_text()
     for name, body in sections.items():
-        pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
-        text = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text)
-    doc.write_text(text)
+        splice(ROOT / "docs/faces.md", name, body)
 
 
 def main():
@@ -141,9 +135,7 @@ def main():
         body = captured(sweep, args.binary, args.sweep)
         print(body)
         if args.doc_sweep:
-            doc = ROOT / "docs/faces.md"
-            pattern = re.compile(r"(<!-- figures:faces-sweep -->\n)(?:.*?\n)?(<!-- /figures:faces-sweep -->)", re.S)
-            doc.write_text(pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), doc.read_text()))
+            splice(ROOT / "docs/faces.md", "faces-sweep", body)
     elif args.doc:
         write_doc(args.doc, args.binary, args.sessions, [s for s in args.only.split(",") if s])
     elif args.refusals:

@@ -20,6 +20,8 @@ import subprocess
 import sys
 import tempfile
 
+from harness import splice_text
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SESSION = os.path.join(ROOT, "assets", "sessions", "demo.drape")
 README = os.path.join(ROOT, "README.md")
@@ -332,10 +334,9 @@ def main():
     if args.stress:
         generated["stress-verified"] = stress_verified()
     for name, body in generated.items():
-        pattern = re.compile(rf"(<!-- figures:{name} -->\n)(?:.*?\n)?(<!-- /figures:{name} -->)", re.S)
-        if not pattern.search(new):
+        new = splice_text(new, name, body)
+        if new is None:
             sys.exit(f"README.md has no section figures:{name}")
-        new = pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), new)
     if new == text:
         print("README figures are current")
         return 0

@@ -25,19 +25,17 @@ with `taskset -c 0`, unless the row says 2 threads):
 
 import argparse
 import json
-import re
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+from harness import ONE_CORE, ROOT, median, pinned, splice
+
 VENV = Path.home() / ".cache" / "drape-tools" / "peers"
 PEERS = ["numpy==2.4.6", "fcpw==1.2.0", "libigl==2.6.3"]
-ONE_CORE = ["taskset", "-c", "0"]
 
 
 LINES = []
@@ -146,16 +144,12 @@ def run_session(binary: Path, session: Path, threads: int, folder: Path, tag: st
     """Runs `session`; body indexes are cached in a folder per thread count, empty at first,
     so that the first run on a body builds (and writes) its index and the next reads it."""
     metrics = folder / f"{tag}.metrics.json"
-    cmd = ([*ONE_CORE] if threads == 1 else []) + [
-        str(binary), "--threads", str(threads), "--index-cache", str(folder / f"index-cache-{threads}"), "run", str(session),
-        "--metrics", str(metrics), "--save", str(folder / f"{tag}.rrd"),
-    ]
+    cmd = pinned(binary, "--index-cache", folder / f"index-cache-{threads}", "run", session,
+                 "--metrics", metrics, "--save", folder / f"{tag}.rrd", threads=threads)
     run(cmd, capture_output=True)
     return session_figures(metrics)
 
 
-def med(values):
-    return statistics.median(values) if values else float("nan")
 
 
 def main():
@@ -226,7 +220,7 @@ def main():
                 if not any(n.startswith(f"body index {how}") for n in step["notes"]):
                     sys.exit(f"{tag}: expected the body index {how}, the run says {step['notes']}")
                 times.append(step["compute"]["body.index"])
-            return med(times)
+            return median(times)
 
         def drags(tag):
             return [s for r in runs[tag] for s in r if s["op"] == "drag" and "garment.assemble" in s["compute"]]
@@ -238,9 +232,9 @@ def main():
         emit("|---|---:|---:|---|")
         for res, goal in ((6, "<= 5 ms on one core"), (24, "<= 40 ms")):
             one, two = drags(f"demo{res}.1"), drags(f"demo{res}.2")
-            emit(f"| drag step, resolution {res}: garment (solve, assemble, M0 collision), median ms | {med([garment_ms(s) for s in one]):.1f} | {med([garment_ms(s) for s in two]):.1f} | {goal} |")
-            emit(f"| drag step, resolution {res}: M1 (select, subdivide, collide), median ms | {med([m1_ms(s) for s in one]):.1f} | {med([m1_ms(s) for s in two]):.1f} | |")
-            emit(f"| drag step, resolution {res}: logging, median ms | {med([s['log'] for s in one]):.1f} | {med([s['log'] for s in two]):.1f} | <= compute |")
+            emit(f"| drag step, resolution {res}: garment (solve, assemble, M0 collision), median ms | {median([garment_ms(s) for s in one]):.1f} | {median([garment_ms(s) for s in two]):.1f} | {goal} |")
+            emit(f"| drag step, resolution {res}: M1 (select, subdivide, collide), median ms | {median([m1_ms(s) for s in one]):.1f} | {median([m1_ms(s) for s in two]):.1f} | |")
+            emit(f"| drag step, resolution {res}: logging, median ms | {median([s['log'] for s in one]):.1f} | {median([s['log'] for s in two]):.1f} | <= compute |")
         r24 = row(24)
         emit(f"| cold detection per vertex, resolution 24 (us) | {r24['cold_detect_us']:.3f} | {row2(24)['cold_detect_us']:.3f} | <= 0.5 us and <= 0.4x FCPW |")
         emit(f"| the same, over FCPW's closest point on the same cores | {r24['cold_detect_us'] / p1['res24']['fcpw_closest_us']:.2f}x | {row2(24)['cold_detect_us'] / p2['res24']['fcpw_closest_us']:.2f}x | <= 0.4x |")
@@ -251,14 +245,7 @@ def main():
     if a.json:
         a.json.write_text(json.dumps(figures, indent=1))
     if a.readme:
-        readme = ROOT / "README.md"
-        text = readme.read_text()
-        pattern = re.compile(r"(<!-- figures:speed -->\n)(?:.*?\n)?(<!-- /figures:speed -->)", re.S)
-        if not pattern.search(text):
-            sys.exit("README.md has no section figures:speed")
-        body = "\n".join(LINES).strip("\n")
-        readme.write_text(pattern.sub(lambda m: m.group(1) + body + "\n" + m.group(2), text))
-        print("README.md: figures:speed rewritten")
+        splice(ROOT / "README.md", "speed", "\n".join(LINES))
     shutil.rmtree(folder, ignore_errors=True)
 
 
