@@ -6,7 +6,7 @@ alternating. Prints, at resolutions 6 and 24:
 
 - the median drag step (the garment stages, ms, from `--metrics`) and the patches re-surfaced;
 - how far M0 moves from one kind to the other (every step's M0 from `--export`, vertex by
-  vertex, mm), on every body in ../shared/bodies and the built-in one (resolution 6);
+  vertex, mm), on every body in assets/bodies and the built-in one (resolution 6);
 - how many M0 vertices each drag moves (more than 0.1 mm) with each kind;
 - the quality after every step with each kind (vertices inside, crossing edges), which must
   be 0 and 0.
@@ -90,7 +90,7 @@ def report(args):
         print("| body | largest move, mm | mean move, mm | M0 vertices moved by the 4 drags, "
               "natural -> local | inside / crossing after every step, local (natural) |")
         print("|---|---:|---:|---|---|")
-        bodies = sorted((ROOT.parent / "shared/bodies").glob("*.obj"))
+        bodies = sorted((ROOT / "assets/bodies").glob("*.obj"))
         for body in [None, *bodies]:
             extra = ("--body", str(body)) if body else ()
             meshes, quality = {}, {}

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the experiment's two NURBS surfaces to assets/nurbs/ (see assets/nurbs/README.md).
 
-The paper (seeds/002) gives only the counts: a butterfly of 81 control points and a corn
+The paper ([nurbs] in docs/design.md) gives only the counts: a butterfly of 81 control points and a corn
 leaf of 175. Both nets are built here from closed-form shape functions, so they can be
 rebuilt and changed in one place. Pure Python, deterministic: running it again writes the
 same bytes.

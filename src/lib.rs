@@ -13,6 +13,15 @@
 //! file and the mesh export are others. Geometry never depends on logging, so every
 //! stage can be tested and benchmarked alone.
 //!
+//! ## Design and papers
+//!
+//! `docs/design.md` is the specification the code follows. Doc comments cite its sections
+//! (`docs/design.md` section N) and the papers its methods come from by short name:
+//! \[collide\] (the four-layer garment model and its collision), \[frame\] (the
+//! feature-line framework), \[nurbs\] (NURBS surface collision), \[spline\] (the
+//! mannequin's cubic splines) and \[sculpt\] (adaptive subdivision for sculpting), with
+//! their full references there.
+//!
 //! ## Units and frames
 //!
 //! Metres, `y` up, the body faces `+z`, its left is `+x`. Angles in radians.

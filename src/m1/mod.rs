@@ -1,4 +1,4 @@
-//! M1, the display mesh (\[collide\] section 3; DESIGN section 7): M0 with the patches that
+//! M1, the display mesh (\[collide\] section 3; docs/design.md section 7): M0 with the patches that
 //! need it refined by interpolating sqrt(3) subdivision, collided with the body only where
 //! it differs from M0, and the style (cut) lines drawn on it, stored on M0.
 //!

@@ -1,4 +1,4 @@
-//! NURBS surfaces and their collision ([nurbs], DESIGN section 9): rational tensor-product
+//! NURBS surfaces and their collision ([nurbs], docs/design.md section 9): rational tensor-product
 //! B-spline surfaces of any degree on clamped knot vectors ([`surface`]), evaluated by de
 //! Boor's algorithm with derivatives; subdivided by knot insertion ([`split`]) into
 //! sub-surfaces that together are exactly the original; bounded by 14-direction hulls

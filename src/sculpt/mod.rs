@@ -1,4 +1,4 @@
-//! Sculpting (\[sculpt\], DESIGN section 8): free-form pushes and pulls on a mesh, refined
+//! Sculpting (\[sculpt\], docs/design.md section 8): free-form pushes and pulls on a mesh, refined
 //! only where the drag stretched it.
 //!
 //! Data flow of one sculpt: [`displace`] (pick the nearest point of the mesh, move the
