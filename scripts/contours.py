@@ -54,7 +54,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--binary", default=str(ROOT / "target/release/drape"))
-    ap.add_argument("--readme", action="store_true", help="write the report into README.md (figures:contours)")
+    ap.add_argument("--readme", action="store_true", help="write the report into its page (figures:contours, in docs/)")
     args = ap.parse_args()
     out = io.StringIO()
     with redirect_stdout(out):
@@ -62,7 +62,7 @@ def main():
     text = out.getvalue()
     print(text, end="")
     if args.readme:
-        splice(ROOT / "README.md", "contours", text)
+        splice(None, "contours", text)
 
 
 def report(args):

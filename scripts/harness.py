@@ -1,7 +1,7 @@
 """What the figure scripts share: runs of the binary pinned to cores, their --metrics, and the
 splicing of a generated section into a Markdown file.
 
-    from harness import ROOT, pinned, run_metrics, splice, median
+    from harness import ROOT, pinned, run_metrics, splice, median, section_file
 
 A generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`; nothing
 else in the file is touched. Standard library only.
@@ -48,9 +48,24 @@ def splice_text(text, name, body):
     return pattern.sub(lambda m: m.group(1) + body.strip("\n") + "\n" + m.group(2), text)
 
 
+def doc_files():
+    """The pages generated sections live in: the README and every page under docs/."""
+    return [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+
+
+def section_file(name):
+    """The page that holds the section `name`; exits when none does."""
+    marker = f"<!-- figures:{name} -->"
+    for path in doc_files():
+        if marker in path.read_text():
+            return path
+    sys.exit(f"no page holds a section figures:{name}")
+
+
 def splice(path, name, body):
-    """Writes `body` into the section `name` of the file `path`; exits when it has none."""
-    path = Path(path)
+    """Writes `body` into the section `name` of the file `path` (None: the page that holds
+    it); exits when it has none."""
+    path = section_file(name) if path is None else Path(path)
     text = splice_text(path.read_text(), name, body)
     if text is None:
         sys.exit(f"{path.name} has no section figures:{name}")

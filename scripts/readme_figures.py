@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
-"""Regenerates the README's demo figures from `drape run --verify --metrics`.
+"""Regenerates the generated figures of the README and docs/ from `drape run --verify --metrics`.
 
-    python3 scripts/readme_figures.py            # run the demo, rewrite the README sections
-    python3 scripts/readme_figures.py --check    # exit 1 if the README is out of date
+    python3 scripts/readme_figures.py            # run the demo, rewrite the generated sections
+    python3 scripts/readme_figures.py --check    # exit 1 if a page is out of date
     python3 scripts/readme_figures.py --metrics M.json   # use an existing metrics file
     python3 scripts/readme_figures.py --bench    # also the M1 benchmark, logging and NURBS
                                                  # experiment tables (times vary)
@@ -10,7 +10,7 @@
                                                  # minutes on 2 cores; its times vary)
 
 Each generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`
-in README.md; nothing else is touched. Standard library only.
+in README.md or a page under docs/; nothing else is touched. Standard library only.
 """
 import argparse
 import json
@@ -20,11 +20,10 @@ import subprocess
 import sys
 import tempfile
 
-from harness import splice_text
+from harness import ROOT as ROOT_PATH, doc_files, splice_text
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SESSION = os.path.join(ROOT, "assets", "sessions", "demo.drape")
-README = os.path.join(ROOT, "README.md")
 SCENE = {"drape", "body", "units", "landmark", "solver", "m1"}
 
 
@@ -312,7 +311,7 @@ def sections(steps):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--check", action="store_true", help="exit 1 if the README is out of date")
+    ap.add_argument("--check", action="store_true", help="exit 1 if a page is out of date")
     ap.add_argument("--metrics", help="a metrics file of the demo run with --verify (default: run it)")
     ap.add_argument("--bench", action="store_true",
                     help="also rewrite the M1 benchmark table (cargo bench --bench m1; its times vary, so "
@@ -322,8 +321,6 @@ def main():
                          "about 20 minutes on 2 cores; its times vary, so --check leaves it out)")
     args = ap.parse_args()
     steps = json.load(open(args.metrics)) if args.metrics else demo_metrics()
-    text = open(README).read()
-    new = text
     generated = sections(steps)
     if args.bench:
         generated["m1-bench"] = m1_bench()
@@ -333,18 +330,28 @@ def main():
         generated["sculpt-times"] = sculpt_times()
     if args.stress:
         generated["stress-verified"] = stress_verified()
-    for name, body in generated.items():
-        new = splice_text(new, name, body)
-        if new is None:
-            sys.exit(f"README.md has no section figures:{name}")
-    if new == text:
-        print("README figures are current")
+    stale = []
+    for path in doc_files():
+        text = path.read_text()
+        new = text
+        for name, body in generated.items():
+            if f"<!-- figures:{name} -->" in new:
+                new = splice_text(new, name, body)
+        if new != text:
+            stale.append(path)
+            if not args.check:
+                path.write_text(new)
+    missing = [n for n in generated if not any(f"<!-- figures:{n} -->" in p.read_text() for p in doc_files())]
+    if missing:
+        sys.exit(f"no page holds the sections {', '.join(missing)}")
+    names = ", ".join(str(p.relative_to(ROOT_PATH)) for p in stale)
+    if not stale:
+        print("generated figures are current")
         return 0
     if args.check:
-        print("README figures are out of date: run python3 scripts/readme_figures.py")
+        print(f"generated figures are out of date in {names}: run python3 scripts/readme_figures.py")
         return 1
-    open(README, "w").write(new)
-    print("README figures rewritten")
+    print(f"generated figures rewritten in {names}")
     return 0
 
 

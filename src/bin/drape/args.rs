@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-/// Exit codes, for `--help` and the README.
+/// Exit codes, for `--help` and docs/guide.md.
 pub(crate) const EXIT_CODES: &str = "Exit codes: 0 success; 1 a step failed at run time (the recording keeps \
 every stage before it, plus the error), or with --strict a step left the garment in the body or an edit \
 was refused; 2 bad input (a malformed session, flag or body file, or a session that `check` rejects); \
@@ -96,7 +96,7 @@ pub(crate) enum Command {
 
 const STRESS_HELP: &str = "Sweeps over many machines: --shard I/N runs the sessions whose number is I modulo N \
 (0 <= I < N), the same sessions on every machine; `drape stress merge a.json b.json ...` joins the --report files \
-of the shards into the report of the whole sweep. See the README's array-job recipe (Slurm, Kubernetes).";
+of the shards into the report of the whole sweep. See the array-job recipe (Slurm, Kubernetes) in docs/testing.md.";
 
 #[derive(Args, Debug)]
 pub(crate) struct StressArgs {
