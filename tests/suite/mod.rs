@@ -4,6 +4,7 @@ mod common;
 mod constraints;
 mod convexify;
 mod coons;
+mod docs;
 mod ease;
 mod faces;
 mod fuzz;
