@@ -1,11 +1,11 @@
 //! The M1 statements: `m1` (scene) and `cut` (a step).
 
-use super::super::args::{Args, integer_in, number, vector};
-use super::super::lexer::{Line, Token};
-use super::super::suggest::did_you_mean;
-use super::super::syntax::{Op, ParseError};
 use super::Parser;
 use crate::m1::{CutPlane, M1Options, Rule, Smoothing};
+use crate::session::format::args::{Args, integer_in, number, vector};
+use crate::session::format::lexer::{Line, Token};
+use crate::session::format::suggest::did_you_mean;
+use crate::session::format::syntax::{Op, ParseError};
 
 impl Parser<'_> {
     /// `m1 [steps=1|2] [patches=selected|all] [rules=stretch,angle,edges,body]
