@@ -12,19 +12,23 @@
 //! is met by the equilateral triangle's centre), so a face whose least corner distance passes
 //! that, by a margin for the distances' rounding, is clear.
 //!
-//! **The face rounds.** The body above a pierced face (on its outer side, the side its
-//! corners' ways out of the body point to) is a cap whose deepest point is a body vertex:
-//! the body surface is flat between its vertices, so the height above the face's plane
+//! **The face rounds.** The face's outer side is the side the body leaves through it: the
+//! body's way out where its surface crosses the face (the crossing body triangles' normals,
+//! summed by area) where that points clearly to one side (a bump pokes out through the
+//! face's outside; a thigh pressed against the face from outside pokes through it inwards,
+//! and the face must go the other way), else the side its corners' ways out of the body
+//! point to. The body above a pierced face, on its outer side, is a cap whose deepest
+//! point is a body vertex: the body surface is flat between its vertices, so the height
+//! above the face's plane
 //! is greatest at a corner of the cap, and the cap's corners off the plane are body
 //! vertices. The cap is grown from the outer ends of the body edges through the face along
 //! the body's edges, over the vertices above the face (over its plane, their foot in the
 //! face; so that a part of the body over the plane that does not pass through the face, an
 //! arm beside the torso, is not taken); its deepest vertex is the target. A cap higher than
 //! the face's longest edge is no bump but a part of the body the face lies across (a
-//! squeeze between the thighs): that face is not lifted, and stays pierced. With `b` that
-//! point's barycentric coordinates on the face (clamped into it) and `h` its height, the
-//! face is lifted there by
-//! `lift = h + ease`: its corners move along the face's outer normal by the least-squares
+//! ridge between the thighs): that face is not lifted off its plane but slid along it
+//! (below). With `b` that point's barycentric coordinates on the face (clamped into it) and
+//! `h` its height, the face is lifted there by `lift = h + ease`: its corners move along the face's outer normal by the least-squares
 //! split `u_i = lift b_i / sum_j b_j^2` (so that `sum_i b_i u_i = lift`), over the corners
 //! that may move (pinned ones stay: M0's vertices in M1), at most twice the lift. A
 //! corner shared by several pierced faces takes the longest of its moves, and a move that
@@ -33,6 +37,15 @@
 //! few rounds; where three rounds in a row leave more faces pierced than the best round
 //! before them (lifts that push faces into other parts of the body), the rounds stop and
 //! the positions of that best round are taken back.
+//!
+//! **The slide.** Where the body's way out at the crossings lies mostly in the face's plane
+//! (a ridge under the crotch crossing a face of the crotch web), the face is moved whole
+//! along it, as far as takes every crossing point out of the face across its edges (the
+//! longest of their ways out of the triangle, along the move's part in its plane), plus the
+//! ease; the shorter of the lift and the slide is made. A face pierced from one side in one
+//! round and from the other in the next is squeezed in a slot between two parts of the body
+//! (the thighs pressed together): lifting it off either wall pushes it into the other, so
+//! it is slid along the two walls' ways out summed, out of the slot where it opens.
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -196,6 +209,10 @@ pub struct Poke {
     pub at: [f64; 3],
     /// Its height above the face's plane, m.
     pub height: f64,
+    /// The body's way out where it crosses the face (unit; zero where unknown): a face
+    /// pierced from one side in one round and from the other in the next is squeezed
+    /// between two parts of the body, and is slid along their ways out summed.
+    pub way_out: DVec3,
 }
 
 /// Barycentric coordinates of `p`'s foot on the plane of `tri` (normal `n`, unnormalised).
@@ -207,27 +224,43 @@ fn barycentric(tri: [DVec3; 3], n: DVec3, p: DVec3) -> [f64; 3] {
 
 /// The deepest point of the body above face `tri`, if the body pokes through it (`None`
 /// for a face it does not, or a degenerate one).
-pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
+pub fn poke(index: &BodyIndex, tri: [DVec3; 3], before: DVec3) -> Option<Poke> {
     let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
     let unit = n.try_normalize()?;
-    // The outer side: where the corners' ways out of the body point.
-    let reach = 0.2 * index.height;
-    let way: f64 = tri
-        .iter()
-        .filter_map(|&p| index.nearest(p, reach))
-        .map(|near| near.normal.dot(unit))
-        .sum();
-    let out = if way < 0.0 { -unit } else { unit };
-    let height = |v: u32| (index.positions[v as usize] - tri[0]).dot(out);
-    // The cap's first corners: the outer ends of the body edges through the face.
+    // Where the body's surface crosses the face (the body edges' crossing points), the
+    // body's outward normal there (its triangles' normals, summed by area) and the edges.
     let (lo, hi) = (tri[0].min(tri[1]).min(tri[2]), tri[0].max(tri[1]).max(tri[2]));
-    let mut stack: Vec<u32> = Vec::new();
+    let mut crossings: Vec<DVec3> = Vec::new();
+    let mut through: Vec<[u32; 2]> = Vec::new();
+    let mut way_out = DVec3::ZERO;
     index.visit_box(lo, hi, |t, c| {
         let ids = index.triangles[t as usize];
         for k in edges_through(c, tri) {
-            stack.extend([ids[k], ids[(k + 1) % 3]].into_iter().filter(|&v| height(v) > 0.0));
+            let (a, b) = (c[k], c[(k + 1) % 3]);
+            let (ha, hb) = ((a - tri[0]).dot(unit), (b - tri[0]).dot(unit));
+            crossings.push(a + (b - a) * (ha / (ha - hb)));
+            through.push([ids[k], ids[(k + 1) % 3]]);
+            way_out += index.face_normals[t as usize] * (c[1] - c[0]).cross(c[2] - c[0]).length();
         }
     });
+    // The outer side: the side the body pokes out to, where its way out at the crossings
+    // says so clearly (a bump pokes through the face towards the face's outside; a thigh
+    // pressed against the face from its outside pokes through it inwards, and the face
+    // goes to the side the body leaves thin); else where the corners' ways out point.
+    let across = way_out.normalize_or_zero().dot(unit);
+    let way: f64 = if across.abs() >= 0.25 {
+        across
+    } else {
+        let reach = 0.2 * index.height;
+        tri.iter()
+            .filter_map(|&p| index.nearest(p, reach))
+            .map(|near| near.normal.dot(unit))
+            .sum()
+    };
+    let out = if way < 0.0 { -unit } else { unit };
+    let height = |v: u32| (index.positions[v as usize] - tri[0]).dot(out);
+    // The cap's first corners: the outer ends of the body edges through the face.
+    let mut stack: Vec<u32> = through.iter().flatten().copied().filter(|&v| height(v) > 0.0).collect();
     // The rest of the cap: the body vertices over the face (above its plane, their foot in
     // it) joined to those by body edges over it (a part of the body over the plane but not
     // through the face, an arm beside the torso, is not reached).
@@ -253,15 +286,81 @@ pub fn poke(index: &BodyIndex, tri: [DVec3; 3]) -> Option<Poke> {
         .max_by(|&a, &b| height(a).total_cmp(&height(b)).then(b.cmp(&a)))?;
     let (p, height) = (index.positions[deepest as usize], height(deepest));
     // A cap higher than the face is wide is no bump: the face lies across a part of the
-    // body (between the thighs, say), and lifting it off would fling it.
+    // body (a ridge between the thighs, say), and lifting it off its plane would fling it.
+    // It is slid off the body instead, along the body's way out where it crosses the face.
+    // Squeezed between two parts of the body (pierced from the other side before): slid
+    // along both ways out summed, out of the slot between them.
+    let own = way_out.normalize_or_zero();
+    let squeezed = before.dot(own) < 0.0;
+    let slid =
+        slide(tri, unit, &crossings, if squeezed { before + own } else { own }).map(|p| Poke { way_out: own, ..p });
+    if squeezed && slid.is_some() {
+        return slid;
+    }
     if height > longest_edge(tri) {
-        return None;
+        return slid;
     }
     // Its foot on the face (clamped into it where the cap leans past an edge).
     let at = barycentric(tri, n, p).map(|b| b.max(0.0));
     let sum: f64 = at.iter().sum();
     let at = if sum > 0.0 { at.map(|b| b / sum) } else { [1.0 / 3.0; 3] };
-    Some(Poke { out, at, height })
+    let lifted = Poke {
+        out,
+        at,
+        height,
+        way_out: own,
+    };
+    // Of the lift and the slide, the shorter move (a face across the crotch's ridge
+    // slides down off it rather than into the thigh beside it).
+    Some(match slid {
+        Some(s) if s.height < height => s,
+        _ => lifted,
+    })
+}
+
+/// The slide of face `tri` (unit normal `unit`) off a part of the body that lies across it:
+/// the face moved whole along the body's way out `way_out` where its surface crosses the
+/// face (at `crossings`), as far as takes every crossing out of the face across its edges
+/// (the longest of their ways out of it along the move's part in the face's plane). `None`
+/// where the body's way out is mostly across the face (a slide would not take the body out
+/// of it) or unknown.
+fn slide(tri: [DVec3; 3], unit: DVec3, crossings: &[DVec3], way_out: DVec3) -> Option<Poke> {
+    let out = way_out.try_normalize()?;
+    let along = out - unit * out.dot(unit);
+    let reach = along.length();
+    if reach < 0.5 {
+        return None;
+    }
+    // The face's edges seen from a crossing moving against `along`, in the face's plane.
+    let back = -along / reach;
+    let exit = |x: DVec3| {
+        (0..3)
+            .filter_map(|k| {
+                let (p, q) = (tri[k], tri[(k + 1) % 3]);
+                // x + s back = p + r (q - p): solved in the plane, by the cross products
+                // against the face's normal.
+                let e = q - p;
+                let den = back.cross(e).dot(unit);
+                if den.abs() <= f64::EPSILON * e.length() {
+                    return None;
+                }
+                let s = (p - x).cross(e).dot(unit) / den;
+                let r = (p - x).cross(back).dot(unit) / den;
+                (s >= 0.0 && (-1e-9..=1.0 + 1e-9).contains(&r)).then_some(s)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let far = crossings
+        .iter()
+        .map(|&x| exit(x))
+        .filter(|s| s.is_finite())
+        .fold(0.0, f64::max);
+    (far > 0.0).then(|| Poke {
+        out,
+        at: [1.0 / 3.0; 3],
+        height: (far / reach).min(longest_edge(tri)),
+        way_out: out,
+    })
 }
 
 /// What the face rounds did: the moves made, as responses, the number of pierced faces each
@@ -303,6 +402,8 @@ pub fn respond_faces(
     let mut standing: BTreeSet<u32> = BTreeSet::new();
     let mut best: Option<(usize, Vec<DVec3>, usize)> = None;
     let mut worse = 0;
+    // The side the body last pierced each face from (its way out there).
+    let mut sides: BTreeMap<u32, DVec3> = BTreeMap::new();
     for round in 1..=options.edge_rounds {
         let now = &*positions;
         let corners = |f: u32| triangles[f as usize].map(|v| now[v as usize]);
@@ -315,7 +416,10 @@ pub fn respond_faces(
         let tested: Vec<(bool, Option<Poke>)> = par_map(check.len(), |k| {
             let tri = corners(check[k]);
             match pierced(index, tri, free(check[k])) {
-                true => (true, poke(index, tri)),
+                true => (
+                    true,
+                    poke(index, tri, sides.get(&check[k]).copied().unwrap_or_default()),
+                ),
                 false => (false, None),
             }
         });
@@ -347,6 +451,7 @@ pub fn respond_faces(
             .zip(tested)
             .filter_map(|(&f, (_, p))| Some((f, p?)))
             .collect();
+        sides.extend(pierced.iter().map(|(f, p)| (*f, p.way_out)));
         if pierced.is_empty() {
             break;
         }
