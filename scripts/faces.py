@@ -81,7 +81,7 @@ def refusals(before, after, sessions):
           f"{new['guarantee_failures']}, {new['panics']} |")
     print("\n| refused: reason | before | after |\n|---|---:|---:|")
     reasons = sorted(set(old["refused"]) | set(new["refused"]),
-                     key=lambda r: -(old["refused"].get(r, 0) + new["refused"].get(r, 0)))
+                     key=lambda r: (-(old["refused"].get(r, 0) + new["refused"].get(r, 0)), r))
     for r in reasons:
         print(f"| {r} | {old['refused'].get(r, 0)} | {new['refused'].get(r, 0)} |")
 

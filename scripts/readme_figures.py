@@ -26,13 +26,30 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SESSION = os.path.join(ROOT, "assets", "sessions", "demo.drape")
 SCENE = {"drape", "body", "units", "landmark", "solver", "m1"}
 
+# The drape binary the figures come from (--binary); by default `cargo run --release`.
+BINARY = None
+
+
+def built():
+    """The path of the drape binary: the one given with --binary, else target/release/drape
+    (built first)."""
+    if BINARY:
+        return BINARY
+    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    return os.path.join(ROOT, "target", "release", "drape")
+
+
+def drape():
+    """The command that runs drape: the binary given with --binary, else `cargo run`."""
+    return [BINARY] if BINARY else ["cargo", "run", "--release", "--quiet", "--"]
+
 
 def demo_metrics():
     """Runs the demo with --verify; returns its metrics."""
     with tempfile.TemporaryDirectory() as tmp:
         metrics = os.path.join(tmp, "demo.json")
         subprocess.run(
-            ["cargo", "run", "--release", "--quiet", "--", "run", "--verify",
+            [*drape(), "run", "--verify",
              "--metrics", metrics, "--save", os.path.join(tmp, "demo.rrd")],
             cwd=ROOT, check=True, stderr=subprocess.DEVNULL)
         with open(metrics) as f:
@@ -131,7 +148,7 @@ def nurbs_experiment():
     """`drape nurbs-experiment --json`: the L/T table with the true distances (times vary run
     to run: written with --bench only)."""
     with tempfile.TemporaryDirectory() as tmp:
-        run = subprocess.run(["cargo", "run", "--release", "--quiet", "--", "nurbs-experiment", "--json",
+        run = subprocess.run([*drape(), "nurbs-experiment", "--json",
                               "--save", os.path.join(tmp, "n.rrd")],
                              cwd=ROOT, check=True, capture_output=True, text=True)
     out = json.loads(run.stdout)
@@ -159,7 +176,7 @@ def nurbs_experiment():
 
 def sculpt_compare_json(body=None):
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = ["cargo", "run", "--release", "--quiet", "--", "sculpt-compare", "--json",
+        cmd = [*drape(), "sculpt-compare", "--json",
                "--save", os.path.join(tmp, "s.rrd")]
         if body:
             cmd += ["--body", body]
@@ -206,7 +223,7 @@ def logging_budget():
     with tempfile.TemporaryDirectory() as tmp:
         for detail in ["all", "final", "metrics"]:
             rrd, metrics = os.path.join(tmp, f"{detail}.rrd"), os.path.join(tmp, f"{detail}.json")
-            subprocess.run(["cargo", "run", "--release", "--quiet", "--", "run", "--log-detail", detail,
+            subprocess.run([*drape(), "run", "--log-detail", detail,
                             "--metrics", metrics, "--save", rrd], cwd=ROOT, check=True, stderr=subprocess.DEVNULL)
             steps = json.load(open(metrics))
             compute = sum(v for st in steps for k, v in st["timings_ms"].items() if not k.startswith("log."))
@@ -222,8 +239,7 @@ def stress_verified():
     """`drape stress --verify` over every shipped body, one shard per core (one worker thread
     each), merged: detection, the partial quality check and the skips against the
     brute-force truth and against the full versions (its times vary: --stress only)."""
-    drape = os.path.join(ROOT, "target", "release", "drape")
-    subprocess.run(["cargo", "build", "--release", "--quiet"], cwd=ROOT, check=True)
+    drape = built()
     shards = max(1, os.cpu_count() or 1)
     with tempfile.TemporaryDirectory() as tmp:
         reports = [os.path.join(tmp, f"{i}.json") for i in range(shards)]
@@ -289,7 +305,7 @@ def bodies_tables():
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import body_figures
 
-    drape = os.path.join(ROOT, "target", "release", "drape")
+    drape = built()
     out = []
     for name in ["demo", "drags"]:
         session = os.path.join("assets", "sessions", f"{name}.drape")
@@ -313,6 +329,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--check", action="store_true", help="exit 1 if a page is out of date")
     ap.add_argument("--metrics", help="a metrics file of the demo run with --verify (default: run it)")
+    ap.add_argument("--binary", help="the drape binary to run (default: cargo run --release)")
     ap.add_argument("--bench", action="store_true",
                     help="also rewrite the M1 benchmark table (cargo bench --bench m1; its times vary, so "
                          "--check leaves it out)")
@@ -320,6 +337,8 @@ def main():
                     help="also rewrite the verified stress table (drape stress --verify on every shipped body, "
                          "about 20 minutes on 2 cores; its times vary, so --check leaves it out)")
     args = ap.parse_args()
+    global BINARY
+    BINARY = args.binary
     steps = json.load(open(args.metrics)) if args.metrics else demo_metrics()
     generated = sections(steps)
     if args.bench:
