@@ -206,19 +206,41 @@ pub struct LastGarment(pub Option<Garment>);
 /// A collided garment: its positions after the response, its edges and its faces.
 pub type Garment = (Vec<DVec3>, Vec<[u32; 2]>, Vec<[u32; 3]>);
 
+/// The garment a collision stage ends with, for the response's stage (`None` for others).
+fn responded(stage: &drape::session::CollisionStage<'_>) -> Option<Garment> {
+    (stage.part == drape::session::CollisionPart::Respond).then(|| {
+        (
+            stage.outcome.collision.mesh.positions.clone(),
+            stage.outcome.garment.edges.clone(),
+            stage.outcome.collision.mesh.triangles.clone(),
+        )
+    })
+}
+
 impl drape::session::StageSink for LastGarment {
     fn collision(
         &mut self,
         _: &drape::session::StageInfo,
         stage: drape::session::CollisionStage<'_>,
     ) -> Result<(), drape::session::SinkError> {
-        if stage.part == drape::session::CollisionPart::Respond {
-            self.0 = Some((
-                stage.outcome.collision.mesh.positions.clone(),
-                stage.outcome.garment.edges.clone(),
-                stage.outcome.collision.mesh.triangles.clone(),
-            ));
+        if let Some(garment) = responded(&stage) {
+            self.0 = Some(garment);
         }
+        Ok(())
+    }
+}
+
+/// Every garment a session's collisions end with (the response's M0), in order.
+#[derive(Default)]
+pub struct EveryGarment(pub Vec<Garment>);
+
+impl drape::session::StageSink for EveryGarment {
+    fn collision(
+        &mut self,
+        _: &drape::session::StageInfo,
+        stage: drape::session::CollisionStage<'_>,
+    ) -> Result<(), drape::session::SinkError> {
+        self.0.extend(responded(&stage));
         Ok(())
     }
 }

@@ -159,27 +159,6 @@ fn the_segment_test_of_the_tests() {
     ));
 }
 
-/// Every garment a session's collisions end with (the response's M0), in order.
-#[derive(Default)]
-struct EveryGarment(Vec<super::common::Garment>);
-
-impl drape::session::StageSink for EveryGarment {
-    fn collision(
-        &mut self,
-        _: &drape::session::StageInfo,
-        stage: drape::session::CollisionStage<'_>,
-    ) -> Result<(), drape::session::SinkError> {
-        if stage.part == drape::session::CollisionPart::Respond {
-            self.0.push((
-                stage.outcome.collision.mesh.positions.clone(),
-                stage.outcome.garment.edges.clone(),
-                stage.outcome.collision.mesh.triangles.clone(),
-            ));
-        }
-        Ok(())
-    }
-}
-
 /// Faces squeezed in the crotch of the two old bodies, where the thighs meet (a slot a few
 /// millimetres wide) or a pubic ridge crosses a face of the crotch web: random sessions
 /// whose `set ease` the face rounds could not clear when they only lifted faces off along
@@ -202,7 +181,7 @@ fn faces_squeezed_in_the_crotch_are_cleared_by_the_face_rounds() {
         let session =
             drape::session::parse_session(&text, &file.display().to_string(), file.parent().unwrap()).expect("parses");
         let body = drape::body::BodyMesh::load(&session.scene.body, session.scene.units.scale()).expect("the body");
-        let mut every = EveryGarment::default();
+        let mut every = super::common::EveryGarment::default();
         let report = drape::session::run_session(&session, &drape::session::RunOptions::default(), &mut [&mut every]);
         assert!(report.error.is_none(), "{}: {:?}", file.display(), report.error);
         for step in &report.steps {
