@@ -18,7 +18,7 @@ use std::time::Duration;
 use criterion::{BenchmarkId, Criterion};
 use drape::body::Body;
 use drape::body::{self, BUILTIN_BODY_OBJ, BodyMesh, LandmarkKind, LandmarkOptions, PartitionOptions};
-use drape::garment::{BodyProbe, Contours, Dimensions, FrameworkOptions, TemplateKind, build_framework};
+use drape::garment::{BodyProbe, ContourKind, Dimensions, FrameworkOptions, TemplateKind, build_framework};
 use drape::mannequin::{DressForm, ErrorStats, MannequinOptions, refine_chord, refine_polar, run_mannequin};
 use glam::DVec3;
 
@@ -72,7 +72,7 @@ fn bench_mannequin(c: &mut Criterion) {
 const RESOLUTIONS: [usize; 4] = [3, 6, 12, 24];
 
 /// The contour kinds, the default first.
-const KINDS: [Contours; 2] = [Contours::Local, Contours::Natural];
+const KINDS: [ContourKind; 2] = [ContourKind::Local, ContourKind::Natural];
 
 fn garment_scene() -> (Body, BodyProbe, Dimensions) {
     let body = Body::analyse(body_mesh(), &LandmarkOptions::default(), &PartitionOptions::default()).expect("body");

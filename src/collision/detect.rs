@@ -19,7 +19,7 @@ use glam::DVec3;
 
 use super::line_line::line_line;
 use super::point_face::{Reach, Search, point_face};
-use super::quality::VertexDistance;
+use super::types::{Hit, VertexDistance};
 use crate::body::DetectionMethod;
 use crate::body::index::{BodyIndex, Nearest};
 use crate::garment::CurveRef;
@@ -128,26 +128,6 @@ pub struct GarmentInput<'a> {
     pub patch_curves: &'a [Vec<CurveRef>],
     /// The control points of every curve by name.
     pub controls: &'a BTreeMap<String, Vec<DVec3>>,
-}
-
-/// A penetrating vertex.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// Garment vertex.
-    pub vertex: u32,
-    /// Index of its partition in [`BodyIndex::partitions`].
-    pub partition: usize,
-    /// The test that found it.
-    pub method: DetectionMethod,
-    /// Depth below the skin, m.
-    pub depth: f64,
-    /// Nearest body point (point-face) or the crossing in the section (line-line), m (world
-    /// frame).
-    pub foot: DVec3,
-    /// Outward unit body normal there (world frame).
-    pub normal: DVec3,
-    /// Body triangle (point-face only).
-    pub triangle: Option<u32>,
 }
 
 /// Why a vertex was not tested this step.

@@ -25,9 +25,9 @@ use std::collections::BTreeMap;
 
 use glam::DVec3;
 
-use super::detect::Hit;
 use super::response::{AppliedRule, EASE_TOLERANCE, MIN_COSINE, Response, ResponseOptions, VertexRoles, respond_round};
 use super::reuse::{Reuse, Reused};
+use super::types::Hit;
 use crate::body::index::BodyIndex;
 use crate::par::par_map;
 

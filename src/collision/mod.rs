@@ -21,6 +21,7 @@ mod push;
 pub mod quality;
 pub mod response;
 pub mod reuse;
+pub mod types;
 pub mod verify;
 
 use std::collections::BTreeMap;
@@ -29,13 +30,14 @@ use glam::DVec3;
 
 pub use crate::body::index::{BodyIndex, Nearest, PartitionIndex};
 pub use crate::body::slices::{CentreChoice, Centres, SliceOptions, SliceStack};
-pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Hit, Skip, detect};
+pub use detect::{Acceleration, DetectOptions, DetectState, Detection, GarmentInput, Skip, detect};
 pub use edges::{KnownClearance, respond_edges};
 pub use faces::{pierced_faces, respond_faces};
 pub use point_face::{PointFace, Reach, Search, point_face};
 pub use quality::{Quality, quality, quality_reusing};
 pub use response::{AppliedRule, Response, ResponseOptions, VertexRoles, respond, response_ease};
 pub use reuse::{Reuse, Reused};
+pub use types::{Hit, SKIN, VertexDistance};
 pub use verify::{GroundTruth, Misses, VerifyReport, changed_verdicts, compare, ground_truth};
 
 use crate::garment::{CurveRef, Framework};

@@ -6,7 +6,8 @@ use glam::DVec3;
 
 use super::response::Response;
 use super::reuse::{Reuse, Reused};
-use crate::body::index::{BodyIndex, Nearest};
+use super::types::{NO_TRIANGLE, SKIN, VertexDistance, check_reach};
+use crate::body::index::BodyIndex;
 use crate::par::par_map;
 
 /// Quality figures of a garment mesh against the body.
@@ -58,27 +59,6 @@ pub struct Quality {
     /// ([`NO_TRIANGLE`] where none, or not measured).
     #[serde(skip)]
     pub nearest: Vec<u32>,
-}
-
-/// The one tolerance for "inside", as a fraction of the body's height: a point nearer the
-/// body's surface than this (1.7 pm on a 1.7 m body, a thousand times the rounding of a
-/// distance) is on the skin, neither inside nor out. The quality check, the brute-force truth
-/// ([`super::verify::ground_truth`]) and the response (whose target gap is at least
-/// [`super::ResponseOptions::min_ease`] of the height, far outside it, with an ease of 0
-/// too) share it.
-pub const SKIN: f64 = 1e-12;
-
-/// No body triangle: none within reach, or not measured.
-pub const NO_TRIANGLE: u32 = u32::MAX;
-
-/// A vertex's distance as the quality check measures it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexDistance {
-    /// Signed distance, m (negative inside; a fifth of the body's height where no body
-    /// point is nearer).
-    pub signed: f64,
-    /// The nearest body triangle ([`NO_TRIANGLE`] where none is within that reach).
-    pub triangle: u32,
 }
 
 /// Distances measured during a step before the quality check (the collision measures its
@@ -177,30 +157,6 @@ impl Measured {
     /// How far from the surface each vertex stood at least, m.
     pub fn free(&self) -> Vec<f64> {
         self.distance.iter().map(|d| d.signed.abs()).collect()
-    }
-}
-
-/// How far the quality check looks for the body: a fifth of its height.
-fn check_reach(index: &BodyIndex) -> f64 {
-    0.2 * index.height
-}
-
-impl VertexDistance {
-    /// The quality check's distance of `p`, whose nearest body point `nearest` was found
-    /// looking at least as far as the check does ([`BodyIndex::nearest`] answers the same
-    /// with any reach that holds the winner).
-    pub fn from_nearest(index: &BodyIndex, p: DVec3, nearest: Option<&Nearest>) -> Self {
-        let reach = check_reach(index);
-        match nearest {
-            Some(n) if n.distance <= reach => Self {
-                signed: n.signed(p),
-                triangle: n.triangle,
-            },
-            _ => Self {
-                signed: reach,
-                triangle: NO_TRIANGLE,
-            },
-        }
     }
 }
 

@@ -34,9 +34,9 @@
 
 use glam::{DVec2, DVec3};
 
-use super::detect::Hit;
 pub use super::push::EASE_TOLERANCE;
 use super::push::{push_out, settle};
+use super::types::Hit;
 use crate::body::ResponseRule;
 use crate::body::index::BodyIndex;
 use crate::body::slices::flat;

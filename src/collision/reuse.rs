@@ -13,7 +13,7 @@
 
 use glam::DVec3;
 
-use super::quality::VertexDistance;
+use super::types::VertexDistance;
 
 /// Remembered answers, by vertex and by edge (the same garment topology).
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -68,11 +68,11 @@ impl GroundTruth {
 
 /// The ground truth of `positions` and `edges` against the closed `body`: a vertex is
 /// inside when its winding number is above one half and it stands farther from every body
-/// triangle than the skin tolerance ([`super::quality::SKIN`] of the body's height).
+/// triangle than the skin tolerance ([`super::types::SKIN`] of the body's height).
 pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> GroundTruth {
     // The body's height as the index takes it (its extent up, along y).
     let height = body.bounds().map_or(1.0, |(lo, hi)| hi.y - lo.y);
-    let skin = super::quality::SKIN * height;
+    let skin = super::types::SKIN * height;
     let off_skin =
         |p: DVec3| (0..body.triangles.len()).all(|t| closest_on_triangle(p, body.corners(t)).0.distance(p) > skin);
     let inside = parallel(positions.len(), |v| {

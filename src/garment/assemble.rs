@@ -9,9 +9,9 @@
 //! What the lines and patches are is the template's business ([`super::template`]).
 
 use super::m0::{M0, PatchGrid, restitch};
-use super::model::{FeatureLine, Framework, FrameworkError};
+use super::model::{FeatureLine, Framework, FrameworkError, Spans};
 use super::probe::BodyProbe;
-use super::surface::{Spans, Surfaced, Surfacer};
+use super::surface::{Surfaced, Surfacer};
 use super::template;
 use crate::body::index::Nearest;
 

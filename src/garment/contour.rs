@@ -2,33 +2,61 @@
 //! points (centre front, side, princess lines, the legs' front, outer, back and inner
 //! lines), from the lowest ring up. Patches take their sides from the spans between rings.
 //!
-//! By default a contour has local support ([`LocalSpline3`], [`Contours::Local`]): a span
+//! By default a contour has local support ([`LocalSpline3`], [`ContourKind::Local`]): a span
 //! between two rings depends on the ring points at its ends and the one beyond each, so an
 //! edit moves the contour (and the garment) only near the points it moves, and the patches
-//! further off keep their samples. [`Contours::Natural`] fits the `C2` interpolating spline
+//! further off keep their samples. [`ContourKind::Natural`] fits the `C2` interpolating spline
 //! instead ([`ChordSpline3`]), every span depending on every point.
 
 use glam::DVec3;
 
-use super::model::Contours;
 use super::probe::BodyProbe;
 use crate::geom::{ChordSpline3, CurveEnds, LocalSpline3, SplineError};
 
-/// A contour's curve, by [`Contours`].
+/// How contours pass through their points.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub enum ContourKind {
+    /// Cubic spans with local support ([`crate::geom::LocalSpline3`], `C1`): moving a ring
+    /// point reshapes the contour only over the two spans on each side of it, so an edit
+    /// re-surfaces only the patches near it.
+    #[default]
+    Local,
+    /// The interpolating cubic spline with natural ends ([`crate::geom::ChordSpline3`],
+    /// `C2`): the smoothest curve through the points, but every span depends on every
+    /// point, so an edit re-surfaces every patch along the contours it moves.
+    Natural,
+}
+
+impl ContourKind {
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Local => "local",
+            Self::Natural => "natural",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Self::Local, Self::Natural].into_iter().find(|c| c.name() == name)
+    }
+}
+
+/// A contour's curve, by [`ContourKind`].
 #[derive(Clone, Debug, PartialEq)]
 pub enum ContourCurve {
-    /// [`Contours::Local`].
+    /// [`ContourKind::Local`].
     Local(LocalSpline3),
-    /// [`Contours::Natural`].
+    /// [`ContourKind::Natural`].
     Natural(ChordSpline3),
 }
 
 impl ContourCurve {
     /// Which kind it is.
-    pub fn kind(&self) -> Contours {
+    pub fn kind(&self) -> ContourKind {
         match self {
-            Self::Local(_) => Contours::Local,
-            Self::Natural(_) => Contours::Natural,
+            Self::Local(_) => ContourKind::Local,
+            Self::Natural(_) => ContourKind::Natural,
         }
     }
 
@@ -95,7 +123,7 @@ pub struct Contour {
 impl Contour {
     /// Fits the contour through `points` (m, lowest first) as a chord-length cubic curve
     /// of kind `kind` with free ends (\[frame\] section 2.3).
-    pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>, kind: Contours) -> Result<Self, SplineError> {
+    pub fn fit(name: &str, through: Vec<String>, points: Vec<DVec3>, kind: ContourKind) -> Result<Self, SplineError> {
         Self::fit_with(name, through, points, [None, None], kind)
     }
 
@@ -105,11 +133,11 @@ impl Contour {
         through: Vec<String>,
         points: Vec<DVec3>,
         tangents: [Option<DVec3>; 2],
-        kind: Contours,
+        kind: ContourKind,
     ) -> Result<Self, SplineError> {
         let spline = match kind {
-            Contours::Local => ContourCurve::Local(LocalSpline3::try_new(&points, tangents[0], tangents[1])?),
-            Contours::Natural => ContourCurve::Natural(ChordSpline3::try_new(
+            ContourKind::Local => ContourCurve::Local(LocalSpline3::try_new(&points, tangents[0], tangents[1])?),
+            ContourKind::Natural => ContourCurve::Natural(ChordSpline3::try_new(
                 &points,
                 CurveEnds::Open {
                     start: tangents[0],

@@ -4,9 +4,9 @@
 //! Layers, lowest first: the data model ([`model`]); the curve algorithms (ring sub-steps
 //! in [`ring`], [`convexify`](mod@convexify), [`resample`], [`ease`]; [`open_curve`], [`contour`],
 //! [`adjust`]; anchors in [`anchors`]); surfacing ([`surface`], [`m0`]); the templates
-//! ([`template`]), which say what a garment's curves and patches are; and the two entry
-//! points, [`build_framework`] (solve on a body) and [`assemble::assemble`] (surface after
-//! an edit).
+//! ([`template`]), which say what a garment's curves and patches are, solved in the context
+//! of [`solve`]; and the two entry points, [`build_framework`] (solve on a body) and
+//! [`assemble::assemble`] (surface after an edit).
 
 pub mod adjust;
 pub mod anchors;
@@ -22,18 +22,20 @@ pub mod open_curve;
 pub mod probe;
 pub mod resample;
 pub mod ring;
+pub mod solve;
 pub mod surface;
 pub mod template;
 
-pub use build::{FrameworkOptions, build_framework};
+pub use build::build_framework;
+pub use contour::{Contour, ContourKind};
 pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, convexify_open, extremes};
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};
 pub use m0::{CurveRef, M0, PatchGrid, StitchReport, stitch, weld};
 pub use model::{
-    Contours, DimensionValue, Dimensions, FeatureLine, Fit, Framework, FrameworkError, NamedPlane, Straightened,
-    TemplateKind,
+    DimensionValue, Dimensions, FeatureLine, Fit, Framework, FrameworkError, NamedPlane, Straightened, TemplateKind,
 };
 pub use probe::BodyProbe;
 pub use resample::{ResampleError, resample_closed, resample_open, resample_open_at};
 pub use ring::{GarmentRing, RingOptions, RingStages};
+pub use solve::FrameworkOptions;
 pub use template::Template;

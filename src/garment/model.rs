@@ -69,35 +69,6 @@ impl Fit {
     }
 }
 
-/// How contours pass through their points.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
-pub enum Contours {
-    /// Cubic spans with local support ([`crate::geom::LocalSpline3`], `C1`): moving a ring
-    /// point reshapes the contour only over the two spans on each side of it, so an edit
-    /// re-surfaces only the patches near it.
-    #[default]
-    Local,
-    /// The interpolating cubic spline with natural ends ([`crate::geom::ChordSpline3`],
-    /// `C2`): the smoothest curve through the points, but every span depends on every
-    /// point, so an edit re-surfaces every patch along the contours it moves.
-    Natural,
-}
-
-impl Contours {
-    /// Session spelling.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Local => "local",
-            Self::Natural => "natural",
-        }
-    }
-
-    /// From the session spelling.
-    pub fn from_name(name: &str) -> Option<Self> {
-        [Self::Local, Self::Natural].into_iter().find(|c| c.name() == name)
-    }
-}
-
 /// Dimension values a session has set (the rest come from the body).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Dimensions {
@@ -215,7 +186,7 @@ pub struct Framework {
     /// The stitched mesh.
     pub m0: M0,
     /// The cleared contour spans its patches were surfaced from.
-    pub spans: super::surface::Spans,
+    pub spans: Spans,
     /// Dimensions reached.
     pub dimensions: Vec<DimensionValue>,
     /// Sample counts of the patches and lines (fixed for the garment's life).
@@ -239,7 +210,7 @@ impl Framework {
             straightened: self.straightened.clone(),
             patches: Vec::new(),
             m0: M0::default(),
-            spans: super::surface::Spans::new(),
+            spans: Spans::new(),
             dimensions: self.dimensions.clone(),
             layout: self.layout.clone(),
         }
@@ -338,4 +309,18 @@ pub enum Counts {
     },
     /// The dress: bands hem-thigh, thigh-hip, hip-waist.
     Dress([usize; 3]),
+}
+
+/// Cleared contour spans by (contour, span from its control point `k`, segments): the
+/// spans a framework's patches were surfaced from, kept with it so that the next assembly
+/// takes those whose samples did not change instead of clearing them again.
+pub type Spans = BTreeMap<(String, usize, usize), Span>;
+
+/// A contour span's samples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Span {
+    /// On the contour, m.
+    pub raw: Vec<DVec3>,
+    /// Inner samples cleared off the body, m.
+    pub cleared: Vec<DVec3>,
 }

@@ -4,13 +4,12 @@
 //! changed; and the lookups a template's patches use.
 
 use std::cell::RefCell;
-use std::collections::BTreeMap;
 
 use glam::DVec3;
 
 use super::contour::{Contour, clear_inner};
 use super::m0::{CurveRef, PatchGrid};
-use super::model::{FeatureLine, Framework, FrameworkError, Layout};
+use super::model::{FeatureLine, Framework, FrameworkError, Layout, Span, Spans};
 use super::open_curve::OpenCurve;
 use super::probe::BodyProbe;
 use super::ring::GarmentRing;
@@ -117,20 +116,6 @@ pub struct Surfacer<'a> {
     measured: Vec<(usize, usize, Nearest)>,
     /// The contour spans cleared so far (a span bounds two patches).
     spans: RefCell<Spans>,
-}
-
-/// Cleared contour spans by (contour, span from its control point `k`, segments): the
-/// spans a framework's patches were surfaced from, kept with it so that the next assembly
-/// takes those whose samples did not change instead of clearing them again.
-pub type Spans = BTreeMap<(String, usize, usize), Span>;
-
-/// A contour span's samples.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Span {
-    /// On the contour, m.
-    pub raw: Vec<DVec3>,
-    /// Inner samples cleared off the body, m.
-    pub cleared: Vec<DVec3>,
 }
 
 /// What a [`Surfacer`] made.

@@ -19,7 +19,8 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use crate::body::index::BodyIndex;
-use crate::collision::quality::{Measured, NO_TRIANGLE};
+use crate::collision::quality::Measured;
+use crate::collision::types::NO_TRIANGLE;
 use crate::mesh::TriMesh;
 use crate::mesh::topology::sorted_edges;
 

@@ -5,9 +5,10 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use super::error::SinkError;
 use super::error::{RunError, StepError};
 use super::metrics::StepMetrics;
-use super::stage::{SinkError, Stage, StageInfo, StepEnd};
+use super::stage::{Stage, StageInfo, StepEnd};
 
 /// The sinks of a run, the global stage counter and the sinks' failures.
 pub(crate) struct Emitter<'k, 's> {

@@ -1,9 +1,10 @@
 //! Why a session stopped, typed: the step that failed and its cause, told apart by kind so
 //! the command line can exit with the right code (see [`FailureKind::exit_code`]).
 
+use std::path::PathBuf;
+
 use thiserror::Error;
 
-use super::stage::SinkError;
 use crate::body::BodyError;
 use crate::constraint::EditError;
 use crate::garment::FrameworkError;
@@ -101,7 +102,7 @@ pub enum StepError {
         /// The part.
         name: String,
         /// Its file.
-        path: std::path::PathBuf,
+        path: PathBuf,
         /// What is wrong.
         message: String,
     },
@@ -159,4 +160,31 @@ impl RunError {
     pub fn kind(&self) -> FailureKind {
         self.source.kind()
     }
+}
+
+/// Why a sink could not take a stage. These are failures of drape's own output (a file that
+/// cannot be written, a viewer that went away), never of the session's input.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum SinkError {
+    /// A file or folder could not be written.
+    #[error("{}: cannot {action}: {source}", path.display())]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// What was attempted (`write`, `create`, `rename`).
+        action: &'static str,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The logging backend (Rerun) failed.
+    #[error("{what}: {source}")]
+    Backend {
+        /// What was being done (`rerun`, `rerun flush`).
+        what: &'static str,
+        /// The backend's error.
+        #[source]
+        source: Box<dyn std::error::Error + Send + Sync>,
+    },
 }

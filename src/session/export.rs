@@ -5,7 +5,8 @@
 
 use std::path::PathBuf;
 
-use super::stage::{BodyStage, CollisionPart, CollisionStage, M1Stage, SinkError, StageInfo, StageSink};
+use super::error::SinkError;
+use super::stage::{BodyStage, CollisionPart, CollisionStage, M1Stage, StageInfo, StageSink};
 use crate::mannequin::MannequinResult;
 use crate::mesh::{TriMesh, write_obj};
 

@@ -11,22 +11,24 @@
 pub mod emit;
 pub mod error;
 pub mod export;
+mod flow;
 pub mod format;
 pub mod metrics;
+pub mod options;
 pub mod runner;
 pub mod stage;
 mod state;
 mod steps;
 
 pub use emit::Shortfall;
-pub use error::{DragRefusal, FailureKind, RunError, StepError};
+pub use error::{DragRefusal, FailureKind, RunError, SinkError, StepError};
 pub use format::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
-pub use runner::{LiveSession, RunOptions, RunReport, run_session};
+pub use options::RunOptions;
+pub use runner::{LiveSession, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
-    M1Stage, NurbsStage, RingStep, SculptOutcome, SculptStage, SectionCut, SinkError, Stage, StageInfo, StageSink,
-    StepEnd,
+    M1Stage, NurbsStage, RingStep, SculptOutcome, SculptStage, SectionCut, Stage, StageInfo, StageSink, StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

@@ -3,41 +3,14 @@
 //!
 //! The steps themselves live in `steps/`, one file per kind; this is the driver.
 
-use std::path::PathBuf;
-
 use super::emit::{Emitter, Shortfall};
 use super::error::{RunError, StepError};
 use super::format::{Session, Step};
 use super::metrics::StepMetrics;
+use super::options::{RunOptions, StepContext};
 use super::stage::{Stage, StageSink, StepEnd};
 use super::state::SessionState;
-use super::steps::{StepContext, run_step, scene};
-use crate::body::{LandmarkOptions, PartitionOptions};
-use crate::collision::CollisionOptions;
-
-/// Run settings from the command line.
-#[derive(Clone, Debug, Default)]
-pub struct RunOptions {
-    /// Replaces the session's body (`--body`).
-    pub body_override: Option<PathBuf>,
-    /// Landmark detection settings (overrides come from the session).
-    pub landmarks: LandmarkOptions,
-    /// Partition settings.
-    pub partitions: PartitionOptions,
-    /// Collision settings.
-    pub collision: CollisionOptions,
-    /// Check every collision against the brute-force ground truth (`--verify`; slow).
-    pub verify: bool,
-    /// The largest body file read, bytes (`--max-input-mb`; default
-    /// [`crate::input::DEFAULT_MAX_INPUT_BYTES`]; 0 means the default).
-    pub max_input_bytes: u64,
-    /// Set (by a signal handler) to end the run after the current step: the steps after it
-    /// do not run, an `interrupted` stage says where it stopped, and the report has
-    /// [`RunReport::interrupted`].
-    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
-    /// Where body indexes are kept between runs (`--index-cache`); `None`: built every run.
-    pub index_cache: Option<crate::body::index_cache::IndexCache>,
-}
+use super::steps::{run_step, scene};
 
 /// What a run produced.
 #[derive(Debug, Default)]

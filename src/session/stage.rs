@@ -11,11 +11,7 @@
 //! This module is the only thing the sinks import from the session; they never see the
 //! runner.
 
-use std::path::PathBuf;
-
-use thiserror::Error;
-
-use super::error::RunError;
+use super::error::{RunError, SinkError};
 use super::metrics::StepMetrics;
 use crate::body::{BodyMesh, BodyRing, Landmarks, Partition};
 use crate::collision::{BodyIndex, Collision, GarmentMesh, VerifyReport};
@@ -407,33 +403,6 @@ pub enum StepEnd<'a> {
     Interrupted {
         /// The last step that finished.
         after: usize,
-    },
-}
-
-/// Why a sink could not take a stage. These are failures of drape's own output (a file that
-/// cannot be written, a viewer that went away), never of the session's input.
-#[derive(Debug, Error)]
-#[non_exhaustive]
-pub enum SinkError {
-    /// A file or folder could not be written.
-    #[error("{}: cannot {action}: {source}", path.display())]
-    Io {
-        /// The file or folder.
-        path: PathBuf,
-        /// What was attempted (`write`, `create`, `rename`).
-        action: &'static str,
-        /// The cause.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The logging backend (Rerun) failed.
-    #[error("{what}: {source}")]
-    Backend {
-        /// What was being done (`rerun`, `rerun flush`).
-        what: &'static str,
-        /// The backend's error.
-        #[source]
-        source: Box<dyn std::error::Error + Send + Sync>,
     },
 }
 

@@ -10,14 +10,16 @@ pub mod generate;
 pub mod outcome;
 pub mod report;
 pub mod rng;
+pub mod verified;
 pub mod watch;
 
 use std::path::{Path, PathBuf};
 
 pub use generate::{GenerateOptions, session_text};
-pub use outcome::{SessionOutcome, Verified, reason_of, run_one};
+pub use outcome::{SessionOutcome, reason_of, run_one};
 pub use report::{Record, Report, Totals, VerifiedTotals};
 pub use rng::Rng;
+pub use verified::Verified;
 
 /// A stress sweep.
 #[derive(Clone, Debug)]

@@ -6,7 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
-use super::outcome::{SessionOutcome, Verified};
+use super::outcome::SessionOutcome;
+use super::verified::Verified;
 use crate::collision::Misses;
 use crate::convergence::{LOOPS, Tallies, merge_into};
 
@@ -74,7 +75,7 @@ pub struct Totals {
     pub verified: VerifiedTotals,
 }
 
-/// [`super::outcome::Verified`] summed over sessions.
+/// [`super::verified::Verified`] summed over sessions.
 #[derive(Clone, Debug, Default, Serialize, PartialEq)]
 pub struct VerifiedTotals {
     /// Collisions checked.

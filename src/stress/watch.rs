@@ -2,7 +2,7 @@
 //! sinks checked for NaN and infinite values, each constraint solve's outcome and residual,
 //! and each step's compute time.
 
-use super::outcome::Verified;
+use super::verified::Verified;
 use crate::session::{
     CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Stage, SinkError, StageInfo,
     StageSink, StepEnd,

@@ -556,7 +556,7 @@ fn a_body_with_a_hole_under_the_arm_is_closed_and_keeps_its_inside() {
 /// body.
 #[test]
 fn points_at_the_skin_and_a_tenth_of_a_micrometre_off_it_are_judged_alike_and_pushed_out() {
-    use drape::collision::quality::SKIN;
+    use drape::collision::SKIN;
     use drape::collision::{Hit, ResponseOptions, respond, response_ease};
     for (name, body, index) in shipped() {
         let mesh = &body.mesh.mesh;

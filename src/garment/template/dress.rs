@@ -7,9 +7,9 @@ use glam::DVec3;
 use super::{CurveRoles, THIGH_DROP, Template};
 use crate::body::LandmarkKind;
 use crate::garment::anchors::{QUAD, mirror_pairs, quad_anchors};
-use crate::garment::build::{BuildCtx, ContourSpec, Parts, fit_contours, loosen};
 use crate::garment::m0::CurveRef;
 use crate::garment::model::{Counts, FeatureLine, Fit, FrameworkError, TemplateKind};
+use crate::garment::solve::{BuildCtx, ContourSpec, Parts, fit_contours, loosen};
 use crate::garment::surface::{Surfacer, arc, missing};
 use crate::geom::Plane;
 

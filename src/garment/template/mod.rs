@@ -21,9 +21,9 @@ mod jumpsuit;
 pub use dress::Dress;
 pub use jumpsuit::Jumpsuit;
 
-use super::build::{BuildCtx, Parts};
 use super::model::{FeatureLine, Fit, Framework, FrameworkError, TemplateKind};
 use super::probe::BodyProbe;
+use super::solve::{BuildCtx, Parts};
 use super::surface::Surfacer;
 
 /// The thigh ring's drop below the crotch, as a fraction of the body's height (both

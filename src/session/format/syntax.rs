@@ -4,7 +4,7 @@ use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Edit, SolverOptions};
-use crate::garment::{Contours, Fit, TemplateKind};
+use crate::garment::{ContourKind, Fit, TemplateKind};
 use crate::m1::{CutPlane, M1Options};
 use crate::mannequin::MannequinOptions;
 
@@ -128,7 +128,7 @@ pub enum Op {
         /// Contour fit.
         fit: Fit,
         /// How contours pass through their points.
-        contours: Contours,
+        contours: ContourKind,
         /// Segments per anchor arc in M0.
         resolution: usize,
     },

@@ -5,11 +5,11 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::stage::{GarmentStage, M1Stage, Stage};
-use super::super::state::SessionState;
 use crate::m1::{CutPlane, cut};
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::stage::{GarmentStage, M1Stage, Stage};
+use crate::session::state::SessionState;
 
 /// The figures of a cut.
 #[derive(Serialize)]

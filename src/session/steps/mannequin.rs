@@ -4,10 +4,10 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::stage::Stage;
 use crate::mannequin::{DressForm, MannequinOptions, Region, RegionErrors, run_mannequin};
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::stage::Stage;
 
 /// The figures of a mannequin step.
 #[derive(Serialize)]

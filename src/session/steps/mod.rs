@@ -4,12 +4,11 @@
 //! A new step kind is a new file here with a `run` function, its [`super::Op`] variant and
 //! parser arm, and one line in [`run_step`].
 
-mod collide;
 mod cut;
 mod drag;
 mod garment;
-mod m1;
 mod mannequin;
+mod move_part;
 mod nurbs;
 pub(super) mod scene;
 mod sculpt;
@@ -19,17 +18,9 @@ mod undo;
 
 use super::emit::StepScope;
 use super::error::StepError;
-use super::format::{Op, Session};
-use super::runner::RunOptions;
+use super::format::Op;
+use super::options::StepContext;
 use super::state::SessionState;
-
-/// What every step may read: the session and the run's settings.
-pub(super) struct StepContext<'a> {
-    /// The session (its scene settings: the solver).
-    pub(super) session: &'a Session,
-    /// Run settings from the command line.
-    pub(super) options: &'a RunOptions,
-}
 
 /// Runs one step of the session on `state`.
 pub(super) fn run_step(
@@ -51,8 +42,8 @@ pub(super) fn run_step(
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),
         Op::Cut { name, plane } => cut::run(scope, state, name, *plane),
-        Op::Nurbs { name, path } => nurbs::add(scope, state, cx, name, path),
-        Op::Move { name, by, turn_deg } => nurbs::move_part(scope, state, cx, name, *by, *turn_deg),
+        Op::Nurbs { name, path } => nurbs::run(scope, state, cx, name, path),
+        Op::Move { name, by, turn_deg } => move_part::run(scope, state, cx, name, *by, *turn_deg),
         Op::Sculpt { at, drag, options } => sculpt::run(scope, state, cx, at, drag, options),
     }
 }

@@ -3,13 +3,13 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::format::Session;
-use super::super::runner::RunOptions;
-use super::super::stage::{BodyStage, Stage};
 use crate::body::{self, Body, BodyMesh, BodyRing, BodySource, Landmark, Partition};
 use crate::mesh::MeshReport;
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::format::Session;
+use crate::session::options::RunOptions;
+use crate::session::stage::{BodyStage, Stage};
 
 /// The body mesh as loaded.
 #[derive(Serialize)]
@@ -54,7 +54,7 @@ struct PartitionFigures<'a> {
 }
 
 /// Loads and analyses the scene's body (or `--body`'s), emitting a stage after each part.
-pub(in super::super) fn run(
+pub(in crate::session) fn run(
     scope: &mut StepScope<'_, '_, '_>,
     session: &Session,
     options: &RunOptions,

@@ -2,11 +2,11 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::stage::{SectionCut, Stage};
-use super::super::state::SessionState;
 use crate::geom::{Plane, SectionLoop};
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::stage::{SectionCut, Stage};
+use crate::session::state::SessionState;
 
 /// The figures of a section step.
 #[derive(Serialize)]

@@ -4,15 +4,15 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::format::Change;
-use super::super::stage::{GarmentPart, GarmentStage, Stage};
-use super::super::state::{GarmentState, SessionState};
-use super::StepContext;
-use super::collide::{collide_and_emit, unclear};
-use super::drag::replay_edits;
-use super::garment::solve_garment;
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::flow::collide::{collide_and_emit, unclear};
+use crate::session::flow::drag::replay_edits;
+use crate::session::flow::garment::solve_garment;
+use crate::session::format::Change;
+use crate::session::options::StepContext;
+use crate::session::stage::{GarmentPart, GarmentStage, Stage};
+use crate::session::state::{GarmentState, SessionState};
 
 /// The change asked for.
 #[derive(Serialize)]

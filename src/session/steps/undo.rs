@@ -4,11 +4,11 @@
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::error::StepError;
-use super::super::stage::{GarmentStage, Stage};
-use super::super::state::SessionState;
-use super::collide::emit_kept;
+use crate::session::emit::StepScope;
+use crate::session::error::StepError;
+use crate::session::flow::collide::emit_kept;
+use crate::session::stage::{GarmentStage, Stage};
+use crate::session::state::SessionState;
 
 /// The state restored.
 #[derive(Serialize)]
@@ -36,7 +36,7 @@ pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -
     }
     let had_sculpt = state.garment.as_ref().is_some_and(|g| g.sculpted.is_some());
     if had_sculpt && previous.sculpted.is_none() {
-        super::sculpt::emit_cleared(scope);
+        crate::session::flow::sculpt::emit_cleared(scope);
     }
     state.garment = Some(previous);
     Ok(())

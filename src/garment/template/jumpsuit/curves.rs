@@ -6,14 +6,14 @@
 
 use glam::DVec3;
 
-use super::super::{BRIDGE_REACH, THIGH_DROP};
 use crate::body::{LandmarkKind, Side};
 use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
 use crate::garment::bridge::{Bridging, bridge};
-use crate::garment::build::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
 use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, Fit, FrameworkError};
 use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
+use crate::garment::solve::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
+use crate::garment::template::{BRIDGE_REACH, THIGH_DROP};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 
 /// Solves the jumpsuit's curves on the body.

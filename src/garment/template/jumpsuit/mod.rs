@@ -7,9 +7,9 @@ mod patches;
 
 use super::{CurveRoles, EndJoint, TangentJoint, Template};
 use crate::garment::anchors::{LEFT_LEG, QUAD, RIGHT_LEG, TORSO, mirror_pairs};
-use crate::garment::build::{BuildCtx, Parts};
 use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, TemplateKind};
 use crate::garment::probe::BodyProbe;
+use crate::garment::solve::{BuildCtx, Parts};
 use crate::garment::surface::Surfacer;
 
 /// Rings of the jumpsuit, top to bottom.

@@ -1,6 +1,6 @@
 //! The garment steps: `garment` (a new garment) and `set` (a dimension changed).
 
-use crate::garment::{Contours, Fit, TemplateKind};
+use crate::garment::{ContourKind, Fit, TemplateKind};
 use crate::session::format::args::{Args, integer_in, number};
 use crate::session::format::lexer::{Line, Token};
 use crate::session::format::suggest::did_you_mean;
@@ -36,8 +36,8 @@ impl Parser<'_> {
                 .ok_or_else(|| line.error(t.column, format!("unknown fit '{}': expected tight or loose", t.text)))?,
         };
         let contours = match a.get("contours") {
-            None => Contours::default(),
-            Some(t) => Contours::from_name(t.text).ok_or_else(|| {
+            None => ContourKind::default(),
+            Some(t) => ContourKind::from_name(t.text).ok_or_else(|| {
                 line.error(
                     t.column,
                     format!("unknown contours '{}': expected local or natural", t.text),

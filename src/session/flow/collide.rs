@@ -6,14 +6,14 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::runner::RunOptions;
-use super::super::stage::{CollisionOutcome, CollisionPart, CollisionStage, GarmentPart, GarmentStage, Stage};
-use super::super::state::GarmentState;
-use super::StepContext;
 use crate::body::Body;
 use crate::collision::{self, AppliedRule, BodyIndex, Collision, GarmentMesh, VerifyReport};
 use crate::m1::M1Options;
+use crate::session::emit::StepScope;
+use crate::session::options::RunOptions;
+use crate::session::options::StepContext;
+use crate::session::stage::{CollisionOutcome, CollisionPart, CollisionStage, GarmentPart, GarmentStage, Stage};
+use crate::session::state::GarmentState;
 
 /// The figures of a collision.
 #[derive(Serialize)]
@@ -149,7 +149,7 @@ impl<'a> CollisionFigures<'a> {
 /// pierced])` when vertices are left inside the body, edges crossing it or faces pierced by
 /// it (the caller refuses an edit that leaves them, or reports a new garment that does).
 #[must_use]
-pub(super) fn collide_and_emit(
+pub(in crate::session) fn collide_and_emit(
     scope: &mut StepScope<'_, '_, '_>,
     body: &Body,
     index: &BodyIndex,
@@ -166,7 +166,7 @@ pub(super) fn collide_and_emit(
 /// vertices inside, edges crossing, faces pierced): the kept garment is emitted again after the attempt
 /// ([`emit_kept`]), so that the last thing logged is what the session holds; returns the
 /// message. The caller keeps the state and refuses the edit with it.
-pub(super) fn unclear(
+pub(in crate::session) fn unclear(
     scope: &mut StepScope<'_, '_, '_>,
     kept: &GarmentState,
     index: &BodyIndex,
@@ -181,7 +181,7 @@ pub(super) fn unclear(
 
 /// Emits a garment state the session returns to (after an undo, or a refused attempt): its
 /// re-surfaced parts (curves, patches, M0), then its collision and M1.
-pub(super) fn emit_kept(scope: &mut StepScope<'_, '_, '_>, kept: &GarmentState, index: &BodyIndex) {
+pub(in crate::session) fn emit_kept(scope: &mut StepScope<'_, '_, '_>, kept: &GarmentState, index: &BodyIndex) {
     if let Some(fw) = &kept.framework {
         for part in GarmentPart::RESURFACED {
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));
@@ -278,7 +278,7 @@ fn collide_garment(
 }
 
 /// Emits the state's collision (detection, then response), if it has one.
-pub(super) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState, index: &BodyIndex) {
+pub(in crate::session) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState, index: &BodyIndex) {
     if let Some(outcome) = &state.collision {
         for part in CollisionPart::ALL {
             scope.emit(

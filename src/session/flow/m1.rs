@@ -6,13 +6,13 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use super::super::emit::StepScope;
-use super::super::runner::RunOptions;
-use super::super::stage::{M1Outcome, M1Stage, Stage};
-use super::super::state::GarmentState;
 use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::m1::{self, M0Collided, M1Options, SelectInput, Selection, cut};
+use crate::session::emit::StepScope;
+use crate::session::options::RunOptions;
+use crate::session::stage::{M1Outcome, M1Stage, Stage};
+use crate::session::state::GarmentState;
 
 /// The figures of M1.
 #[derive(Serialize)]
@@ -58,7 +58,7 @@ struct M1Verify {
 }
 
 /// Builds and collides M1 over the state's collided M0, and rebuilds the cut lines on it.
-pub(super) fn build_m1(
+pub(in crate::session) fn build_m1(
     scope: &mut StepScope<'_, '_, '_>,
     body: &Body,
     index: &BodyIndex,
@@ -158,7 +158,7 @@ pub(super) fn build_m1(
 }
 
 /// Emits the state's M1, if it has one.
-pub(super) fn emit_m1(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState) {
+pub(in crate::session) fn emit_m1(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState) {
     if let (Some(outcome), Some(m0)) = (&state.m1, &state.collision) {
         scope.emit("garment.m1", Stage::M1(M1Stage { outcome, m0 }));
     }

@@ -6,7 +6,8 @@ use glam::DVec3;
 use super::context::{find, point, section_error};
 use crate::garment::adjust::{combined_adjustment, straighten};
 use crate::garment::contour::Contour;
-use crate::garment::model::{Contours, FrameworkError, Straightened};
+use crate::garment::contour::ContourKind;
+use crate::garment::model::{FrameworkError, Straightened};
 use crate::garment::ring::{GarmentRing, RingOptions};
 
 /// A contour spec: name and the `(ring, anchor)` points it passes, lowest first.
@@ -18,7 +19,7 @@ pub fn fit_contours(
     specs: &[ContourSpec],
     rings: &[GarmentRing],
     extra: &[(String, DVec3)],
-    kind: Contours,
+    kind: ContourKind,
 ) -> Result<Vec<Contour>, FrameworkError> {
     specs
         .iter()

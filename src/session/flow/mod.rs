@@ -1,0 +1,13 @@
+//! The garment flow the steps share, below them: a framework solved
+//! ([`garment`](self::garment)), a drag solved and re-surfaced ([`drag`](self::drag)), M0
+//! collided and its stages emitted ([`collide`]), M1 built on it ([`m1`](self::m1)), the
+//! sculpts made again ([`sculpt`](self::sculpt)), and what the NURBS steps share
+//! ([`nurbs`](self::nurbs)). No file here imports a step; the steps in `steps/` import from
+//! here and never from each other.
+
+pub(super) mod collide;
+pub(super) mod drag;
+pub(super) mod garment;
+pub(super) mod m1;
+pub(super) mod nurbs;
+pub(super) mod sculpt;

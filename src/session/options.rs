@@ -1,0 +1,40 @@
+//! What a run is given: the command line's settings ([`RunOptions`]) and what every step
+//! may read ([`StepContext`]).
+
+use std::path::PathBuf;
+
+use super::format::Session;
+use crate::body::{LandmarkOptions, PartitionOptions};
+use crate::collision::CollisionOptions;
+
+/// Run settings from the command line.
+#[derive(Clone, Debug, Default)]
+pub struct RunOptions {
+    /// Replaces the session's body (`--body`).
+    pub body_override: Option<PathBuf>,
+    /// Landmark detection settings (overrides come from the session).
+    pub landmarks: LandmarkOptions,
+    /// Partition settings.
+    pub partitions: PartitionOptions,
+    /// Collision settings.
+    pub collision: CollisionOptions,
+    /// Check every collision against the brute-force ground truth (`--verify`; slow).
+    pub verify: bool,
+    /// The largest body file read, bytes (`--max-input-mb`; default
+    /// [`crate::input::DEFAULT_MAX_INPUT_BYTES`]; 0 means the default).
+    pub max_input_bytes: u64,
+    /// Set (by a signal handler) to end the run after the current step: the steps after it
+    /// do not run, an `interrupted` stage says where it stopped, and the report has
+    /// [`RunReport::interrupted`].
+    pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// Where body indexes are kept between runs (`--index-cache`); `None`: built every run.
+    pub index_cache: Option<crate::body::index_cache::IndexCache>,
+}
+
+/// What every step may read: the session and the run's settings.
+pub(in crate::session) struct StepContext<'a> {
+    /// The session (its scene settings: the solver).
+    pub(in crate::session) session: &'a Session,
+    /// Run settings from the command line.
+    pub(in crate::session) options: &'a RunOptions,
+}
