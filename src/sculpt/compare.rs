@@ -5,8 +5,12 @@
 
 use std::time::Instant;
 
-use super::Displacement;
-use super::{Drag, Level, Measures, SculptError, SculptOptions, longest_edge, measure, prepare, refine, uniform_step};
+use super::adaptive::{Level, refine};
+use super::drag::{Displacement, Drag};
+use super::loop_rules::uniform_step;
+use super::make::{longest_edge, prepare};
+use super::measure::{Measures, measure};
+use super::options::{SculptError, SculptOptions};
 use crate::mesh::TriMesh;
 
 /// One way of refining the drag.

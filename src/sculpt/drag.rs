@@ -23,7 +23,8 @@
 
 use glam::DVec3;
 
-use super::{Falloff, SculptError};
+use super::falloff::Falloff;
+use super::options::SculptError;
 use crate::geom::closest::closest_on_triangle;
 use crate::mesh::TriMesh;
 

@@ -12,6 +12,7 @@ mod garment;
 mod index_cache;
 mod interrupt;
 mod landmarks;
+mod layout;
 mod m1;
 mod mannequin;
 mod meshes;

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::{CurveRoles, THIGH_DROP, Template};
+use super::spec::{CurveRoles, THIGH_DROP, Template};
 use crate::body::LandmarkKind;
 use crate::garment::anchors::{QUAD, mirror_pairs, quad_anchors};
 use crate::garment::m0::CurveRef;

@@ -13,7 +13,7 @@ use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, Fit, FrameworkError};
 use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
 use crate::garment::solve::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
-use crate::garment::template::{BRIDGE_REACH, THIGH_DROP};
+use crate::garment::template::spec::{BRIDGE_REACH, THIGH_DROP};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 
 /// Solves the jumpsuit's curves on the body.

@@ -5,7 +5,7 @@
 mod curves;
 mod patches;
 
-use super::{CurveRoles, EndJoint, TangentJoint, Template};
+use super::spec::{CurveRoles, EndJoint, TangentJoint, Template};
 use crate::garment::anchors::{LEFT_LEG, QUAD, RIGHT_LEG, TORSO, mirror_pairs};
 use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, TemplateKind};
 use crate::garment::probe::BodyProbe;
