@@ -17,6 +17,7 @@ pub mod edges;
 pub mod faces;
 pub mod line_line;
 pub mod point_face;
+pub mod poke;
 mod push;
 pub mod quality;
 pub mod response;

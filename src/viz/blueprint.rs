@@ -6,7 +6,7 @@ use rerun::blueprint::{
     TimePanel, TimeSeriesView, Vertical,
 };
 
-use super::logger::METRIC_UNITS;
+use super::recording::METRIC_UNITS;
 
 /// Top left, two tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
 /// the collision marks and the framework) and the Body (partition tint, landmarks, rings,

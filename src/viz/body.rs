@@ -4,7 +4,8 @@
 use rerun::{LineStrips3D, Mesh3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{partition_color, partition_tint};
-use super::logger::{RerunLogger, closed, f32s, to_sink};
+use super::draw::{closed, f32s};
+use super::logger::{RerunLogger, to_sink};
 use crate::body::{BodyMesh, BodyRing, DetectionMethod, LandmarkKind, Landmarks, Partition, PartitionId, ResponseRule};
 use crate::session::{SectionCut, SinkError};
 

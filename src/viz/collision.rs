@@ -6,7 +6,8 @@
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
-use super::logger::{RerunLogger, colored_mesh, f32s, log_face_outlines, to_sink};
+use super::draw::{colored_mesh, f32s, log_face_outlines};
+use super::logger::{RerunLogger, to_sink};
 use crate::collision::{AppliedRule, BodyIndex};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 

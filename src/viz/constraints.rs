@@ -7,7 +7,8 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 
-use super::logger::{RerunLogger, closed, f32s, to_sink};
+use super::draw::{closed, f32s};
+use super::logger::{RerunLogger, to_sink};
 use crate::constraint::{ConstraintNet, CurveKind, Edit, Solution};
 use crate::garment::Framework;
 use crate::session::SinkError;

@@ -4,7 +4,8 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
-use super::logger::{RerunLogger, closed, colored_mesh, edge_paths, f32s, to_sink};
+use super::draw::{closed, colored_mesh, edge_paths, f32s};
+use super::logger::{RerunLogger, to_sink};
 use crate::garment::{Framework, GarmentRing, RingStages};
 use crate::mesh::TriMesh;
 use crate::session::{GarmentPart, RingStep, SinkError};

@@ -1,8 +1,8 @@
 //! [`RerunLogger`]: the stage sink that logs to a Rerun recording.
 
-use glam::DVec3;
 use rerun::{RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, ViewCoordinates};
 
+use super::recording::{OrderedRecording, metric_path};
 use crate::mannequin::{MannequinResult, Region};
 use crate::session::{
     BodyStage, CollisionStage, ConstraintStage, GarmentStage, LogDetail, M1Stage, SectionCut, SinkError, Stage,
@@ -101,108 +101,6 @@ pub(super) fn to_sink(e: impl Into<SinkError>) -> SinkError {
     e.into()
 }
 
-/// A mesh with smooth vertex normals and one colour per vertex.
-pub(super) fn colored_mesh(mesh: &crate::mesh::TriMesh, colors: Vec<[u8; 3]>) -> rerun::Mesh3D {
-    let normals: Vec<[f32; 3]> = mesh.vertex_normals().iter().map(|n| n.as_vec3().to_array()).collect();
-    rerun::Mesh3D::new(mesh.positions_f32())
-        .with_triangle_indices(mesh.triangles.iter().copied())
-        .with_vertex_normals(normals)
-        .with_vertex_colors(colors)
-}
-
-/// A mesh's edges as few polylines, every edge in exactly one: from each vertex in turn,
-/// a walk along unused edges (the first unused one at each vertex, by edge order) until it
-/// reaches a vertex with none left. The same segments as one two-point strip per edge, in
-/// about half the points and far fewer strips; deterministic.
-pub(super) fn edge_paths(positions: &[DVec3], edges: &[[u32; 2]]) -> Vec<Vec<[f32; 3]>> {
-    let n = positions.len();
-    // Incident edges of every vertex, by edge order (counting sort).
-    let mut start = vec![0usize; n + 1];
-    for &[a, b] in edges {
-        start[a as usize + 1] += 1;
-        start[b as usize + 1] += 1;
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let mut fill = start.clone();
-    let mut incident = vec![0u32; 2 * edges.len()];
-    for (e, &[a, b]) in edges.iter().enumerate() {
-        for v in [a, b] {
-            incident[fill[v as usize]] = e as u32;
-            fill[v as usize] += 1;
-        }
-    }
-    let mut next = start.clone();
-    let mut used = vec![false; edges.len()];
-    let mut unused_at = |v: usize, used: &[bool]| -> Option<u32> {
-        while next[v] < start[v + 1] {
-            let e = incident[next[v]];
-            if !used[e as usize] {
-                return Some(e);
-            }
-            next[v] += 1;
-        }
-        None
-    };
-    let point = |v: usize| positions[v].as_vec3().to_array();
-    let mut paths = Vec::new();
-    for v in 0..n {
-        while let Some(e) = unused_at(v, &used) {
-            let mut path = vec![point(v)];
-            let (mut at, mut edge) = (v, e);
-            loop {
-                used[edge as usize] = true;
-                let [a, b] = edges[edge as usize];
-                at = if a as usize == at { b as usize } else { a as usize };
-                path.push(point(at));
-                match unused_at(at, &used) {
-                    Some(e) => edge = e,
-                    None => break,
-                }
-            }
-            paths.push(path);
-        }
-    }
-    paths
-}
-
-pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
-    points.iter().map(|p| p.as_vec3().to_array()).collect()
-}
-
-/// Logs the closed outlines of `faces` (indices into `triangles`, corners at `positions`)
-/// at `path`, or clears it when there are none.
-pub(super) fn log_face_outlines(
-    rec: &OrderedRecording,
-    path: &str,
-    (triangles, positions): (&[[u32; 3]], &[DVec3]),
-    faces: &[u32],
-    (radius, colour): (f32, [u8; 3]),
-) -> Result<(), SinkError> {
-    if faces.is_empty() {
-        return rec.log(path, &rerun::Clear::flat());
-    }
-    let outlines: Vec<Vec<[f32; 3]>> = faces
-        .iter()
-        .map(|&f| closed(&triangles[f as usize].map(|v| positions[v as usize])))
-        .collect();
-    rec.log(
-        path,
-        &rerun::LineStrips3D::new(outlines)
-            .with_radii([radius])
-            .with_colors([colour]),
-    )
-}
-
-pub(super) fn closed(points: &[DVec3]) -> Vec<[f32; 3]> {
-    let mut v = f32s(points);
-    if let Some(first) = v.first().copied() {
-        v.push(first);
-    }
-    v
-}
-
 /// Whether a stage is logged at [`LogDetail::Final`]: the body's mesh, M0 as built and
 /// after its collision, M1 with its cut lines, refusals, and the ends of steps.
 fn is_final(stage: &Stage<'_>) -> bool {
@@ -216,94 +114,10 @@ fn is_final(stage: &Stage<'_>) -> bool {
     }
 }
 
-/// The units the metrics are plotted by: the folder under `metrics/` each figure goes to.
-pub const METRIC_UNITS: [(&str, &str); 6] = [
-    ("count", "Counts"),
-    ("size", "Mesh sizes"),
-    ("m", "Lengths (m)"),
-    ("mm", "Mannequin (mm)"),
-    ("ratio", "Ratios"),
-    ("ms", "Time (ms)"),
-];
-
-/// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
-/// `metrics/mm/...` for names ending in `_mm`, `metrics/m/...` for lengths and residuals
-/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/size/...` for
-/// mesh sizes and the vertices a detection tested or skipped (thousands, which would flatten
-/// the collision counts beside them), `metrics/count/...` otherwise.
-pub fn metric_path(path: &str) -> String {
-    let Some(rest) = path.strip_prefix("metrics/") else {
-        return path.to_string();
-    };
-    let unit = if rest.starts_with("timings/") {
-        "ms"
-    } else if rest.ends_with("_mm") {
-        "mm"
-    } else if rest.ends_with("_m") || rest.contains("_m/") || rest.contains("residual") {
-        "m"
-    } else if rest.contains("stretch") {
-        "ratio"
-    } else if rest.ends_with("faces")
-        || (rest.ends_with("_vertices") && !rest.contains("penetrating"))
-        || rest.contains("skipped")
-    {
-        "size"
-    } else {
-        "count"
-    };
-    format!("metrics/{unit}/{rest}")
-}
-
-/// A recording stream that makes every log call its own chunk, written in call order.
-///
-/// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
-/// a hash map: two runs of the same session would write the same chunks in different
-/// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
-/// leaves one entity per flush, so the file's chunks follow the calls.
-pub struct OrderedRecording(RecordingStream, bool);
-
-impl OrderedRecording {
-    /// Logs `data` at `path` on the current timelines, as its own chunk.
-    pub fn log<AS: ?Sized + rerun::AsComponents>(
-        &self,
-        path: impl Into<rerun::EntityPath>,
-        data: &AS,
-    ) -> Result<(), SinkError> {
-        let path = path.into();
-        // With metrics only (the flag), anything but the metrics, the log and the legends
-        // is left out.
-        if self.1 && !["metrics", "log", "legend"].contains(&path.iter().next().map_or("", |p| p.unescaped_str())) {
-            return Ok(());
-        }
-        self.0.log(path, data)?;
-        self.0.flush_async()?;
-        Ok(())
-    }
-
-    /// Logs static `data` at `path`, as its own chunk.
-    pub fn log_static<AS: ?Sized + rerun::AsComponents>(
-        &self,
-        path: impl Into<rerun::EntityPath>,
-        data: &AS,
-    ) -> Result<(), SinkError> {
-        self.0.log_static(path, data)?;
-        self.0.flush_async()?;
-        Ok(())
-    }
-}
-
-impl std::ops::Deref for OrderedRecording {
-    type Target = RecordingStream;
-
-    fn deref(&self) -> &RecordingStream {
-        &self.0
-    }
-}
-
 impl RerunLogger {
     /// Logs into `rec`; sends the static scene settings (y up, series styles) first.
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
-        let rec = OrderedRecording(rec, options.detail == LogDetail::Metrics);
+        let rec = OrderedRecording::new(rec, options.detail == LogDetail::Metrics);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
         // The mannequin figures are one value per run: markers, polar warm and chord cool.
@@ -457,72 +271,5 @@ impl StageSink for RerunLogger {
                 format!("interrupted by a signal after step {after}: the steps after it did not run"),
             ),
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Every edge of a mesh (a grid with both diagonals here and there, a fan, a lone edge,
-    /// an isolated vertex) is drawn exactly once by the paths, and nothing else is.
-    #[test]
-    fn edge_paths_draw_every_edge_once_and_nothing_else() {
-        let w = 7;
-        let mut positions: Vec<DVec3> = (0..w * w)
-            .map(|k| DVec3::new((k % w) as f64, (k / w) as f64, 0.1 * ((k * 7919) % 13) as f64))
-            .collect();
-        let id = |i: usize, j: usize| (j * w + i) as u32;
-        let mut edges = Vec::new();
-        for j in 0..w {
-            for i in 0..w {
-                if i + 1 < w {
-                    edges.push([id(i, j), id(i + 1, j)]);
-                }
-                if j + 1 < w {
-                    edges.push([id(i, j + 1), id(i, j)]);
-                }
-                if i + 1 < w && j + 1 < w {
-                    edges.push([id(i, j), id(i + 1, j + 1)]);
-                    if (i + j) % 3 == 0 {
-                        edges.push([id(i + 1, j), id(i, j + 1)]);
-                    }
-                }
-            }
-        }
-        let lone = positions.len() as u32;
-        positions.extend([
-            DVec3::new(9.0, 9.0, 9.0),
-            DVec3::new(9.5, 9.0, 9.0),
-            DVec3::new(-3.0, 0.0, 0.0),
-        ]);
-        edges.push([lone, lone + 1]);
-        let key = |p: [f32; 3]| p.map(f32::to_bits);
-        let mut expected: Vec<_> = edges
-            .iter()
-            .map(|&[a, b]| {
-                let (p, q) = (
-                    key(positions[a as usize].as_vec3().to_array()),
-                    key(positions[b as usize].as_vec3().to_array()),
-                );
-                if p <= q { (p, q) } else { (q, p) }
-            })
-            .collect();
-        expected.sort_unstable();
-        let paths = edge_paths(&positions, &edges);
-        let mut drawn: Vec<_> = paths
-            .iter()
-            .flat_map(|path| path.windows(2).map(|s| (key(s[0]), key(s[1]))))
-            .map(|(p, q)| if p <= q { (p, q) } else { (q, p) })
-            .collect();
-        drawn.sort_unstable();
-        assert_eq!(drawn, expected);
-        let points: usize = paths.iter().map(Vec::len).sum();
-        assert!(
-            points < 2 * edges.len() * 3 / 4,
-            "{points} points for {} edges",
-            edges.len()
-        );
-        assert!(edge_paths(&positions, &[]).is_empty());
     }
 }

@@ -7,7 +7,8 @@ use glam::DVec3;
 use rerun::{Clear, LineStrips3D, Points3D, TextLogLevel};
 
 use super::colors::m1_rule_color;
-use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, log_face_outlines, to_sink};
+use super::draw::{colored_mesh, edge_paths, f32s, log_face_outlines};
+use super::logger::{RerunLogger, to_sink};
 use crate::m1::Rule;
 use crate::session::{M1Stage, SinkError};
 

@@ -6,7 +6,8 @@ use glam::DVec3;
 use rerun::{Mesh3D, Points3D, TextLogLevel, Transform3D};
 
 use super::colors::error_color;
-use super::logger::{RerunLogger, f32s, to_sink};
+use super::draw::f32s;
+use super::logger::{RerunLogger, to_sink};
 use crate::mannequin::{MannequinResult, RingGrid};
 use crate::session::SinkError;
 

@@ -6,7 +6,8 @@
 use glam::DVec3;
 use rerun::{LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel, Transform3D};
 
-use super::logger::{RerunLogger, f32s, to_sink};
+use super::draw::f32s;
+use super::logger::{RerunLogger, to_sink};
 use crate::nurbs::{Experiment, Kdop, NurbsSurface};
 use crate::session::{NurbsStage, SinkError};
 

@@ -10,7 +10,8 @@ use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, Radius, TextLogLevel};
 
 use super::colors::error_color;
-use super::logger::{RerunLogger, colored_mesh, edge_paths, f32s, to_sink};
+use super::draw::{colored_mesh, edge_paths, f32s};
+use super::logger::{RerunLogger, to_sink};
 use crate::mesh::TriMesh;
 use crate::sculpt::{Comparison, Displacement, Level, Variant};
 use crate::session::{SculptStage, SinkError};

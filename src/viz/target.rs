@@ -26,7 +26,7 @@ pub enum RecordingTarget {
 }
 
 /// Batching without clock- or size-driven flushes: the logger flushes after every log call
-/// (see [`super::logger::OrderedRecording`]), so two runs write the same chunks in the same
+/// (see [`super::recording::OrderedRecording`]), so two runs write the same chunks in the same
 /// order.
 fn batcher() -> rerun::log::ChunkBatcherConfig {
     rerun::log::ChunkBatcherConfig::NEVER

@@ -9,15 +9,106 @@ use glam::DVec3;
 use crate::body::{LandmarkKind, Side};
 use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
 use crate::garment::bridge::{Bridging, bridge};
+use crate::garment::contour::Contour;
 use crate::garment::ease::Ease;
-use crate::garment::model::{Counts, Fit, FrameworkError};
+use crate::garment::model::{Counts, Fit, FrameworkError, Layout, NamedPlane, Straightened};
 use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
+use crate::garment::ring::GarmentRing;
 use crate::garment::solve::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
 use crate::garment::template::spec::{BRIDGE_REACH, THIGH_DROP};
 use crate::geom::{Plane, SectionLoop, section_mesh};
 
 /// Solves the jumpsuit's curves on the body.
 pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, FrameworkError> {
+    let lv = levels(ctx)?;
+    let mut planes = Vec::new();
+    let neckline = neckline(ctx, lv.neck_rise, &mut planes)?;
+    // Straps: vertical planes across each shoulder.
+    let body = ctx.body;
+    let strap_x = |side: Side| -> Result<f64, FrameworkError> {
+        let sn = landmark(body, LandmarkKind::SideNeck, side)?;
+        let sh = landmark(body, LandmarkKind::Shoulder, side)?;
+        Ok(sn.x + lv.strap_position * (sh.x - sn.x))
+    };
+    let straps = (strap_x(Side::Left)?, strap_x(Side::Right)?);
+    let mut rings = vec![neckline];
+    let princess = chest_ring(ctx, &lv, straps, &mut rings)?;
+    torso_and_leg_rings(ctx, &lv, princess, &mut rings)?;
+    for (name, y) in [
+        ("chest", lv.chest_y),
+        ("bust", lv.y_of(LandmarkKind::Bust)),
+        ("waist", lv.y_of(LandmarkKind::Waist)),
+        ("hip", lv.y_of(LandmarkKind::Hip)),
+        ("thigh", lv.thigh_y),
+        ("knee", lv.knee_y),
+        ("hem", lv.hem_y),
+    ] {
+        let centre = body
+            .landmarks
+            .torso_at(y)
+            .map_or(DVec3::new(ctx.mid_x, y, 0.0), |t| DVec3::new(t.x, y, t.y));
+        planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
+    }
+    let open_curves = open_curves(ctx, &lv, straps, &rings, &mut planes)?;
+    let (contours, straightened) = contours(ctx, fit, &mut rings, &open_curves)?;
+    let layout = layout(ctx, &lv, &rings)?;
+    Ok(Parts {
+        planes,
+        rings,
+        open_curves,
+        contours,
+        straightened,
+        layout,
+    })
+}
+
+/// The heights the jumpsuit's curves are cut at, m, and the dimensions that place them.
+struct Levels {
+    /// The body's height.
+    h: f64,
+    /// The chest ring's: just below the armpit.
+    chest_y: f64,
+    /// The crotch landmark.
+    crotch_ref: DVec3,
+    /// The thigh rings': below where the legs part.
+    thigh_y: f64,
+    /// The thigh rings' height from the landmarks alone (the mesh's counts come from it: the
+    /// topology must not depend on the ease).
+    thigh_count_y: f64,
+    knee_y: f64,
+    ankle_y: f64,
+    hem_y: f64,
+    shoulder_y: f64,
+    /// The neckline's rise over the neck base (`neck_rise`).
+    neck_rise: f64,
+    /// Where the straps cross the shoulders, from the side neck (0) to the shoulder point
+    /// (1) (`strap_position`).
+    strap_position: f64,
+    /// Every landmark's height.
+    heights: [(LandmarkKind, f64); 4],
+}
+
+impl Levels {
+    /// A landmark's height among those kept (bust, waist, hip, shoulder).
+    fn y_of(&self, kind: LandmarkKind) -> f64 {
+        self.heights
+            .iter()
+            .find(|(k, _)| *k == kind)
+            .map_or(f64::NAN, |(_, y)| *y)
+    }
+}
+
+/// How the curves bridge a gap of the body `gap` deep (the crotch curve and the straps).
+fn bridging(ctx: &BuildCtx<'_>, gap: f64) -> Bridging {
+    Bridging {
+        gap,
+        width: (2.0 * gap).max(ctx.edge_length()),
+        reach: BRIDGE_REACH * ctx.height,
+    }
+}
+
+/// The levels, and the dimensions `inseam`, `neck_rise` and `strap_position`.
+fn levels(ctx: &mut BuildCtx<'_>) -> Result<Levels, FrameworkError> {
     let body = ctx.body;
     let lm = &body.landmarks;
     let h = ctx.height;
@@ -29,16 +120,9 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
     // Where the legs part: the crotch, or lower where the thighs meet below it and leave
     // the garment no room (the crotch curve bridges that gap, so the thigh rings go below).
     let crotch_ref = landmark(body, LandmarkKind::Crotch, Side::Centre)?;
-    let edge = ctx.edge_length();
-    let bridging = move |gap: f64| Bridging {
-        gap,
-        width: (2.0 * gap).max(edge),
-        reach: BRIDGE_REACH * h,
-    };
     let below = DVec3::new(ctx.mid_x, crotch_y - ctx.ease, crotch_ref.z);
-    let legs_part_y = (bridge(ctx.probe, below, DVec3::NEG_Y, &bridging(ctx.ease)).y + ctx.ease).min(crotch_y);
+    let legs_part_y = (bridge(ctx.probe, below, DVec3::NEG_Y, &bridging(ctx, ctx.ease)).y + ctx.ease).min(crotch_y);
     let thigh_y = legs_part_y - THIGH_DROP * h;
-    // The mesh's counts come from the landmarks (the topology must not depend on the ease).
     let thigh_count_y = crotch_y - THIGH_DROP * h;
     let knee_y = y_of(LandmarkKind::Knee);
     let ankle_y = y_of(LandmarkKind::Ankle);
@@ -48,7 +132,6 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         (crotch_y - knee_y + 0.05 * h, crotch_y - floor.y - 0.02 * h),
         "the hem must lie between the knee and the foot",
     )?;
-    let hem_y = crotch_y - inseam;
     let neck_rise = ctx.value(
         "neck_rise",
         0.0,
@@ -56,10 +139,39 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         "the neckline must stay near the neck base",
     )?;
     let strap_position = ctx.value("strap_position", 0.5, (0.1, 0.9), "the strap must lie on the shoulder")?;
-    let mut planes = Vec::new();
+    Ok(Levels {
+        h,
+        chest_y,
+        crotch_ref,
+        thigh_y,
+        thigh_count_y,
+        knee_y,
+        ankle_y,
+        hem_y: crotch_y - inseam,
+        shoulder_y: y_of(LandmarkKind::Shoulder),
+        neck_rise,
+        strap_position,
+        heights: [
+            LandmarkKind::Bust,
+            LandmarkKind::Waist,
+            LandmarkKind::Hip,
+            LandmarkKind::Shoulder,
+        ]
+        .map(|k| (k, y_of(k))),
+    })
+}
 
-    // Neckline: the neck-base plane, shifted up by the rise.
-    let base = lm
+/// The neckline: the body's section by the neck-base plane shifted up by the rise, the
+/// loop nearest the neck's landmarks. Adds the neck-base and upper neck planes.
+fn neckline(
+    ctx: &mut BuildCtx<'_>,
+    neck_rise: f64,
+    planes: &mut Vec<NamedPlane>,
+) -> Result<GarmentRing, FrameworkError> {
+    let body = ctx.body;
+    let h = ctx.height;
+    let base = body
+        .landmarks
         .neck_plane()
         .ok_or_else(|| section_error("neckline", "the neck landmarks do not span a plane".into()))?;
     let neck_plane = Plane {
@@ -90,25 +202,24 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         })
         .ok_or_else(|| section_error("neckline", "the neck plane cuts no closed loop".into()))?;
     let e = ctx.ring_ease("neckline")?;
-    let neckline = ctx.ring(
+    ctx.ring(
         "neckline",
         neck_plane,
         vec![neck_loop.points.clone()],
         &quad_anchors(),
         Ease::Uniform(e),
-    )?;
+    )
+}
 
-    // Straps: vertical planes across each shoulder.
-    let strap_x = |side: Side| -> Result<f64, FrameworkError> {
-        let sn = landmark(body, LandmarkKind::SideNeck, side)?;
-        let sh = landmark(body, LandmarkKind::Shoulder, side)?;
-        Ok(sn.x + strap_position * (sh.x - sn.x))
-    };
-    let (xl, xr) = (strap_x(Side::Left)?, strap_x(Side::Right)?);
-    let shoulder_y = y_of(LandmarkKind::Shoulder);
-
-    // Chest ring first: its princess anchors lie in the strap planes.
-    let mut rings = vec![neckline];
+/// The chest ring, its princess anchors in the strap planes `(xl, xr)`: added to `rings`.
+/// Returns the princess fractions of the eased half widths that put them there.
+fn chest_ring(
+    ctx: &mut BuildCtx<'_>,
+    lv: &Levels,
+    (xl, xr): (f64, f64),
+    rings: &mut Vec<GarmentRing>,
+) -> Result<(f64, f64), FrameworkError> {
+    let chest_y = lv.chest_y;
     let chest_raw = ctx.torso_loop("chest", chest_y)?;
     let e = ctx.ring_ease("chest")?;
     let chest_anchors = {
@@ -152,19 +263,30 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         chest_ease,
     )?;
     rings.push(chest);
+    Ok((fl, fr))
+}
+
+/// The bust, waist and hip rings (princess fractions `(fl, fr)`), then the thigh, knee and
+/// hem rings of each leg: added to `rings`.
+fn torso_and_leg_rings(
+    ctx: &mut BuildCtx<'_>,
+    lv: &Levels,
+    (fl, fr): (f64, f64),
+    rings: &mut Vec<GarmentRing>,
+) -> Result<(), FrameworkError> {
     for (name, kind) in [
         ("bust", LandmarkKind::Bust),
         ("waist", LandmarkKind::Waist),
         ("hip", LandmarkKind::Hip),
     ] {
-        let y = y_of(kind);
+        let y = lv.y_of(kind);
         let raw = ctx.torso_loop(name, y)?;
         let e = ctx.ring_ease(name)?;
         let ease = ctx.limited_ease(y, std::slice::from_ref(&raw), e);
         let r = ctx.ring(name, Plane::horizontal(y), vec![raw], &torso_anchors(fl, fr), ease)?;
         rings.push(r);
     }
-    for (level, y) in [("thigh", thigh_y), ("knee", knee_y), ("hem", hem_y)] {
+    for (level, y) in [("thigh", lv.thigh_y), ("knee", lv.knee_y), ("hem", lv.hem_y)] {
         let loops = ctx.leg_loops(level, y)?;
         for side in [Side::Left, Side::Right] {
             let name = format!("{}_{level}", if side == Side::Left { "left" } else { "right" });
@@ -179,24 +301,23 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
             rings.push(r);
         }
     }
-    for (name, y) in [
-        ("chest", chest_y),
-        ("bust", y_of(LandmarkKind::Bust)),
-        ("waist", y_of(LandmarkKind::Waist)),
-        ("hip", y_of(LandmarkKind::Hip)),
-        ("thigh", thigh_y),
-        ("knee", knee_y),
-        ("hem", hem_y),
-    ] {
-        let centre = lm
-            .torso_at(y)
-            .map_or(DVec3::new(ctx.mid_x, y, 0.0), |t| DVec3::new(t.x, y, t.y));
-        planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
-    }
+    Ok(())
+}
 
-    // The crotch curve in the vertical crotch plane, from the hip's centre front down
-    // through the crotch and up to its centre back.
-    let hip_y = y_of(LandmarkKind::Hip);
+/// The open curves: the crotch curve in the vertical crotch plane, from the hip's centre
+/// front down through the crotch and up to its centre back; then a strap over each
+/// shoulder in its plane `(xl, xr)`, from the chest ring's front princess anchor to its
+/// back one. Adds their planes.
+fn open_curves(
+    ctx: &BuildCtx<'_>,
+    lv: &Levels,
+    (xl, xr): (f64, f64),
+    rings: &[GarmentRing],
+    planes: &mut Vec<NamedPlane>,
+) -> Result<Vec<OpenCurve>, FrameworkError> {
+    let body = ctx.body;
+    let (h, crotch_ref) = (lv.h, lv.crotch_ref);
+    let hip_y = lv.y_of(LandmarkKind::Hip);
     let crotch_plane = Plane::from_point_normal(DVec3::new(ctx.mid_x, 0.0, 0.0), DVec3::X);
     planes.push(ctx.plane_for(
         "crotch",
@@ -215,11 +336,11 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         plane: crotch_plane,
         raw: crotch_part,
         ease: Ease::Uniform(ctx.ease),
-        ends: [point(&rings, "hip", "front")?, point(&rings, "hip", "back")?],
+        ends: [point(rings, "hip", "front")?, point(rings, "hip", "back")?],
         per_half,
         control_per_half: 4,
         fitted_per_half: ctx.options.ring.fitted_points / 4,
-        bridge: Some((ctx.probe, bridging(ctx.ease))),
+        bridge: Some((ctx.probe, bridging(ctx, ctx.ease))),
     })?;
     let mut open_curves = vec![crotch];
     for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
@@ -230,15 +351,14 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         };
         let plane = Plane::from_point_normal(DVec3::new(x, 0.0, 0.0), DVec3::X);
         let reference = landmark(body, LandmarkKind::Shoulder, side)?;
-        let reference = DVec3::new(x, shoulder_y, reference.z);
-        planes.push(ctx.plane_for(name, plane, DVec3::new(x, shoulder_y - 0.04 * h, reference.z)));
+        let reference = DVec3::new(x, lv.shoulder_y, reference.z);
+        planes.push(ctx.plane_for(name, plane, DVec3::new(x, lv.shoulder_y - 0.04 * h, reference.z)));
         let part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &plane)
             .iter()
-            .filter_map(|l| section_part(l, chest_y, Apex::Highest))
+            .filter_map(|l| section_part(l, lv.chest_y, Apex::Highest))
             .min_by(|a, b| a.0[a.1].distance(reference).total_cmp(&b.0[b.1].distance(reference)))
             .ok_or_else(|| section_error(name, "the strap plane cuts no curve over the shoulder".into()))?;
-        let e = find(&rings, "chest")?.ease;
-        let e = match e {
+        let e = match find(rings, "chest")?.ease {
             Ease::Uniform(v) => v,
             Ease::PerDirection { front, .. } => front,
         };
@@ -249,18 +369,27 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
             raw: part,
             ease: Ease::Uniform(e),
             ends: [
-                point(&rings, "chest", &format!("front_{suffix}"))?,
-                point(&rings, "chest", &format!("back_{suffix}"))?,
+                point(rings, "chest", &format!("front_{suffix}"))?,
+                point(rings, "chest", &format!("back_{suffix}"))?,
             ],
             per_half,
             control_per_half: 4,
             fitted_per_half: ctx.options.ring.fitted_points / 4,
-            bridge: Some((ctx.probe, bridging(e))),
+            bridge: Some((ctx.probe, bridging(ctx, e))),
         })?;
         open_curves.push(strap);
     }
+    Ok(open_curves)
+}
 
-    // Contours, lowest point first.
+/// The contours (lowest point first), the leg rings straightened below the thigh for a
+/// loose fit, and the princess lines run on into the straps' end tangents.
+fn contours(
+    ctx: &BuildCtx<'_>,
+    fit: Fit,
+    rings: &mut [GarmentRing],
+    open_curves: &[OpenCurve],
+) -> Result<(Vec<Contour>, Vec<Straightened>), FrameworkError> {
     let side_names = [(Side::Left, "left"), (Side::Right, "right")];
     let mut specs: Vec<ContourSpec> = Vec::new();
     let torso_levels = ["hip", "waist", "bust", "chest"];
@@ -311,11 +440,11 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
                 .cloned()
                 .collect();
             // `loosen` reads points lowest first and straightens below the fixed ring.
-            straightened.extend(loosen(&mut rings, &mine, &fixed, &ctx.options.ring)?);
+            straightened.extend(loosen(rings, &mine, &fixed, &ctx.options.ring)?);
         }
     }
     let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
-    let mut contours = fit_contours(&specs, &rings, &crotch_point, ctx.options.contours)?;
+    let mut contours = fit_contours(&specs, rings, &crotch_point, ctx.options.contours)?;
     // The princess lines run on into the straps: each meets its strap's end tangent.
     for c in &mut contours {
         let strap = match c.name.split_once('_') {
@@ -329,37 +458,34 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
                 .map_err(|e| FrameworkError::Contour(c.name.clone(), e))?;
         }
     }
+    Ok((contours, straightened))
+}
 
+/// The mesh's sample counts, from the landmarks (not the hem dimension: the topology stays
+/// fixed).
+fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing]) -> Result<Layout, FrameworkError> {
     let k = ctx.options.resolution.max(2);
     let seam = (k / 3).max(1);
-    let junction = ctx.segments(hip_y - thigh_count_y, 1.0);
+    let hip_y = lv.y_of(LandmarkKind::Hip);
+    let junction = ctx.segments(hip_y - lv.thigh_count_y, 1.0);
     let inner = (junction / 3).max(1);
     let mut torso = [0; 3];
     for (n, (lo, hi)) in torso
         .iter_mut()
         .zip([("hip", "waist"), ("waist", "bust"), ("bust", "chest")])
     {
-        let (ylo, yhi) = (find(&rings, lo)?.plane.offset, find(&rings, hi)?.plane.offset);
+        let (ylo, yhi) = (find(rings, lo)?.plane.offset, find(rings, hi)?.plane.offset);
         *n = ctx.segments(yhi - ylo, 1.0);
     }
-    // Counts from the landmarks, not the hem dimension: the topology stays fixed.
-    let leg = [knee_y - ankle_y, thigh_count_y - knee_y].map(|dy| ctx.segments(dy, 1.0));
-    let layout = ctx.layout(Counts::Jumpsuit {
+    let leg = [lv.knee_y - lv.ankle_y, lv.thigh_count_y - lv.knee_y].map(|dy| ctx.segments(dy, 1.0));
+    Ok(ctx.layout(Counts::Jumpsuit {
         seam,
         neck: k - seam,
         junction,
         inner,
         crotch: junction - inner,
-        strap: ctx.segments(shoulder_y - chest_y, 1.5),
+        strap: ctx.segments(lv.shoulder_y - lv.chest_y, 1.5),
         torso,
         leg,
-    });
-    Ok(Parts {
-        planes,
-        rings,
-        open_curves,
-        contours,
-        straightened,
-        layout,
-    })
+    }))
 }

@@ -1,0 +1,95 @@
+//! The recording as the logger writes it: one chunk per log call in call order
+//! ([`OrderedRecording`]), and the metric paths by unit ([`metric_path`]).
+
+use rerun::RecordingStream;
+
+use crate::session::SinkError;
+
+/// The units the metrics are plotted by: the folder under `metrics/` each figure goes to.
+pub const METRIC_UNITS: [(&str, &str); 6] = [
+    ("count", "Counts"),
+    ("size", "Mesh sizes"),
+    ("m", "Lengths (m)"),
+    ("mm", "Mannequin (mm)"),
+    ("ratio", "Ratios"),
+    ("ms", "Time (ms)"),
+];
+
+/// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
+/// `metrics/mm/...` for names ending in `_mm`, `metrics/m/...` for lengths and residuals
+/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/size/...` for
+/// mesh sizes and the vertices a detection tested or skipped (thousands, which would flatten
+/// the collision counts beside them), `metrics/count/...` otherwise.
+pub fn metric_path(path: &str) -> String {
+    let Some(rest) = path.strip_prefix("metrics/") else {
+        return path.to_string();
+    };
+    let unit = if rest.starts_with("timings/") {
+        "ms"
+    } else if rest.ends_with("_mm") {
+        "mm"
+    } else if rest.ends_with("_m") || rest.contains("_m/") || rest.contains("residual") {
+        "m"
+    } else if rest.contains("stretch") {
+        "ratio"
+    } else if rest.ends_with("faces")
+        || (rest.ends_with("_vertices") && !rest.contains("penetrating"))
+        || rest.contains("skipped")
+    {
+        "size"
+    } else {
+        "count"
+    };
+    format!("metrics/{unit}/{rest}")
+}
+
+/// A recording stream that makes every log call its own chunk, written in call order.
+///
+/// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
+/// a hash map: two runs of the same session would write the same chunks in different
+/// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
+/// leaves one entity per flush, so the file's chunks follow the calls.
+pub struct OrderedRecording(RecordingStream, bool);
+
+impl OrderedRecording {
+    /// Writes to `rec`; with `metrics_only`, only the metrics, the log and the legends.
+    pub(super) fn new(rec: RecordingStream, metrics_only: bool) -> Self {
+        Self(rec, metrics_only)
+    }
+
+    /// Logs `data` at `path` on the current timelines, as its own chunk.
+    pub fn log<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        data: &AS,
+    ) -> Result<(), SinkError> {
+        let path = path.into();
+        // With metrics only (the flag), anything but the metrics, the log and the legends
+        // is left out.
+        if self.1 && !["metrics", "log", "legend"].contains(&path.iter().next().map_or("", |p| p.unescaped_str())) {
+            return Ok(());
+        }
+        self.0.log(path, data)?;
+        self.0.flush_async()?;
+        Ok(())
+    }
+
+    /// Logs static `data` at `path`, as its own chunk.
+    pub fn log_static<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        data: &AS,
+    ) -> Result<(), SinkError> {
+        self.0.log_static(path, data)?;
+        self.0.flush_async()?;
+        Ok(())
+    }
+}
+
+impl std::ops::Deref for OrderedRecording {
+    type Target = RecordingStream;
+
+    fn deref(&self) -> &RecordingStream {
+        &self.0
+    }
+}
