@@ -8,7 +8,7 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel}
 use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
 use super::draw::{colored_mesh, f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
-use crate::collision::{AppliedRule, BodyIndex};
+use crate::collision::{AppliedRule, BodyIndex, Collision};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
 impl RerunLogger {
@@ -122,9 +122,67 @@ impl RerunLogger {
     }
 
     fn collision_respond(&self, outcome: &CollisionOutcome) -> Result<(), SinkError> {
-        let rec = self.recording();
         let c = &outcome.collision;
         let g = &outcome.garment;
+        let counts = self.log_response_arrows(c)?;
+        self.m0(&c.mesh, &g.face_patch, &g.edges)?;
+        self.clearance_map(&c.mesh, &c.quality.clearance, &c.quality.near_faces)?;
+        let q = &c.quality;
+        self.log_left_over(outcome)?;
+        self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
+        self.scalar("metrics/collision/pierced_faces", q.pierced_faces as f64)?;
+        self.scalar("metrics/collision/face_clearance_m", q.face_clearance_m)?;
+        self.scalar("metrics/collision/crossing_edges", q.crossing_edges as f64)?;
+        self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
+        self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
+        self.scalar("metrics/collision/max_ease_error_m", q.max_ease_error_m)?;
+        self.scalar("metrics/collision/max_move_m", q.max_move_m)?;
+        self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
+        let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
+            format!(
+                "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside, {} crossing and {} pierced faces after, quality agrees: {}, equals a full check: {}",
+                v.inside_before,
+                v.missed,
+                v.missed_by,
+                v.false_hits,
+                v.false_line_line,
+                v.skips_changed,
+                v.inside_after,
+                v.crossing_after,
+                v.pierced_after,
+                v.quality_agrees,
+                v.full_check_agrees
+            )
+        });
+        self.log_guarantee(outcome)?;
+        let rounds: Vec<String> = c.edge_rounds.iter().map(ToString::to_string).collect();
+        let face_rounds: Vec<String> = c.face_rounds.iter().map(ToString::to_string).collect();
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; pierced faces per face round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, {} pierced faces, face clearance {:.3} mm, ease error max {:.3} mm, farthest move {:.1} mm, largest edge stretch {:.2}x{}",
+                c.ease * 1e3,
+                c.responses.len(),
+                if counts.is_empty() { "none".to_string() } else { counts.join(", ") },
+                if rounds.is_empty() { "-".to_string() } else { rounds.join(" -> ") },
+                if face_rounds.is_empty() { "-".to_string() } else { face_rounds.join(" -> ") },
+                q.penetrating_vertices,
+                q.max_depth_m * 1e3,
+                q.crossing_edges,
+                q.pierced_faces,
+                q.face_clearance_m * 1e3,
+                q.max_ease_error_m * 1e3,
+                q.max_move_m * 1e3,
+                q.max_stretch,
+                verify
+            ),
+        )
+    }
+
+    /// The response's moves as arrows, one entity per rule (cleared where a rule moved
+    /// nothing); returns each rule's count.
+    fn log_response_arrows(&self, c: &Collision) -> Result<Vec<String>, SinkError> {
+        let rec = self.recording();
         let mut counts = Vec::new();
         for rule in AppliedRule::ALL {
             let path = format!("collision/response/{}", rule.name());
@@ -143,8 +201,17 @@ impl RerunLogger {
             )
             .map_err(to_sink)?;
         }
-        self.m0(&c.mesh, &g.face_patch, &g.edges)?;
-        self.clearance_map(&c.mesh, &c.quality.clearance, &c.quality.near_faces)?;
+        Ok(counts)
+    }
+
+    /// What the response left or met on its way: the edges that crossed after the vertex
+    /// response (where they stood then: what the edge rounds lifted), the vertices still
+    /// inside, the edges still crossing, and the faces pierced before the face rounds and
+    /// after.
+    fn log_left_over(&self, outcome: &CollisionOutcome) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let (c, g) = (&outcome.collision, &outcome.garment);
+        let q = &c.quality;
         // The edges that crossed after the vertex response, where they stood then (M0 as
         // built with the penetrating vertices moved): what the edge rounds lifted.
         if c.crossing_before_rounds.is_empty() {
@@ -168,7 +235,6 @@ impl RerunLogger {
             )
             .map_err(to_sink)?;
         }
-        let q = &c.quality;
         if q.inside.is_empty() {
             rec.log("collision/mesh/remaining", &Clear::flat()).map_err(to_sink)?;
         } else {
@@ -209,33 +275,15 @@ impl RerunLogger {
             let mesh = (g.mesh.triangles.as_slice(), c.mesh.positions.as_slice());
             log_face_outlines(rec, path, mesh, faces, (radius, colour))?;
         }
-        self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
-        self.scalar("metrics/collision/pierced_faces", q.pierced_faces as f64)?;
-        self.scalar("metrics/collision/face_clearance_m", q.face_clearance_m)?;
-        self.scalar("metrics/collision/crossing_edges", q.crossing_edges as f64)?;
-        self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
-        self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
-        self.scalar("metrics/collision/max_ease_error_m", q.max_ease_error_m)?;
-        self.scalar("metrics/collision/max_move_m", q.max_move_m)?;
-        self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
-        let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
-            format!(
-                "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside, {} crossing and {} pierced faces after, quality agrees: {}, equals a full check: {}",
-                v.inside_before,
-                v.missed,
-                v.missed_by,
-                v.false_hits,
-                v.false_line_line,
-                v.skips_changed,
-                v.inside_after,
-                v.crossing_after,
-                v.pierced_after,
-                v.quality_agrees,
-                v.full_check_agrees
-            )
-        });
-        // The guarantee: nothing inside, nothing crossing, no face pierced. Said loudly when
-        // it is not met.
+        Ok(())
+    }
+
+    /// The guarantee: nothing inside, nothing crossing, no face pierced; said loudly (a
+    /// labelled point at the centre of what is wrong, and a warning) when it is not met.
+    fn log_guarantee(&self, outcome: &CollisionOutcome) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let (c, g) = (&outcome.collision, &outcome.garment);
+        let q = &c.quality;
         if q.is_clear() {
             rec.log("collision/guarantee", &Clear::flat()).map_err(to_sink)?;
         } else {
@@ -264,27 +312,6 @@ impl RerunLogger {
             .map_err(to_sink)?;
             self.text(TextLogLevel::WARN, format!("{label} after the response"))?;
         }
-        let rounds: Vec<String> = c.edge_rounds.iter().map(ToString::to_string).collect();
-        let face_rounds: Vec<String> = c.face_rounds.iter().map(ToString::to_string).collect();
-        self.text(
-            TextLogLevel::INFO,
-            format!(
-                "response to {:.1} mm off the body: {} vertices moved ({}); crossing edges per edge round {}; pierced faces per face round {}; after: {} inside (deepest {:.2} mm), {} crossing edges, {} pierced faces, face clearance {:.3} mm, ease error max {:.3} mm, farthest move {:.1} mm, largest edge stretch {:.2}x{}",
-                c.ease * 1e3,
-                c.responses.len(),
-                if counts.is_empty() { "none".to_string() } else { counts.join(", ") },
-                if rounds.is_empty() { "-".to_string() } else { rounds.join(" -> ") },
-                if face_rounds.is_empty() { "-".to_string() } else { face_rounds.join(" -> ") },
-                q.penetrating_vertices,
-                q.max_depth_m * 1e3,
-                q.crossing_edges,
-                q.pierced_faces,
-                q.face_clearance_m * 1e3,
-                q.max_ease_error_m * 1e3,
-                q.max_move_m * 1e3,
-                q.max_stretch,
-                verify
-            ),
-        )
+        Ok(())
     }
 }

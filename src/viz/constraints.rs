@@ -9,7 +9,7 @@ use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextLogLevel};
 
 use super::draw::{closed, f32s};
 use super::logger::{RerunLogger, to_sink};
-use crate::constraint::{ConstraintNet, CurveKind, Edit, Solution};
+use crate::constraint::{ConstraintNet, CurveKind, Edit, Iteration, Solution};
 use crate::garment::Framework;
 use crate::session::SinkError;
 
@@ -161,147 +161,13 @@ impl RerunLogger {
     pub(super) fn log_solve(&mut self, edit: &Edit, net: &ConstraintNet, s: &Solution) -> Result<(), SinkError> {
         let tolerance = s.tolerance;
         for it in &s.iterations {
-            let iter = self.next_iter();
-            let rec = self.recording();
-            rec.set_time_sequence("iter", iter);
-            let node = &net.curves[it.curve];
-            let line = if node.kind == CurveKind::Ring {
-                closed(&it.control)
-            } else {
-                f32s(&it.control)
-            };
-            rec.log(
-                "constraints/solve/curve",
-                &LineStrips3D::new([line])
-                    .with_radii([0.003])
-                    .with_colors([if it.broken.is_empty() { SOLVED } else { VIOLATED }])
-                    .with_labels([format!("pass {}: {}", it.pass, node.name)]),
-            )
-            .map_err(to_sink)?;
-            rec.log(
-                "constraints/solve/control",
-                &Points3D::new(f32s(&it.control))
-                    .with_radii([0.005])
-                    .with_colors([SOLVED]),
-            )
-            .map_err(to_sink)?;
-            if it.node.is_empty() {
-                rec.log("constraints/solve/node_hits", &Clear::flat())
-                    .map_err(to_sink)?;
-            } else {
-                let origins: Vec<DVec3> = it.node.iter().map(|h| h.before).collect();
-                let vectors: Vec<DVec3> = it.node.iter().map(|h| h.after - h.before).collect();
-                rec.log(
-                    "constraints/solve/node_hits",
-                    &Arrows3D::from_vectors(f32s(&vectors))
-                        .with_origins(f32s(&origins))
-                        .with_colors([VIOLATED])
-                        .with_radii([0.0015]),
-                )
-                .map_err(to_sink)?;
-            }
-            let worst = it.residuals.iter().map(|r| r.1).fold(0.0, f64::max);
-            self.scalar("metrics/solver/max_residual_touched", worst)?;
-            self.scalar("metrics/solver/curve_deficit_m", it.curve_layer.deficit_after)?;
-            let touched: Vec<String> = it
-                .residuals
-                .iter()
-                .map(|&(k, r)| {
-                    let c = &net.constraints[k];
-                    let other = if c.is_self() {
-                        String::new()
-                    } else {
-                        format!("-{}", net.curves[c.other(it.curve)].name)
-                    };
-                    format!(
-                        "{}{other} {:.1e}{}",
-                        c.kind.name(),
-                        r,
-                        if net.violated(k, r, tolerance) { "!" } else { "" }
-                    )
-                })
-                .collect();
-            let driven: Vec<String> = it
-                .driven_by
-                .iter()
-                .map(|&k| {
-                    let c = &net.constraints[k];
-                    format!("{} from {}", c.kind.name(), net.curves[c.other(it.curve)].name)
-                })
-                .collect();
-            let cl = &it.curve_layer;
-            self.text(
-                TextLogLevel::DEBUG,
-                format!(
-                    "iter {iter} pass {}: solved {}{}; node layer {} point(s) pushed out; curve layer {} of {} samples short (worst {:.2} -> {:.2} mm, {} round(s), moved {:?}{}); residuals: {}{}",
-                    it.pass,
-                    node.name,
-                    if driven.is_empty() {
-                        " (active)".to_string()
-                    } else {
-                        format!(" driven by {}", driven.join(", "))
-                    },
-                    it.node.len(),
-                    cl.short_before,
-                    cl.samples,
-                    cl.deficit_before * 1e3,
-                    cl.deficit_after * 1e3,
-                    cl.rounds,
-                    cl.moved,
-                    if cl.pinned.is_empty() {
-                        String::new()
-                    } else {
-                        format!(", pinned {:?}", cl.pinned)
-                    },
-                    touched.join(", "),
-                    if it.broken.is_empty() {
-                        String::new()
-                    } else {
-                        format!(
-                            "; BROKE {} (closed chain)",
-                            it.broken
-                                .iter()
-                                .map(|&k| net.constraints[k].kind.name())
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        )
-                    }
-                ),
-            )?;
+            self.log_iteration(net, it, tolerance)?;
         }
         let rec = self.recording();
         rec.disable_timeline("iter");
         rec.log("constraints/solve", &Clear::recursive()).map_err(to_sink)?;
         self.network(&s.framework, net, tolerance)?;
-        if s.path.len() >= 2 {
-            rec.log(
-                "constraints/drag/path",
-                &LineStrips3D::new([f32s(&s.path)])
-                    .with_radii([0.002])
-                    .with_colors([[80, 160, 255]]),
-            )
-            .map_err(to_sink)?;
-            let n = s.path.len();
-            let labels: Vec<String> = (0..n)
-                .map(|k| match k {
-                    0 => "start".to_string(),
-                    1 => "asked".to_string(),
-                    k if k == n - 1 => "final".to_string(),
-                    _ => String::new(),
-                })
-                .collect();
-            rec.log(
-                "constraints/drag/points",
-                &Points3D::new(f32s(&s.path))
-                    .with_radii([0.006])
-                    .with_colors([[80, 160, 255]])
-                    .with_labels(labels)
-                    .with_show_labels(true),
-            )
-            .map_err(to_sink)?;
-        } else {
-            rec.log("constraints/drag", &Clear::recursive()).map_err(to_sink)?;
-        }
+        self.log_drag_path(s)?;
         self.scalar("metrics/solver/passes", s.passes as f64)?;
         self.scalar("metrics/solver/iterations", s.iterations.len() as f64)?;
         let worst = s.max_residual();
@@ -340,4 +206,155 @@ impl RerunLogger {
             ),
         )
     }
+
+    /// One iteration of the solver on the `iter` timeline: the curve it solved, its
+    /// control points, the node layer's pushes, its figures and a note.
+    fn log_iteration(&mut self, net: &ConstraintNet, it: &Iteration, tolerance: f64) -> Result<(), SinkError> {
+        let iter = self.next_iter();
+        let rec = self.recording();
+        rec.set_time_sequence("iter", iter);
+        let node = &net.curves[it.curve];
+        let line = if node.kind == CurveKind::Ring {
+            closed(&it.control)
+        } else {
+            f32s(&it.control)
+        };
+        rec.log(
+            "constraints/solve/curve",
+            &LineStrips3D::new([line])
+                .with_radii([0.003])
+                .with_colors([if it.broken.is_empty() { SOLVED } else { VIOLATED }])
+                .with_labels([format!("pass {}: {}", it.pass, node.name)]),
+        )
+        .map_err(to_sink)?;
+        rec.log(
+            "constraints/solve/control",
+            &Points3D::new(f32s(&it.control))
+                .with_radii([0.005])
+                .with_colors([SOLVED]),
+        )
+        .map_err(to_sink)?;
+        if it.node.is_empty() {
+            rec.log("constraints/solve/node_hits", &Clear::flat())
+                .map_err(to_sink)?;
+        } else {
+            let origins: Vec<DVec3> = it.node.iter().map(|h| h.before).collect();
+            let vectors: Vec<DVec3> = it.node.iter().map(|h| h.after - h.before).collect();
+            rec.log(
+                "constraints/solve/node_hits",
+                &Arrows3D::from_vectors(f32s(&vectors))
+                    .with_origins(f32s(&origins))
+                    .with_colors([VIOLATED])
+                    .with_radii([0.0015]),
+            )
+            .map_err(to_sink)?;
+        }
+        let worst = it.residuals.iter().map(|r| r.1).fold(0.0, f64::max);
+        self.scalar("metrics/solver/max_residual_touched", worst)?;
+        self.scalar("metrics/solver/curve_deficit_m", it.curve_layer.deficit_after)?;
+        self.text(TextLogLevel::DEBUG, iteration_note(net, it, iter, tolerance))
+    }
+
+    /// The drag's path (start, asked, final), or nothing where there was no drag.
+    fn log_drag_path(&self, s: &Solution) -> Result<(), SinkError> {
+        let rec = self.recording();
+        if s.path.len() >= 2 {
+            rec.log(
+                "constraints/drag/path",
+                &LineStrips3D::new([f32s(&s.path)])
+                    .with_radii([0.002])
+                    .with_colors([[80, 160, 255]]),
+            )
+            .map_err(to_sink)?;
+            let n = s.path.len();
+            let labels: Vec<String> = (0..n)
+                .map(|k| match k {
+                    0 => "start".to_string(),
+                    1 => "asked".to_string(),
+                    k if k == n - 1 => "final".to_string(),
+                    _ => String::new(),
+                })
+                .collect();
+            rec.log(
+                "constraints/drag/points",
+                &Points3D::new(f32s(&s.path))
+                    .with_radii([0.006])
+                    .with_colors([[80, 160, 255]])
+                    .with_labels(labels)
+                    .with_show_labels(true),
+            )
+            .map_err(to_sink)?;
+        } else {
+            rec.log("constraints/drag", &Clear::recursive()).map_err(to_sink)?;
+        }
+        Ok(())
+    }
+}
+
+/// The note of one solver iteration: the curve, what drove it, the node and curve layers,
+/// the residuals it touched and any closed chain it broke.
+fn iteration_note(net: &ConstraintNet, it: &Iteration, iter: i64, tolerance: f64) -> String {
+    let node = &net.curves[it.curve];
+    let touched: Vec<String> = it
+        .residuals
+        .iter()
+        .map(|&(k, r)| {
+            let c = &net.constraints[k];
+            let other = if c.is_self() {
+                String::new()
+            } else {
+                format!("-{}", net.curves[c.other(it.curve)].name)
+            };
+            format!(
+                "{}{other} {:.1e}{}",
+                c.kind.name(),
+                r,
+                if net.violated(k, r, tolerance) { "!" } else { "" }
+            )
+        })
+        .collect();
+    let driven: Vec<String> = it
+        .driven_by
+        .iter()
+        .map(|&k| {
+            let c = &net.constraints[k];
+            format!("{} from {}", c.kind.name(), net.curves[c.other(it.curve)].name)
+        })
+        .collect();
+    let cl = &it.curve_layer;
+    format!(
+        "iter {iter} pass {}: solved {}{}; node layer {} point(s) pushed out; curve layer {} of {} samples short (worst {:.2} -> {:.2} mm, {} round(s), moved {:?}{}); residuals: {}{}",
+        it.pass,
+        node.name,
+        if driven.is_empty() {
+            " (active)".to_string()
+        } else {
+            format!(" driven by {}", driven.join(", "))
+        },
+        it.node.len(),
+        cl.short_before,
+        cl.samples,
+        cl.deficit_before * 1e3,
+        cl.deficit_after * 1e3,
+        cl.rounds,
+        cl.moved,
+        if cl.pinned.is_empty() {
+            String::new()
+        } else {
+            format!(", pinned {:?}", cl.pinned)
+        },
+        touched.join(", "),
+        if it.broken.is_empty() {
+            String::new()
+        } else {
+            format!(
+                "; BROKE {} (closed chain)",
+                it.broken
+                    .iter()
+                    .map(|&k| net.constraints[k].kind.name())
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        }
+    )
 }

@@ -50,232 +50,245 @@ fn stage_points(stages: &RingStages, step: RingStep) -> Vec<Vec<DVec3>> {
 }
 
 fn girth_note(r: &GarmentRing) -> String {
-    match r.target {
-        Some(t) => format!(
-            "{} {:.4} m (target {:.4}, error {:+.2e})",
-            r.name,
-            r.girth,
-            t,
-            (r.girth - t) / t
-        ),
-        None => format!("{} {:.4} m (body tape {:.4})", r.name, r.girth, r.body_girth),
+    match (r.target, r.girth_error()) {
+        (Some(t), Some(error)) => format!("{} {:.4} m (target {:.4}, error {:+.2e})", r.name, r.girth, t, error),
+        _ => format!("{} {:.4} m (body tape {:.4})", r.name, r.girth, r.body_girth),
     }
 }
 
 impl RerunLogger {
     pub(super) fn log_garment_part(&self, fw: &Framework, part: GarmentPart) -> Result<(), SinkError> {
-        let rec = self.recording();
         match part {
-            GarmentPart::Planes => {
-                rec.log("collision", &Clear::recursive()).map_err(to_sink)?;
-                for p in &fw.planes {
-                    let (u, v) = p.plane.frame();
-                    let c = p.centre - p.plane.normal * p.plane.signed_distance(p.centre);
-                    let e = p.extent;
-                    let corners = [c + (u + v) * e, c + (v - u) * e, c - (u + v) * e, c + (u - v) * e];
-                    rec.log(
-                        format!("garment/planes/{}", p.name),
-                        &LineStrips3D::new([closed(&corners)])
-                            .with_radii([0.0015])
-                            .with_colors([[120, 160, 255]])
-                            .with_labels([p.name.clone()])
-                            .with_show_labels(false),
-                    )
-                    .map_err(to_sink)?;
-                }
-                let names: Vec<&str> = fw.planes.iter().map(|p| p.name.as_str()).collect();
-                self.text(
-                    TextLogLevel::INFO,
-                    format!("{} planes: {}", fw.template.name(), names.join(", ")),
-                )
-            }
-            GarmentPart::Rings(step) => {
-                let color = step_color(step);
-                let mut counts = Vec::new();
-                for (name, stages, is_closed) in fw
-                    .rings
+            GarmentPart::Planes => self.log_planes(fw),
+            GarmentPart::Rings(step) => self.log_ring_step(fw, step),
+            GarmentPart::Curves => self.log_curves(fw),
+            GarmentPart::Patches => self.log_patches(fw),
+            GarmentPart::Mesh => self.log_mesh(fw),
+        }
+    }
+
+    /// The planes the curves were cut in (the collision of an earlier garment cleared).
+    fn log_planes(&self, fw: &Framework) -> Result<(), SinkError> {
+        let rec = self.recording();
+        rec.log("collision", &Clear::recursive()).map_err(to_sink)?;
+        for p in &fw.planes {
+            let (u, v) = p.plane.frame();
+            let c = p.centre - p.plane.normal * p.plane.signed_distance(p.centre);
+            let e = p.extent;
+            let corners = [c + (u + v) * e, c + (v - u) * e, c - (u + v) * e, c + (u - v) * e];
+            rec.log(
+                format!("garment/planes/{}", p.name),
+                &LineStrips3D::new([closed(&corners)])
+                    .with_radii([0.0015])
+                    .with_colors([[120, 160, 255]])
+                    .with_labels([p.name.clone()])
+                    .with_show_labels(false),
+            )
+            .map_err(to_sink)?;
+        }
+        let names: Vec<&str> = fw.planes.iter().map(|p| p.name.as_str()).collect();
+        self.text(
+            TextLogLevel::INFO,
+            format!("{} planes: {}", fw.template.name(), names.join(", ")),
+        )
+    }
+
+    /// Every ring and open curve at one sub-step; the girths once fitted.
+    fn log_ring_step(&self, fw: &Framework, step: RingStep) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let color = step_color(step);
+        let mut counts = Vec::new();
+        for (name, stages, is_closed) in fw
+            .rings
+            .iter()
+            .map(|r| (r.name.as_str(), &r.stages, true))
+            .chain(fw.open_curves.iter().map(|c| (c.name.as_str(), &c.stages, false)))
+        {
+            let loops = stage_points(stages, step);
+            let strips: Vec<Vec<[f32; 3]>> = loops
+                .iter()
+                .map(|l| if is_closed { closed(l) } else { f32s(l) })
+                .collect();
+            let path = format!("garment/curves/rings/{name}");
+            rec.log(
+                path.as_str(),
+                &LineStrips3D::new(strips)
+                    .with_radii([0.0018])
+                    .with_colors([color])
+                    .with_labels([format!("{name} ({})", step.name())])
+                    .with_show_labels(false),
+            )
+            .map_err(to_sink)?;
+            let points: Vec<DVec3> = loops.iter().flatten().copied().collect();
+            rec.log(
+                format!("{path}/points"),
+                &Points3D::new(f32s(&points)).with_radii([0.003]).with_colors([color]),
+            )
+            .map_err(to_sink)?;
+            if step == RingStep::Raw {
+                // The body section stays in view under the later sub-steps.
+                let strips: Vec<Vec<[f32; 3]>> = loops
                     .iter()
-                    .map(|r| (r.name.as_str(), &r.stages, true))
-                    .chain(fw.open_curves.iter().map(|c| (c.name.as_str(), &c.stages, false)))
-                {
-                    let loops = stage_points(stages, step);
-                    let strips: Vec<Vec<[f32; 3]>> = loops
-                        .iter()
-                        .map(|l| if is_closed { closed(l) } else { f32s(l) })
-                        .collect();
-                    let path = format!("garment/curves/rings/{name}");
-                    rec.log(
-                        path.as_str(),
-                        &LineStrips3D::new(strips)
-                            .with_radii([0.0018])
-                            .with_colors([color])
-                            .with_labels([format!("{name} ({})", step.name())])
-                            .with_show_labels(false),
-                    )
-                    .map_err(to_sink)?;
-                    let points: Vec<DVec3> = loops.iter().flatten().copied().collect();
-                    rec.log(
-                        format!("{path}/points"),
-                        &Points3D::new(f32s(&points)).with_radii([0.003]).with_colors([color]),
-                    )
-                    .map_err(to_sink)?;
-                    if step == RingStep::Raw {
-                        // The body section stays in view under the later sub-steps.
-                        let strips: Vec<Vec<[f32; 3]>> = loops
-                            .iter()
-                            .map(|l| if is_closed { closed(l) } else { f32s(l) })
-                            .collect();
-                        rec.log(
-                            format!("garment/sections/{name}"),
-                            &LineStrips3D::new(strips)
-                                .with_radii([0.0012])
-                                .with_colors([[150, 150, 150]]),
-                        )
-                        .map_err(to_sink)?;
-                    }
-                    counts.push(format!("{name} {}", points.len()));
-                }
-                let mut text = format!("rings {}: points {}", step.name(), counts.join(", "));
-                if step == RingStep::Convex {
-                    let removed: Vec<String> = fw
-                        .rings
-                        .iter()
-                        .map(|r| {
-                            format!(
-                                "{} {}",
-                                r.name,
-                                r.stages.raw.iter().map(Vec::len).sum::<usize>() - r.stages.convex.len()
-                            )
-                        })
-                        .collect();
-                    text.push_str(&format!("; points removed: {}", removed.join(", ")));
-                }
-                if step == RingStep::Fitted {
-                    let girths: Vec<String> = fw.rings.iter().map(girth_note).collect();
-                    text.push_str(&format!("; girths: {}", girths.join("; ")));
-                    for r in &fw.rings {
-                        self.scalar(&format!("metrics/garment/girth_m/{}", r.name), r.girth)?;
-                    }
-                    self.control_points(fw)?;
-                }
-                self.text(TextLogLevel::INFO, text)
-            }
-            GarmentPart::Curves => {
-                for c in &fw.contours {
-                    rec.log(
-                        format!("garment/curves/contours/{}", c.name),
-                        &LineStrips3D::new([f32s(&c.polyline())])
-                            .with_radii([0.0018])
-                            .with_colors([[40, 200, 120]])
-                            .with_labels([c.name.clone()])
-                            .with_show_labels(false),
-                    )
-                    .map_err(to_sink)?;
-                }
-                for l in &fw.lines {
-                    rec.log(
-                        format!("garment/curves/lines/{}", l.name),
-                        &LineStrips3D::new([f32s(&l.points)])
-                            .with_radii([0.0018])
-                            .with_colors([[40, 200, 120]]),
-                    )
-                    .map_err(to_sink)?;
-                }
-                let (mut origins, mut vectors) = (Vec::new(), Vec::new());
-                for s in &fw.straightened {
-                    for (a, b) in s.before.iter().zip(&s.after) {
-                        if a != b {
-                            origins.push(a.as_vec3().to_array());
-                            vectors.push((*b - *a).as_vec3().to_array());
-                        }
-                    }
-                }
-                if !vectors.is_empty() {
-                    rec.log(
-                        "garment/curves/straightened",
-                        &Arrows3D::from_vectors(vectors)
-                            .with_origins(origins)
-                            .with_radii([0.002])
-                            .with_colors([[255, 80, 80]]),
-                    )
-                    .map_err(to_sink)?;
-                }
-                let names: Vec<&str> = fw.contours.iter().map(|c| c.name.as_str()).collect();
-                self.text(
-                    TextLogLevel::INFO,
-                    format!(
-                        "{} contours ({}), {} open curves, {} seams/junctions; {} contours straightened ({} fit)",
-                        fw.contours.len(),
-                        names.join(", "),
-                        fw.open_curves.len(),
-                        fw.lines.len(),
-                        fw.straightened.len(),
-                        fw.fit.name()
-                    ),
-                )
-            }
-            GarmentPart::Patches => {
-                let mut positions = Vec::new();
-                let mut triangles = Vec::new();
-                let mut colors = Vec::new();
-                for (i, p) in fw.patches.iter().enumerate() {
-                    let base = positions.len() as u32;
-                    positions.extend(f32s(&p.points));
-                    colors.extend(std::iter::repeat_n(patch_color(i), p.points.len()));
-                    triangles.extend(p.triangles().into_iter().map(|t| t.map(|k| k + base)));
-                }
+                    .map(|l| if is_closed { closed(l) } else { f32s(l) })
+                    .collect();
                 rec.log(
-                    "garment/patches",
-                    &Mesh3D::new(positions)
-                        .with_triangle_indices(triangles)
-                        .with_vertex_colors(colors),
+                    format!("garment/sections/{name}"),
+                    &LineStrips3D::new(strips)
+                        .with_radii([0.0012])
+                        .with_colors([[150, 150, 150]]),
                 )
                 .map_err(to_sink)?;
-                let sizes: Vec<String> = fw
-                    .patches
-                    .iter()
-                    .map(|p| format!("{} {}x{}", p.name, p.nu, p.nv))
-                    .collect();
-                self.text(
-                    TextLogLevel::INFO,
-                    format!(
-                        "{} Coons patches (segments u x v): {}",
-                        fw.patches.len(),
-                        sizes.join(", "),
-                    ),
-                )
             }
-            GarmentPart::Mesh => {
-                let m0 = &fw.m0;
-                rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
-                self.m0(&m0.mesh, &m0.face_patch, &m0.edges)?;
-                self.scalar("metrics/garment/m0_vertices", m0.mesh.positions.len() as f64)?;
-                self.scalar("metrics/garment/m0_faces", m0.mesh.triangles.len() as f64)?;
-                let worst = fw
-                    .rings
-                    .iter()
-                    .filter_map(|r| r.target.map(|t| ((r.girth - t) / t).abs()))
-                    .fold(0.0, f64::max);
-                self.text(
-                    TextLogLevel::INFO,
+            counts.push(format!("{name} {}", points.len()));
+        }
+        let mut text = format!("rings {}: points {}", step.name(), counts.join(", "));
+        if step == RingStep::Convex {
+            let removed: Vec<String> = fw
+                .rings
+                .iter()
+                .map(|r| {
                     format!(
-                        "M0 ({} {}, {} fit): {} vertices, {} faces, {} edges ({} directed); welded {} of {} patch vertices, {} degenerate and {} duplicate faces dropped; worst girth error {:.2e}",
-                        fw.template.name(),
-                        fw.patches.len(),
-                        fw.fit.name(),
-                        m0.mesh.positions.len(),
-                        m0.mesh.triangles.len(),
-                        m0.edges.len(),
-                        m0.directed_edges.len(),
-                        m0.report.welded,
-                        m0.report.input_vertices,
-                        m0.report.degenerate_faces,
-                        m0.report.duplicate_faces,
-                        worst
-                    ),
-                )
+                        "{} {}",
+                        r.name,
+                        r.stages.raw.iter().map(Vec::len).sum::<usize>() - r.stages.convex.len()
+                    )
+                })
+                .collect();
+            text.push_str(&format!("; points removed: {}", removed.join(", ")));
+        }
+        if step == RingStep::Fitted {
+            let girths: Vec<String> = fw.rings.iter().map(girth_note).collect();
+            text.push_str(&format!("; girths: {}", girths.join("; ")));
+            for r in &fw.rings {
+                self.scalar(&format!("metrics/garment/girth_m/{}", r.name), r.girth)?;
+            }
+            self.control_points(fw)?;
+        }
+        self.text(TextLogLevel::INFO, text)
+    }
+
+    /// The contours, the seams and junctions, and the loose fit's straightening.
+    fn log_curves(&self, fw: &Framework) -> Result<(), SinkError> {
+        let rec = self.recording();
+        for c in &fw.contours {
+            rec.log(
+                format!("garment/curves/contours/{}", c.name),
+                &LineStrips3D::new([f32s(&c.polyline())])
+                    .with_radii([0.0018])
+                    .with_colors([[40, 200, 120]])
+                    .with_labels([c.name.clone()])
+                    .with_show_labels(false),
+            )
+            .map_err(to_sink)?;
+        }
+        for l in &fw.lines {
+            rec.log(
+                format!("garment/curves/lines/{}", l.name),
+                &LineStrips3D::new([f32s(&l.points)])
+                    .with_radii([0.0018])
+                    .with_colors([[40, 200, 120]]),
+            )
+            .map_err(to_sink)?;
+        }
+        let (mut origins, mut vectors) = (Vec::new(), Vec::new());
+        for s in &fw.straightened {
+            for (a, b) in s.before.iter().zip(&s.after) {
+                if a != b {
+                    origins.push(a.as_vec3().to_array());
+                    vectors.push((*b - *a).as_vec3().to_array());
+                }
             }
         }
+        if !vectors.is_empty() {
+            rec.log(
+                "garment/curves/straightened",
+                &Arrows3D::from_vectors(vectors)
+                    .with_origins(origins)
+                    .with_radii([0.002])
+                    .with_colors([[255, 80, 80]]),
+            )
+            .map_err(to_sink)?;
+        }
+        let names: Vec<&str> = fw.contours.iter().map(|c| c.name.as_str()).collect();
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "{} contours ({}), {} open curves, {} seams/junctions; {} contours straightened ({} fit)",
+                fw.contours.len(),
+                names.join(", "),
+                fw.open_curves.len(),
+                fw.lines.len(),
+                fw.straightened.len(),
+                fw.fit.name()
+            ),
+        )
+    }
+
+    /// The Coons patches, one colour each.
+    fn log_patches(&self, fw: &Framework) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let mut positions = Vec::new();
+        let mut triangles = Vec::new();
+        let mut colors = Vec::new();
+        for (i, p) in fw.patches.iter().enumerate() {
+            let base = positions.len() as u32;
+            positions.extend(f32s(&p.points));
+            colors.extend(std::iter::repeat_n(patch_color(i), p.points.len()));
+            triangles.extend(p.triangles().into_iter().map(|t| t.map(|k| k + base)));
+        }
+        rec.log(
+            "garment/patches",
+            &Mesh3D::new(positions)
+                .with_triangle_indices(triangles)
+                .with_vertex_colors(colors),
+        )
+        .map_err(to_sink)?;
+        let sizes: Vec<String> = fw
+            .patches
+            .iter()
+            .map(|p| format!("{} {}x{}", p.name, p.nu, p.nv))
+            .collect();
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "{} Coons patches (segments u x v): {}",
+                fw.patches.len(),
+                sizes.join(", "),
+            ),
+        )
+    }
+
+    /// M0, with its figures.
+    fn log_mesh(&self, fw: &Framework) -> Result<(), SinkError> {
+        let rec = self.recording();
+        let m0 = &fw.m0;
+        rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
+        self.m0(&m0.mesh, &m0.face_patch, &m0.edges)?;
+        self.scalar("metrics/garment/m0_vertices", m0.mesh.positions.len() as f64)?;
+        self.scalar("metrics/garment/m0_faces", m0.mesh.triangles.len() as f64)?;
+        let worst = fw
+            .rings
+            .iter()
+            .filter_map(|r| r.girth_error().map(f64::abs))
+            .fold(0.0, f64::max);
+        self.text(
+            TextLogLevel::INFO,
+            format!(
+                "M0 ({} {}, {} fit): {} vertices, {} faces, {} edges ({} directed); welded {} of {} patch vertices, {} degenerate and {} duplicate faces dropped; worst girth error {:.2e}",
+                fw.template.name(),
+                fw.patches.len(),
+                fw.fit.name(),
+                m0.mesh.positions.len(),
+                m0.mesh.triangles.len(),
+                m0.edges.len(),
+                m0.directed_edges.len(),
+                m0.report.welded,
+                m0.report.input_vertices,
+                m0.report.degenerate_faces,
+                m0.report.duplicate_faces,
+                worst
+            ),
+        )
     }
 
     /// Logs a garment mesh as `garment/m0` (vertices coloured by patch) with its edges.

@@ -10,7 +10,7 @@ use super::colors::m1_rule_color;
 use super::draw::{colored_mesh, edge_paths, f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
 use crate::m1::Rule;
-use crate::session::{M1Stage, SinkError};
+use crate::session::{M1Outcome, M1Stage, SinkError};
 
 /// Unrefined patches in M1.
 const KEPT: [u8; 3] = [185, 185, 190];
@@ -88,40 +88,7 @@ impl RerunLogger {
             &c.pierced_after,
             (0.002, [255, 0, 0]),
         )?;
-        rec.log("garment/cut_lines", &Clear::recursive()).map_err(to_sink)?;
-        rec.log("garment/m0/cut_lines", &Clear::recursive()).map_err(to_sink)?;
-        for ((stored, on_m1), on_m0) in outcome.stored.iter().zip(&outcome.cuts).zip(&outcome.cuts_on_m0) {
-            for (path, pieces, color, radius) in [
-                (
-                    format!("garment/cut_lines/{}", stored.name),
-                    on_m1,
-                    [230, 20, 120],
-                    0.003,
-                ),
-                (
-                    format!("garment/m0/cut_lines/{}", stored.name),
-                    on_m0,
-                    [250, 200, 0],
-                    0.0015,
-                ),
-            ] {
-                let lines: Vec<Vec<[f32; 3]>> = pieces
-                    .iter()
-                    .map(|(points, closed)| {
-                        let mut line = f32s(points);
-                        if *closed && let Some(&first) = line.first() {
-                            line.push(first);
-                        }
-                        line
-                    })
-                    .collect();
-                rec.log(
-                    path.as_str(),
-                    &LineStrips3D::new(lines).with_radii([radius]).with_colors([color]),
-                )
-                .map_err(to_sink)?;
-            }
-        }
+        self.log_cut_lines(outcome)?;
         let q = &c.quality;
         self.scalar("metrics/m1/faces", m1.mesh.triangles.len() as f64)?;
         self.scalar("metrics/m1/patches_refined", m1.selection.count() as f64)?;
@@ -158,5 +125,45 @@ impl RerunLogger {
                 outcome.stored.len()
             ),
         )
+    }
+
+    /// The cut lines, drawn on M1 and in their stored form on M0 (the old ones cleared).
+    fn log_cut_lines(&self, outcome: &M1Outcome) -> Result<(), SinkError> {
+        let rec = self.recording();
+        rec.log("garment/cut_lines", &Clear::recursive()).map_err(to_sink)?;
+        rec.log("garment/m0/cut_lines", &Clear::recursive()).map_err(to_sink)?;
+        for ((stored, on_m1), on_m0) in outcome.stored.iter().zip(&outcome.cuts).zip(&outcome.cuts_on_m0) {
+            for (path, pieces, color, radius) in [
+                (
+                    format!("garment/cut_lines/{}", stored.name),
+                    on_m1,
+                    [230, 20, 120],
+                    0.003,
+                ),
+                (
+                    format!("garment/m0/cut_lines/{}", stored.name),
+                    on_m0,
+                    [250, 200, 0],
+                    0.0015,
+                ),
+            ] {
+                let lines: Vec<Vec<[f32; 3]>> = pieces
+                    .iter()
+                    .map(|(points, closed)| {
+                        let mut line = f32s(points);
+                        if *closed && let Some(&first) = line.first() {
+                            line.push(first);
+                        }
+                        line
+                    })
+                    .collect();
+                rec.log(
+                    path.as_str(),
+                    &LineStrips3D::new(lines).with_radii([radius]).with_colors([color]),
+                )
+                .map_err(to_sink)?;
+            }
+        }
+        Ok(())
     }
 }

@@ -218,6 +218,12 @@ fn fit(control: &[DVec3], at: &[usize], per_arc: usize) -> Result<(ChordSpline3,
 }
 
 impl GarmentRing {
+    /// The girth's error against its target, relative (`None` without a target): the one
+    /// definition that the step's figures and the viewer's notes both read.
+    pub fn girth_error(&self) -> Option<f64> {
+        self.target.map(|t| (self.girth - t) / t)
+    }
+
     /// The anchor of this name.
     pub fn anchor(&self, name: &str) -> Option<&Anchor> {
         self.anchors.iter().find(|a| a.name == name)

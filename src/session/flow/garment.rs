@@ -85,7 +85,7 @@ pub(in crate::session) fn solve_garment(
                 girth_m: r.girth,
                 target_m: r.target,
                 body_tape_m: r.body_girth,
-                relative_error: r.target.map(|t| (r.girth - t) / t),
+                relative_error: r.girth_error(),
             })
             .collect(),
         dimensions: &fw.dimensions,
