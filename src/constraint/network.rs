@@ -51,170 +51,17 @@ impl ConstraintNet {
     pub fn for_framework(fw: &Framework, probe: &BodyProbe, options: &NetworkOptions) -> Self {
         let roles = template::of(fw.template).roles();
         let curves = curve_nodes(fw);
-        let id = |name: &str| curves.iter().position(|c| c.name == name);
         let mut out: Vec<Constraint> = Vec::new();
         let mid_x = mid_plane(fw, &roles);
         let h = fw.layout.height;
-        // Self constraints of the planar curves.
-        for (k, c) in curves.iter().enumerate() {
-            let Some(plane) = curves::plane(fw, c) else {
-                continue;
-            };
-            let pts = curves::points(fw, c);
-            let flat: Vec<DVec2> = pts.iter().map(|p| plane.project(*p)).collect();
-            let centre = flat.iter().sum::<DVec2>() / flat.len().max(1) as f64;
-            let r = flat
-                .iter()
-                .map(|q| (*q - centre).abs().max_element())
-                .fold(0.0, f64::max);
-            let half = r + options.region_margin * h;
-            let polygon = vec![
-                centre + DVec2::new(-half, -half),
-                centre + DVec2::new(half, -half),
-                centre + DVec2::new(half, half),
-                centre + DVec2::new(-half, half),
-            ];
-            let mut own = |kind: Kind| {
-                out.push(Constraint {
-                    kind,
-                    i: k,
-                    j: k,
-                    directed: false,
-                })
-            };
-            own(Kind::Coplanar);
-            own(Kind::NoSelfCrossing);
-            own(Kind::InsidePolygon { polygon });
-            if c.kind == CurveKind::Ring {
-                let ring = &fw.rings[c.index];
-                let section = ring.stages.convex.clone();
-                let sflat: Vec<DVec2> = section.iter().map(|p| plane.project(*p)).collect();
-                let most = match ring.ease {
-                    crate::garment::Ease::Uniform(e) => e,
-                    crate::garment::Ease::PerDirection {
-                        front,
-                        left,
-                        back,
-                        right,
-                    } => front.max(left).max(back).max(right),
-                };
-                // The ease, or the gap the built ring has where it is less (the control
-                // points between eased samples sit a sagitta inside the eased polyline).
-                let need = flat.iter().map(|q| signed_gap(*q, &sflat).min(most)).collect();
-                own(Kind::OutsideBody { section, need });
-                if let Some(pairs) = centred_pairs(fw, c, &roles) {
-                    let rest = pairs.iter().map(|&(a, b)| pts[b] - mirror(pts[a], mid_x)).collect();
-                    own(Kind::Symmetry { mid_x, pairs, rest });
-                }
-            }
-        }
-        // Left-right pairs: leg rings by anchor name, straps point by point.
-        for (k, c) in curves.iter().enumerate() {
-            let Some(partner) = roles.right_of(&c.name) else {
-                continue;
-            };
-            let Some(m) = id(partner) else {
-                continue;
-            };
-            if c.kind == CurveKind::Contour {
-                continue;
-            }
-            let (pa, pb) = (curves::points(fw, c), curves::points(fw, &curves[m]));
-            let pairs: Vec<(usize, usize)> = match c.kind {
-                CurveKind::Ring => fw.rings[c.index]
-                    .anchors
-                    .iter()
-                    .filter_map(|a| fw.rings[curves[m].index].anchor(a.name).map(|b| (a.control, b.control)))
-                    .collect(),
-                // The ends lie on the chest ring, whose own symmetry pairs them.
-                _ => (1..pa.len().min(pb.len()).saturating_sub(1)).map(|i| (i, i)).collect(),
-            };
-            let rest = pairs.iter().map(|&(a, b)| pb[b] - mirror(pa[a], mid_x)).collect();
-            out.push(Constraint {
-                kind: Kind::Symmetry { mid_x, pairs, rest },
-                i: k,
-                j: m,
-                directed: false,
-            });
-        }
-        // Where curves meet.
-        for (j, c) in curves.iter().enumerate() {
-            if c.kind != CurveKind::Contour {
-                continue;
-            }
-            for (b, through) in fw.contours[c.index].through.iter().enumerate() {
-                let Some((curve, point)) = through.split_once('.') else {
-                    continue;
-                };
-                let Some(i) = id(curve) else {
-                    continue;
-                };
-                let a = match curves[i].kind {
-                    CurveKind::Ring => fw.rings[curves[i].index].anchor(point).map(|x| x.control),
-                    CurveKind::Open => Some(curves::points(fw, &curves[i]).len() / 2),
-                    CurveKind::Contour => None,
-                };
-                if let Some(a) = a {
-                    out.push(Constraint {
-                        kind: Kind::Coincident { a, b },
-                        i,
-                        j,
-                        directed: false,
-                    });
-                }
-            }
-        }
-        for (i, c) in curves.iter().enumerate() {
-            if c.kind != CurveKind::Open {
-                continue;
-            }
-            let n = curves::points(fw, c).len();
-            if let Some(joint) = roles.ends_of(&c.name)
-                && let Some(r) = id(joint.ring)
-            {
-                let ring_ref = &fw.rings[curves[r].index];
-                for (name, end) in joint.anchors.into_iter().zip([0, n - 1]) {
-                    if let Some(a) = ring_ref.anchor(name) {
-                        out.push(Constraint {
-                            kind: Kind::Coincident { a: a.control, b: end },
-                            i: r,
-                            j: i,
-                            directed: false,
-                        });
-                    }
-                }
-            }
-            // Contours that run on from the curve's ends (the princess lines into the
-            // straps).
-            for t in roles.tangents.iter().filter(|t| t.curve == c.name) {
-                if let Some(j) = id(t.contour) {
-                    out.push(Constraint {
-                        kind: Kind::Tangent { front: t.front },
-                        i,
-                        j,
-                        directed: true,
-                    });
-                }
-            }
-        }
+        self_constraints(fw, &curves, (&roles, options), (mid_x, h), &mut out);
+        pair_constraints(fw, &curves, &roles, mid_x, &mut out);
+        meeting_constraints(fw, &curves, &roles, &mut out);
         let mut matrix: BTreeMap<(usize, usize), Vec<usize>> = BTreeMap::new();
         for (k, c) in out.iter().enumerate() {
             matrix.entry((c.i.min(c.j), c.i.max(c.j))).or_default().push(k);
         }
-        let clearance = curves
-            .iter()
-            .map(|c| {
-                if c.kind == CurveKind::Contour {
-                    return f64::INFINITY;
-                }
-                let samples = curves::samples(fw, c, SAMPLES_PER_SPAN);
-                curves::points(fw, c)
-                    .iter()
-                    .chain(samples.iter().map(|(_, p)| p))
-                    .map(|p| probe.signed_distance(*p))
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .collect();
+        let clearance = clearances(fw, &curves, probe);
         Self {
             curves,
             constraints: out,
@@ -347,6 +194,191 @@ impl ConstraintNet {
         );
         s
     }
+}
+
+/// The index of the curve named `name`.
+fn id(curves: &[CurveNode], name: &str) -> Option<usize> {
+    curves.iter().position(|c| c.name == name)
+}
+
+/// Each planar curve's own constraints: coplanar, no self-crossing, inside a square region
+/// of its plane; a ring outside the body by its ease (or the gap the built ring has where
+/// that is less) and, centred on the mirror plane `mid_x`, symmetric.
+fn self_constraints(
+    fw: &Framework,
+    curves: &[CurveNode],
+    (roles, options): (&CurveRoles, &NetworkOptions),
+    (mid_x, h): (f64, f64),
+    out: &mut Vec<Constraint>,
+) {
+    for (k, c) in curves.iter().enumerate() {
+        let Some(plane) = curves::plane(fw, c) else {
+            continue;
+        };
+        let pts = curves::points(fw, c);
+        let flat: Vec<DVec2> = pts.iter().map(|p| plane.project(*p)).collect();
+        let centre = flat.iter().sum::<DVec2>() / flat.len().max(1) as f64;
+        let r = flat
+            .iter()
+            .map(|q| (*q - centre).abs().max_element())
+            .fold(0.0, f64::max);
+        let half = r + options.region_margin * h;
+        let polygon = vec![
+            centre + DVec2::new(-half, -half),
+            centre + DVec2::new(half, -half),
+            centre + DVec2::new(half, half),
+            centre + DVec2::new(-half, half),
+        ];
+        let mut own = |kind: Kind| {
+            out.push(Constraint {
+                kind,
+                i: k,
+                j: k,
+                directed: false,
+            })
+        };
+        own(Kind::Coplanar);
+        own(Kind::NoSelfCrossing);
+        own(Kind::InsidePolygon { polygon });
+        if c.kind == CurveKind::Ring {
+            let ring = &fw.rings[c.index];
+            let section = ring.stages.convex.clone();
+            let sflat: Vec<DVec2> = section.iter().map(|p| plane.project(*p)).collect();
+            let most = match ring.ease {
+                crate::garment::Ease::Uniform(e) => e,
+                crate::garment::Ease::PerDirection {
+                    front,
+                    left,
+                    back,
+                    right,
+                } => front.max(left).max(back).max(right),
+            };
+            // The ease, or the gap the built ring has where it is less (the control
+            // points between eased samples sit a sagitta inside the eased polyline).
+            let need = flat.iter().map(|q| signed_gap(*q, &sflat).min(most)).collect();
+            own(Kind::OutsideBody { section, need });
+            if let Some(pairs) = centred_pairs(fw, c, &roles) {
+                let rest = pairs.iter().map(|&(a, b)| pts[b] - mirror(pts[a], mid_x)).collect();
+                own(Kind::Symmetry { mid_x, pairs, rest });
+            }
+        }
+    }
+}
+
+/// Left-right pairs: the leg rings by anchor name, the straps point by point.
+fn pair_constraints(fw: &Framework, curves: &[CurveNode], roles: &CurveRoles, mid_x: f64, out: &mut Vec<Constraint>) {
+    for (k, c) in curves.iter().enumerate() {
+        let Some(partner) = roles.right_of(&c.name) else {
+            continue;
+        };
+        let Some(m) = id(curves, partner) else {
+            continue;
+        };
+        if c.kind == CurveKind::Contour {
+            continue;
+        }
+        let (pa, pb) = (curves::points(fw, c), curves::points(fw, &curves[m]));
+        let pairs: Vec<(usize, usize)> = match c.kind {
+            CurveKind::Ring => fw.rings[c.index]
+                .anchors
+                .iter()
+                .filter_map(|a| fw.rings[curves[m].index].anchor(a.name).map(|b| (a.control, b.control)))
+                .collect(),
+            // The ends lie on the chest ring, whose own symmetry pairs them.
+            _ => (1..pa.len().min(pb.len()).saturating_sub(1)).map(|i| (i, i)).collect(),
+        };
+        let rest = pairs.iter().map(|&(a, b)| pb[b] - mirror(pa[a], mid_x)).collect();
+        out.push(Constraint {
+            kind: Kind::Symmetry { mid_x, pairs, rest },
+            i: k,
+            j: m,
+            directed: false,
+        });
+    }
+}
+
+/// Where curves meet: a contour through a ring's anchor or an open curve's apex, an open
+/// curve's ends on a ring's anchors, and the contours that run on from an open curve's ends
+/// (tangent).
+fn meeting_constraints(fw: &Framework, curves: &[CurveNode], roles: &CurveRoles, out: &mut Vec<Constraint>) {
+    for (j, c) in curves.iter().enumerate() {
+        if c.kind != CurveKind::Contour {
+            continue;
+        }
+        for (b, through) in fw.contours[c.index].through.iter().enumerate() {
+            let Some((curve, point)) = through.split_once('.') else {
+                continue;
+            };
+            let Some(i) = id(curves, curve) else {
+                continue;
+            };
+            let a = match curves[i].kind {
+                CurveKind::Ring => fw.rings[curves[i].index].anchor(point).map(|x| x.control),
+                CurveKind::Open => Some(curves::points(fw, &curves[i]).len() / 2),
+                CurveKind::Contour => None,
+            };
+            if let Some(a) = a {
+                out.push(Constraint {
+                    kind: Kind::Coincident { a, b },
+                    i,
+                    j,
+                    directed: false,
+                });
+            }
+        }
+    }
+    for (i, c) in curves.iter().enumerate() {
+        if c.kind != CurveKind::Open {
+            continue;
+        }
+        let n = curves::points(fw, c).len();
+        if let Some(joint) = roles.ends_of(&c.name)
+            && let Some(r) = id(curves, joint.ring)
+        {
+            let ring_ref = &fw.rings[curves[r].index];
+            for (name, end) in joint.anchors.into_iter().zip([0, n - 1]) {
+                if let Some(a) = ring_ref.anchor(name) {
+                    out.push(Constraint {
+                        kind: Kind::Coincident { a: a.control, b: end },
+                        i: r,
+                        j: i,
+                        directed: false,
+                    });
+                }
+            }
+        }
+        // Contours that run on from the curve's ends (the princess lines into the
+        // straps).
+        for t in roles.tangents.iter().filter(|t| t.curve == c.name) {
+            if let Some(j) = id(curves, t.contour) {
+                out.push(Constraint {
+                    kind: Kind::Tangent { front: t.front },
+                    i,
+                    j,
+                    directed: true,
+                });
+            }
+        }
+    }
+}
+
+/// Each curve's clearance from the body: the least signed distance of its points and
+/// samples (infinite for a contour, which the network does not hold off the body).
+fn clearances(fw: &Framework, curves: &[CurveNode], probe: &BodyProbe) -> Vec<f64> {
+    curves
+        .iter()
+        .map(|c| {
+            if c.kind == CurveKind::Contour {
+                return f64::INFINITY;
+            }
+            let samples = curves::samples(fw, c, SAMPLES_PER_SPAN);
+            curves::points(fw, c)
+                .iter()
+                .chain(samples.iter().map(|(_, p)| p))
+                .map(|p| probe.signed_distance(*p))
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect()
 }
 
 /// The body's mid-plane `x` as the framework sees it: the plane of the template's mirror

@@ -10,6 +10,7 @@
 use glam::DVec3;
 
 use super::M1;
+use crate::collision::faces::FaceRounds;
 use crate::collision::quality::{Measured, quality_where};
 use crate::collision::{
     BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, pierced_faces, respond,
@@ -144,49 +145,22 @@ pub fn collide_refined(
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();
     rings.resize(positions.len(), None);
+    // The base's vertices the refinement did not move stay where they are.
     let mut pinned = vec![true; refined.base_vertices];
     pinned.resize(positions.len(), false);
-    for &v in refined.moved {
-        pinned[v as usize] = false;
-    }
+    refined.moved.iter().for_each(|&v| pinned[v as usize] = false);
     let roles = VertexRoles {
         normals: &normals,
         boundary: &boundary,
         ring_normal: &rings,
         pinned: &pinned,
     };
-    // Edges with an end that differs from the base are measured; the others are the
-    // base's edges (both ends pinned), crossing exactly when the base's check said so.
-    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = refined
-        .edges
-        .iter()
-        .copied()
-        .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
-    let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
-        m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
-    let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
-    let kept_inside: Vec<u32> = m0.inside.iter().copied().filter(|&v| pinned[v as usize]).collect();
+    let (edges, kept_crossing, kept_inside) = known_from_base(refined, &pinned, m0);
     let before = quality_where(index, positions, positions, &tested, &edges, &[], m0.measured);
     let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     crossing_before_edges.extend(&kept_crossing);
     // The vertices the check found inside are the hits.
-    let hits: Vec<Hit> = par_map(before.inside.len(), |k| {
-        let v = before.inside[k];
-        let p = positions[v as usize];
-        let near = index.nearest(p, reach)?;
-        Some(Hit {
-            vertex: v,
-            partition: m1_partition[v as usize],
-            method: crate::body::DetectionMethod::PointFace,
-            depth: (-near.signed(p)).max(0.0),
-            foot: near.foot,
-            normal: near.normal,
-            triangle: Some(near.triangle),
-        })
-    })
-    .into_iter()
-    .flatten()
-    .collect();
+    let hits = hits_at(index, positions, &before.inside, &m1_partition, reach);
     let ease = response_ease(index, garment_ease, &options.response);
     let (mut moved, mut responses) = respond(index, positions, &hits, &roles, ease, &options.response);
     // The check before measured every end of these edges: those whose free balls cover
@@ -211,21 +185,7 @@ pub fn collide_refined(
     // Faces: the base's faces whose corners are all pinned are pierced exactly when the
     // base's check said so; the others are checked, lifted where pierced (face rounds, then
     // edge rounds at the lifted corners) and checked again after.
-    let kept_faces = base_verdicts(m0);
-    let mut pierced_after: Vec<u32> = Vec::new();
-    let mut faces: Vec<u32> = Vec::new();
-    for (f, tri) in refined.mesh.triangles.iter().enumerate() {
-        let verdict = tri
-            .iter()
-            .all(|&v| pinned[v as usize])
-            .then(|| kept_faces.get(&sorted(*tri)).copied())
-            .flatten();
-        match verdict {
-            Some(true) => pierced_after.push(f as u32),
-            Some(false) => {}
-            None => faces.push(f as u32),
-        }
-    }
+    let (mut pierced_after, faces) = faces_to_check(refined, &pinned, m0);
     let subset: Vec<[u32; 3]> = faces.iter().map(|&f| refined.mesh.triangles[f as usize]).collect();
     let rounds = respond_faces(
         index,
@@ -259,41 +219,23 @@ pub fn collide_refined(
         &responses,
         m0.measured,
     );
-    let was_crossing: std::collections::BTreeSet<u32> = before.crossing.iter().copied().collect();
-    let mut crossing_after_edges: Vec<[u32; 2]> = untouched
-        .iter()
-        .filter(|&&e| was_crossing.contains(&(e as u32)))
-        .map(|&e| edges[e])
-        .collect();
-    crossing_after_edges.extend(quality.crossing.iter().map(|&e| touching_edges[e as usize]));
-    crossing_after_edges.sort_unstable();
-    crossing_after_edges.extend(&kept_crossing);
-    let mut inside_after: Vec<u32> = quality.inside.clone();
-    inside_after.extend(&kept_inside);
-    inside_after.sort_unstable();
-    quality.penetrating_vertices += kept_inside.len();
-    quality.crossing_edges = crossing_after_edges.len();
-    quality.inside.clear();
-    quality.crossing.clear();
+    let crossing_after_edges = crossing_after(
+        (&edges, &untouched, &before.crossing),
+        (&touching_edges, &quality.crossing),
+        &kept_crossing,
+    );
+    let inside_after = with_kept(&mut quality, &kept_inside, crossing_after_edges.len());
     // The faces again, each vertex's distance as last measured where it stands now.
     let free_now: Vec<f64> = (0..positions.len())
-        .map(|v| match quality.clearance[v] {
-            c if again[v] && c.is_finite() => c.abs(),
-            _ if again[v] => 0.0,
-            _ => free[v],
+        .map(|v| {
+            if again[v] {
+                free_at(quality.clearance[v])
+            } else {
+                free[v]
+            }
         })
         .collect();
-    // Only the faces the first face round found pierced, or with a corner moved since it,
-    // can be pierced now.
-    let mut since = vec![false; positions.len()];
-    for r in &rounds.lifts {
-        since[r.vertex as usize] = true;
-    }
-    let again_faces: Vec<u32> = (0..subset.len() as u32)
-        .filter(|&k| rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize]))
-        .collect();
-    let again_subset: Vec<[u32; 3]> = again_faces.iter().map(|&k| subset[k as usize]).collect();
-    let after = pierced_faces(index, &moved, &again_subset, &free_now, None);
+    let (again_faces, after) = pierced_again(index, &moved, (&subset, &rounds), &free_now);
     pierced_after.extend(after.iter().map(|&k| faces[again_faces[k as usize] as usize]));
     pierced_after.sort_unstable();
     let face_rounds = rounds.found;
@@ -313,6 +255,134 @@ pub fn collide_refined(
         face_rounds,
         pierced_after,
     }
+}
+
+/// The hits: each vertex of `inside` (of `positions`) with the body's nearest point within
+/// `reach`, tested point-face in its partition.
+fn hits_at(index: &BodyIndex, positions: &[DVec3], inside: &[u32], partition: &[usize], reach: f64) -> Vec<Hit> {
+    par_map(inside.len(), |k| {
+        let v = inside[k];
+        let p = positions[v as usize];
+        let near = index.nearest(p, reach)?;
+        Some(Hit {
+            vertex: v,
+            partition: partition[v as usize],
+            method: crate::body::DetectionMethod::PointFace,
+            depth: (-near.signed(p)).max(0.0),
+            foot: near.foot,
+            normal: near.normal,
+            triangle: Some(near.triangle),
+        })
+    })
+    .into_iter()
+    .flatten()
+    .collect()
+}
+
+/// The refined mesh's faces split by what is known of them: the base's faces whose corners
+/// are all pinned are pierced exactly when the base's check said so (the first list: those
+/// pierced); the others (the second) are to be checked.
+fn faces_to_check(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'_>) -> (Vec<u32>, Vec<u32>) {
+    let kept_faces = base_verdicts(m0);
+    let mut pierced: Vec<u32> = Vec::new();
+    let mut faces: Vec<u32> = Vec::new();
+    for (f, tri) in refined.mesh.triangles.iter().enumerate() {
+        let verdict = tri
+            .iter()
+            .all(|&v| pinned[v as usize])
+            .then(|| kept_faces.get(&sorted(*tri)).copied())
+            .flatten();
+        match verdict {
+            Some(true) => pierced.push(f as u32),
+            Some(false) => {}
+            None => faces.push(f as u32),
+        }
+    }
+    (pierced, faces)
+}
+
+/// The checked faces (`subset`) pierced after the face rounds `rounds`, at `moved` with
+/// each vertex free by `free_now`: only the faces the first round found pierced, or with a
+/// corner moved since, can be. Returns the faces looked at (indices into `subset`) and
+/// those of them pierced (indices into the first list).
+fn pierced_again(
+    index: &BodyIndex,
+    moved: &[DVec3],
+    (subset, rounds): (&[[u32; 3]], &FaceRounds),
+    free_now: &[f64],
+) -> (Vec<u32>, Vec<u32>) {
+    let mut since = vec![false; moved.len()];
+    for r in &rounds.lifts {
+        since[r.vertex as usize] = true;
+    }
+    let again_faces: Vec<u32> = (0..subset.len() as u32)
+        .filter(|&k| rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize]))
+        .collect();
+    let again_subset: Vec<[u32; 3]> = again_faces.iter().map(|&k| subset[k as usize]).collect();
+    let after = pierced_faces(index, moved, &again_subset, free_now, None);
+    (again_faces, after)
+}
+
+/// The edges crossing after the response, sorted, then the base's kept ones: the untouched
+/// edges (indices into `edges`) the check before found crossing (`was`, indices into
+/// `edges`), and the touching edges the check after found crossing (`now`, indices into
+/// `touching`).
+fn crossing_after(
+    (edges, untouched, was): (&[[u32; 2]], &[usize], &[u32]),
+    (touching, now): (&[[u32; 2]], &[u32]),
+    kept: &[[u32; 2]],
+) -> Vec<[u32; 2]> {
+    let was: std::collections::BTreeSet<u32> = was.iter().copied().collect();
+    let mut after: Vec<[u32; 2]> = untouched
+        .iter()
+        .filter(|&&e| was.contains(&(e as u32)))
+        .map(|&e| edges[e])
+        .collect();
+    after.extend(now.iter().map(|&e| touching[e as usize]));
+    after.sort_unstable();
+    after.extend(kept);
+    after
+}
+
+/// How far a vertex measured again is free of the body: its clearance's size where the
+/// check measured one, else nothing.
+fn free_at(clearance: f64) -> f64 {
+    if clearance.is_finite() { clearance.abs() } else { 0.0 }
+}
+
+/// What the base's check already says: the edges with an end that differs from the base
+/// (to be measured), and of the others (the base's edges, both ends pinned) those crossing,
+/// exactly when the base's check said so; the pinned vertices the base found inside.
+#[allow(clippy::type_complexity)]
+fn known_from_base(
+    refined: &RefinedInput<'_>,
+    pinned: &[bool],
+    m0: &M0Collided<'_>,
+) -> (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<u32>) {
+    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = refined
+        .edges
+        .iter()
+        .copied()
+        .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
+    let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
+        m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
+    let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
+    let kept_inside: Vec<u32> = m0.inside.iter().copied().filter(|&v| pinned[v as usize]).collect();
+    (edges, kept_crossing, kept_inside)
+}
+
+/// The check after the response made whole: the base's kept inside vertices counted in
+/// (`crossing` is the whole count of crossing edges), its lists of what it measured emptied
+/// (they index the measured subsets). Returns every vertex inside, sorted.
+fn with_kept(quality: &mut Quality, kept_inside: &[u32], crossing: usize) -> Vec<u32> {
+    let mut inside_after: Vec<u32> = quality.inside.clone();
+    inside_after.extend(kept_inside);
+    inside_after.sort_unstable();
+    quality.penetrating_vertices += kept_inside.len();
+    quality.crossing_edges = crossing;
+    quality.inside.clear();
+    quality.crossing.clear();
+    inside_after
 }
 
 /// A face's corners in ascending order (the same face whatever its orientation).

@@ -119,6 +119,66 @@ pub fn validate_and_repair(
         vertices: mesh.positions.len(),
         ..MeshReport::default()
     };
+    let lines = drop_repeats(mesh, triangle_lines, &mut report, &place)?;
+    let mut adjacency = Adjacency::try_new(mesh).map_err(|e| {
+        let shown: Vec<String> = e
+            .triangles
+            .iter()
+            .filter_map(|&t| lines.get(t as usize).copied().filter(|&l| l > 0))
+            .map(|l| l.to_string())
+            .collect();
+        MeshError::NonManifold {
+            place: place.clone(),
+            a: e.vertices[0] + 1,
+            b: e.vertices[1] + 1,
+            count: e.triangles.len(),
+            lines: if shown.is_empty() {
+                String::new()
+            } else {
+                format!(" (lines {})", shown.join(", "))
+            },
+        }
+    })?;
+    report.boundary_edges = adjacency.boundary_edges;
+
+    let (flipped, parts) = orient(mesh, &mut adjacency, &lines, &place)?;
+    report.flipped = flipped;
+    report.components = parts;
+    if report.boundary_edges > 0 {
+        report.holes_filled = fill_holes(mesh, &adjacency);
+        adjacency = Adjacency::try_new(mesh).map_err(|e| MeshError::NonManifold {
+            place: place.clone(),
+            a: e.vertices[0] + 1,
+            b: e.vertices[1] + 1,
+            count: e.triangles.len(),
+            lines: " (after filling holes)".into(),
+        })?;
+    }
+    let n = mesh.triangles.len();
+    report.triangles = n;
+    let diagonal_sq = mesh.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
+    report.zero_area_triangles = (0..n)
+        .filter(|&t| mesh.scaled_normal(t).length() * 0.5 <= 1e-12 * diagonal_sq)
+        .count();
+    let mut used = vec![false; mesh.positions.len()];
+    for tri in &mesh.triangles {
+        for &v in tri {
+            used[v as usize] = true;
+        }
+    }
+    report.unused_vertices = used.iter().filter(|u| !**u).count();
+    Ok((report, adjacency))
+}
+
+/// Drops the triangles that repeat a vertex, then exact duplicates (the same vertex set:
+/// the first in file order is kept), counting both in `report`. Returns each kept
+/// triangle's file line (`triangle_lines`, 0 where unknown).
+fn drop_repeats(
+    mesh: &mut TriMesh,
+    triangle_lines: &[usize],
+    report: &mut MeshReport,
+    place: &str,
+) -> Result<Vec<usize>, MeshError> {
     let total = mesh.triangles.len();
     let mut lines: Vec<usize> = Vec::with_capacity(total);
     let mut kept = Vec::with_capacity(total);
@@ -131,7 +191,10 @@ pub fn validate_and_repair(
         lines.push(triangle_lines.get(t).copied().unwrap_or(0));
     }
     if kept.is_empty() {
-        return Err(MeshError::NoTriangles { place, count: total });
+        return Err(MeshError::NoTriangles {
+            place: place.to_string(),
+            count: total,
+        });
     }
     // Exact duplicates (same vertex set): keep the first in file order.
     let mut keys: Vec<([u32; 3], usize)> = kept
@@ -160,29 +223,19 @@ pub fn validate_and_repair(
         .unzip();
     mesh.triangles = triangles;
 
-    let mut adjacency = Adjacency::try_new(mesh).map_err(|e| {
-        let shown: Vec<String> = e
-            .triangles
-            .iter()
-            .filter_map(|&t| lines.get(t as usize).copied().filter(|&l| l > 0))
-            .map(|l| l.to_string())
-            .collect();
-        MeshError::NonManifold {
-            place: place.clone(),
-            a: e.vertices[0] + 1,
-            b: e.vertices[1] + 1,
-            count: e.triangles.len(),
-            lines: if shown.is_empty() {
-                String::new()
-            } else {
-                format!(" (lines {})", shown.join(", "))
-            },
-        }
-    })?;
-    report.boundary_edges = adjacency.boundary_edges;
+    Ok(lines)
+}
 
-    // Orientation: breadth-first over each edge-connected part, on the original winding
-    // with a flip flag per triangle; a neighbour must run the shared edge the other way.
+/// Orients every edge-connected part consistently (breadth-first, on the original winding
+/// with a flip flag per triangle: a neighbour must run the shared edge the other way), then
+/// outward (a part whose enclosed volume is negative is flipped whole), keeping `adjacency`
+/// in step. Returns the triangles flipped and the parts.
+fn orient(
+    mesh: &mut TriMesh,
+    adjacency: &mut Adjacency,
+    lines: &[usize],
+    place: &str,
+) -> Result<(usize, usize), MeshError> {
     let n = mesh.triangles.len();
     let mut component = vec![u32::MAX; n];
     let mut flipped = vec![false; n];
@@ -216,7 +269,7 @@ pub fn validate_and_repair(
                 } else if flipped[o] != o_flip_needed {
                     let line = lines.get(o).copied().filter(|&l| l > 0);
                     return Err(MeshError::NonOrientable {
-                        place,
+                        place: place.to_string(),
                         line: line.map(|l| format!(" at line {l}")).unwrap_or_default(),
                     });
                 }
@@ -252,32 +305,7 @@ pub fn validate_and_repair(
             neighbours.swap(0, 2);
         }
     }
-    report.flipped = flipped.iter().filter(|f| **f).count();
-    report.components = parts.len();
-    if report.boundary_edges > 0 {
-        report.holes_filled = fill_holes(mesh, &adjacency);
-        adjacency = Adjacency::try_new(mesh).map_err(|e| MeshError::NonManifold {
-            place: place.clone(),
-            a: e.vertices[0] + 1,
-            b: e.vertices[1] + 1,
-            count: e.triangles.len(),
-            lines: " (after filling holes)".into(),
-        })?;
-    }
-    let n = mesh.triangles.len();
-    report.triangles = n;
-    let diagonal_sq = mesh.bounds().map_or(0.0, |(lo, hi)| (hi - lo).length_squared());
-    report.zero_area_triangles = (0..n)
-        .filter(|&t| mesh.scaled_normal(t).length() * 0.5 <= 1e-12 * diagonal_sq)
-        .count();
-    let mut used = vec![false; mesh.positions.len()];
-    for tri in &mesh.triangles {
-        for &v in tri {
-            used[v as usize] = true;
-        }
-    }
-    report.unused_vertices = used.iter().filter(|u| !**u).count();
-    Ok((report, adjacency))
+    Ok((flipped.iter().filter(|f| **f).count(), parts.len()))
 }
 
 /// Closes every boundary loop of the consistently oriented `mesh` with a fan about a new

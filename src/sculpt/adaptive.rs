@@ -134,33 +134,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
             faces = current;
             break;
         }
-        let mut red = active.clone();
-        let mut split: BTreeSet<(u32, u32)> = BTreeSet::new();
-        let mut on_edge: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
-        for (i, f) in current.iter().enumerate() {
-            for e in edges_of(f.v) {
-                on_edge.entry(e).or_default().push(i);
-            }
-        }
-        let count = |i: usize, split: &BTreeSet<(u32, u32)>| {
-            edges_of(current[i].v).iter().filter(|e| split.contains(e)).count()
-        };
-        let mut queue: Vec<usize> = (0..current.len()).filter(|&i| red[i]).collect();
-        while let Some(i) = queue.pop() {
-            for e in edges_of(current[i].v) {
-                if !split.insert(e) {
-                    continue;
-                }
-                let mut turn_red: Vec<usize> = on_edge[&e].iter().copied().filter(|&j| !red[j]).collect();
-                turn_red.retain(|&j| count(j, &split) >= 2);
-                for j in turn_red {
-                    if !red[j] {
-                        red[j] = true;
-                        queue.push(j);
-                    }
-                }
-            }
-        }
+        let (red, split) = red_green_closure(&current, &active);
         // Edge points on the current mesh.
         let table = EdgeTable::new(current.iter().map(|f| &f.v));
         let old_positions = positions.clone();
@@ -211,32 +185,7 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
                 .collect(),
             ..Level::default()
         };
-        let mut next = Vec::with_capacity(current.len() + 3 * level.active.len());
-        for (f, r) in current.iter().zip(&red) {
-            let mid = |a: u32, b: u32| midpoints.get(&key(a, b)).copied();
-            let [a, b, c] = f.v;
-            if *r {
-                level.red += 1;
-                let (Some(ab), Some(bc), Some(ca)) = (mid(a, b), mid(b, c), mid(c, a)) else {
-                    unreachable!("a red face has all three edges split");
-                };
-                next.extend(quarter(f.v, [ab, bc, ca]).map(|v| Face { v, region: f.region }));
-                continue;
-            }
-            let splits: Vec<(usize, u32)> = (0..3)
-                .filter_map(|k| mid(f.v[k], f.v[(k + 1) % 3]).map(|m| (k, m)))
-                .collect();
-            match splits.as_slice() {
-                [(k, m)] => {
-                    level.green += 1;
-                    let (p, q, o) = (f.v[*k], f.v[(k + 1) % 3], f.v[(k + 2) % 3]);
-                    for v in [[p, *m, o], [*m, q, o]] {
-                        next.push(Face { v, region: f.region });
-                    }
-                }
-                _ => next.push(*f),
-            }
-        }
+        let next = split_faces(&current, &red, &midpoints, &mut level);
         levels.push(level);
         faces = next;
     }
@@ -252,4 +201,68 @@ pub fn refine(mesh: &TriMesh, region: &[bool], options: &AdaptiveOptions) -> Ref
         levels,
         limited,
     }
+}
+
+/// The faces to split red (every edge split): the active ones, and every face two of whose
+/// edges come to be split (the closure); with the edges split.
+fn red_green_closure(current: &[Face], active: &[bool]) -> (Vec<bool>, BTreeSet<(u32, u32)>) {
+    let mut red = active.to_vec();
+    let mut split: BTreeSet<(u32, u32)> = BTreeSet::new();
+    let mut on_edge: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
+    for (i, f) in current.iter().enumerate() {
+        for e in edges_of(f.v) {
+            on_edge.entry(e).or_default().push(i);
+        }
+    }
+    let count =
+        |i: usize, split: &BTreeSet<(u32, u32)>| edges_of(current[i].v).iter().filter(|e| split.contains(e)).count();
+    let mut queue: Vec<usize> = (0..current.len()).filter(|&i| red[i]).collect();
+    while let Some(i) = queue.pop() {
+        for e in edges_of(current[i].v) {
+            if !split.insert(e) {
+                continue;
+            }
+            let mut turn_red: Vec<usize> = on_edge[&e].iter().copied().filter(|&j| !red[j]).collect();
+            turn_red.retain(|&j| count(j, &split) >= 2);
+            for j in turn_red {
+                if !red[j] {
+                    red[j] = true;
+                    queue.push(j);
+                }
+            }
+        }
+    }
+    (red, split)
+}
+
+/// The next level's faces: a red face in four, a face with one split edge in two (green),
+/// the others kept; counts the red and green faces in `level`.
+fn split_faces(current: &[Face], red: &[bool], midpoints: &BTreeMap<(u32, u32), u32>, level: &mut Level) -> Vec<Face> {
+    let mut next = Vec::with_capacity(current.len() + 3 * level.active.len());
+    for (f, r) in current.iter().zip(red) {
+        let mid = |a: u32, b: u32| midpoints.get(&key(a, b)).copied();
+        let [a, b, c] = f.v;
+        if *r {
+            level.red += 1;
+            let (Some(ab), Some(bc), Some(ca)) = (mid(a, b), mid(b, c), mid(c, a)) else {
+                unreachable!("a red face has all three edges split");
+            };
+            next.extend(quarter(f.v, [ab, bc, ca]).map(|v| Face { v, region: f.region }));
+            continue;
+        }
+        let splits: Vec<(usize, u32)> = (0..3)
+            .filter_map(|k| mid(f.v[k], f.v[(k + 1) % 3]).map(|m| (k, m)))
+            .collect();
+        match splits.as_slice() {
+            [(k, m)] => {
+                level.green += 1;
+                let (p, q, o) = (f.v[*k], f.v[(k + 1) % 3], f.v[(k + 2) % 3]);
+                for v in [[p, *m, o], [*m, q, o]] {
+                    next.push(Face { v, region: f.region });
+                }
+            }
+            _ => next.push(*f),
+        }
+    }
+    next
 }

@@ -89,59 +89,8 @@ pub fn solve(
         iterations: Vec::new(),
     };
     // The edit as moves of the active curve's points.
-    let (active, moves, dragged, whole) = match edit {
-        Edit::Point { name, target } => {
-            let names = point_names(fw, net);
-            let Some((_, c, p)) = names.iter().find(|(n, _, _)| n == name) else {
-                let known: Vec<&str> = names.iter().map(|(n, _, _)| n.as_str()).collect();
-                return Err(EditError::UnknownPoint {
-                    name: name.clone(),
-                    known: known.join(", "),
-                });
-            };
-            let at = curves::points(fw, &net.curves[*c])[*p];
-            let d = match target {
-                Target::By(v) => *v,
-                Target::To(q) => *q - at,
-            };
-            if !d.is_finite() {
-                return Err(EditError::NotFinite(name.clone()));
-            }
-            (*c, vec![(*p, d)], Some((*c, *p)), None)
-        }
-        Edit::Curve { name, by } => {
-            let Some(c) = net.curve(name) else {
-                let known: Vec<&str> = net.curves.iter().map(|c| c.name.as_str()).collect();
-                return Err(EditError::UnknownCurve {
-                    name: name.clone(),
-                    known: known.join(", "),
-                });
-            };
-            if !by.is_finite() {
-                return Err(EditError::NotFinite(name.clone()));
-            }
-            let n = curves::points(fw, &net.curves[c]).len();
-            (c, (0..n).map(|p| (p, *by)).collect(), None, Some(*by))
-        }
-    };
-    // What a drag may not do.
-    if let Some(by) = whole {
-        limits_of_edit::check_band(fw, &net.curves[active], by, probe)?;
-        limits_of_edit::check_around(fw, &net.curves[active], by, probe)?;
-        if net.curves[active].kind == CurveKind::Open {
-            let node = &net.curves[active];
-            let apex = curves::points(fw, node)[curves::points(fw, node).len() / 2];
-            limits_of_edit::check_path(&node.name, apex, apex + by, probe)?;
-        }
-    }
-    if let Some((c, p)) = dragged
-        && net.curves[c].kind == CurveKind::Open
-    {
-        let at = curves::points(fw, &net.curves[c])[p];
-        if let Edit::Point { name, .. } = edit {
-            limits_of_edit::check_path(name, at, at + moves[0].1, probe)?;
-        }
-    }
+    let (active, moves, dragged, whole) = edit_moves(fw, net, edit)?;
+    check_limits(fw, net, edit, (active, &moves, dragged, whole), probe)?;
     let mut path = Vec::new();
     if let Some((c, p)) = dragged {
         let at = curves::points(fw, &net.curves[c])[p];
@@ -226,6 +175,78 @@ pub fn solve(
         clearance_deficit,
         tolerance: options.tolerance,
     })
+}
+
+/// An edit as moves: `(the active curve, the moves of its points, the dragged point
+/// (curve, point) of a point edit, the whole curve's move of a curve edit)`.
+type EditMoves = (usize, Vec<(usize, DVec3)>, Option<(usize, usize)>, Option<DVec3>);
+
+/// The edit as moves of the active curve's points.
+fn edit_moves(fw: &Framework, net: &ConstraintNet, edit: &Edit) -> Result<EditMoves, EditError> {
+    Ok(match edit {
+        Edit::Point { name, target } => {
+            let names = point_names(fw, net);
+            let Some((_, c, p)) = names.iter().find(|(n, _, _)| n == name) else {
+                let known: Vec<&str> = names.iter().map(|(n, _, _)| n.as_str()).collect();
+                return Err(EditError::UnknownPoint {
+                    name: name.clone(),
+                    known: known.join(", "),
+                });
+            };
+            let at = curves::points(fw, &net.curves[*c])[*p];
+            let d = match target {
+                Target::By(v) => *v,
+                Target::To(q) => *q - at,
+            };
+            if !d.is_finite() {
+                return Err(EditError::NotFinite(name.clone()));
+            }
+            (*c, vec![(*p, d)], Some((*c, *p)), None)
+        }
+        Edit::Curve { name, by } => {
+            let Some(c) = net.curve(name) else {
+                let known: Vec<&str> = net.curves.iter().map(|c| c.name.as_str()).collect();
+                return Err(EditError::UnknownCurve {
+                    name: name.clone(),
+                    known: known.join(", "),
+                });
+            };
+            if !by.is_finite() {
+                return Err(EditError::NotFinite(name.clone()));
+            }
+            let n = curves::points(fw, &net.curves[c]).len();
+            (c, (0..n).map(|p| (p, *by)).collect(), None, Some(*by))
+        }
+    })
+}
+
+/// What a drag may not do: a whole curve moved out of its band, round the body or (an open
+/// curve's apex) through it; an open curve's point dragged through the body.
+fn check_limits(
+    fw: &Framework,
+    net: &ConstraintNet,
+    edit: &Edit,
+    (active, moves, dragged, whole): (usize, &[(usize, DVec3)], Option<(usize, usize)>, Option<DVec3>),
+    probe: &BodyProbe,
+) -> Result<(), EditError> {
+    if let Some(by) = whole {
+        limits_of_edit::check_band(fw, &net.curves[active], by, probe)?;
+        limits_of_edit::check_around(fw, &net.curves[active], by, probe)?;
+        if net.curves[active].kind == CurveKind::Open {
+            let node = &net.curves[active];
+            let apex = curves::points(fw, node)[curves::points(fw, node).len() / 2];
+            limits_of_edit::check_path(&node.name, apex, apex + by, probe)?;
+        }
+    }
+    if let Some((c, p)) = dragged
+        && net.curves[c].kind == CurveKind::Open
+    {
+        let at = curves::points(fw, &net.curves[c])[p];
+        if let Edit::Point { name, .. } = edit {
+            limits_of_edit::check_path(name, at, at + moves[0].1, probe)?;
+        }
+    }
+    Ok(())
 }
 
 impl Run<'_> {

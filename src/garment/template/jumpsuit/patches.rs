@@ -78,6 +78,21 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(),
         leg,
     };
     let k = s.layout().k;
+    torso_patches(s, &n, k)?;
+    let crotch = open(fw, "crotch")?;
+    let crotch_front = reversed(crotch.half(true, n.crotch));
+    let crotch_back = crotch.half(false, n.crotch);
+    for side in ["left", "right"] {
+        junction_patches(s, side, &n, k, (&crotch_front, &crotch_back))?;
+        leg_patches(s, side, &n, k)?;
+    }
+    panels(s, lines, &n, k)
+}
+
+/// The torso's patches: eight around (between the torso contours), three bands high (hip
+/// to waist, waist to bust, bust to chest).
+fn torso_patches(s: &mut Surfacer<'_>, n: &Bands, k: usize) -> Result<(), FrameworkError> {
+    let fw = s.framework();
     let torso_contours = [
         "centre_front",
         "front_left",
@@ -105,99 +120,121 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(),
             s.patch(&format!("torso.{lo}_{hi}.{a}"), [&bottom, &top, &left, &right], curves)?;
         }
     }
-    let crotch = open(fw, "crotch")?;
-    let crotch_front = reversed(crotch.half(true, n.crotch));
-    let crotch_back = crotch.half(false, n.crotch);
-    for side in ["left", "right"] {
-        let thigh = format!("{side}_thigh");
-        let c = |name: &str| format!("{name}_{side}");
-        let sp = |s: &Surfacer<'_>, name: &str| s.span(name, &thigh, n.junction);
-        let inner_span = s.span(&c("inner"), &thigh, n.inner)?;
-        let inner_front = join(&[inner_span.clone(), crotch_front.clone()]);
-        let inner_back = join(&[inner_span, crotch_back.clone()]);
-        // Around the thigh in ring order: five stops (thigh anchor, hip anchor, the boundary
-        // between bands), the first and last both on the inner seam; a band between each
-        // two. The right leg goes round the other way (the mirror of the left).
-        let (stops, bands) = if side == "left" {
-            (
-                [
-                    ("inner", "front", inner_front),
-                    ("front", "front_left", sp(s, &c("front"))?),
-                    ("outer", "left", sp(s, &c("side"))?),
-                    ("back", "back_left", sp(s, &c("back"))?),
-                    ("inner", "back", inner_back),
-                ],
-                ["front_inner", "front_outer", "back_outer", "back_inner"],
-            )
-        } else {
-            (
-                [
-                    ("inner", "back", inner_back),
-                    ("back", "back_right", sp(s, &c("back"))?),
-                    ("outer", "right", sp(s, &c("side"))?),
-                    ("front", "front_right", sp(s, &c("front"))?),
-                    ("inner", "front", inner_front),
-                ],
-                ["back_inner", "back_outer", "front_outer", "front_inner"],
-            )
-        };
-        let mut specs: Vec<(&str, [Vec<DVec3>; 4])> = Vec::with_capacity(4);
-        for (band, w) in bands.into_iter().zip(stops.windows(2)) {
-            let ((t0, h0, b0), (t1, h1, b1)) = (&w[0], &w[1]);
-            specs.push((
-                band,
-                [
-                    arc(fw, &thigh, t0, t1, k)?,
-                    arc(fw, "hip", h0, h1, k)?,
-                    b0.clone(),
-                    b1.clone(),
-                ],
-            ));
-        }
-        let junction_curves = vec![
-            CurveRef::whole(&thigh),
-            CurveRef::whole("hip"),
-            s.span_ref(&c("front"), &thigh)?,
-            s.span_ref(&c("side"), &thigh)?,
-            s.span_ref(&c("back"), &thigh)?,
-            s.span_ref(&c("inner"), &thigh)?,
-            CurveRef::whole("crotch"),
-        ];
-        for (name, [bottom, top, left, right]) in specs {
+    Ok(())
+}
+
+/// The junction of one leg (`side`): four patches between the thigh ring and the hip ring,
+/// around the thigh in ring order, the inner seam running on into the crotch curve's halves
+/// `(front, back)`.
+fn junction_patches(
+    s: &mut Surfacer<'_>,
+    side: &str,
+    n: &Bands,
+    k: usize,
+    (crotch_front, crotch_back): (&[DVec3], &[DVec3]),
+) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    let thigh = format!("{side}_thigh");
+    let c = |name: &str| format!("{name}_{side}");
+    let sp = |s: &Surfacer<'_>, name: &str| s.span(name, &thigh, n.junction);
+    let inner_span = s.span(&c("inner"), &thigh, n.inner)?;
+    let inner_front = join(&[inner_span.clone(), crotch_front.to_vec()]);
+    let inner_back = join(&[inner_span, crotch_back.to_vec()]);
+    // Around the thigh in ring order: five stops (thigh anchor, hip anchor, the boundary
+    // between bands), the first and last both on the inner seam; a band between each
+    // two. The right leg goes round the other way (the mirror of the left).
+    let (stops, bands) = if side == "left" {
+        (
+            [
+                ("inner", "front", inner_front),
+                ("front", "front_left", sp(s, &c("front"))?),
+                ("outer", "left", sp(s, &c("side"))?),
+                ("back", "back_left", sp(s, &c("back"))?),
+                ("inner", "back", inner_back),
+            ],
+            ["front_inner", "front_outer", "back_outer", "back_inner"],
+        )
+    } else {
+        (
+            [
+                ("inner", "back", inner_back),
+                ("back", "back_right", sp(s, &c("back"))?),
+                ("outer", "right", sp(s, &c("side"))?),
+                ("front", "front_right", sp(s, &c("front"))?),
+                ("inner", "front", inner_front),
+            ],
+            ["back_inner", "back_outer", "front_outer", "front_inner"],
+        )
+    };
+    let mut specs: Vec<(&str, [Vec<DVec3>; 4])> = Vec::with_capacity(4);
+    for (band, w) in bands.into_iter().zip(stops.windows(2)) {
+        let ((t0, h0, b0), (t1, h1, b1)) = (&w[0], &w[1]);
+        specs.push((
+            band,
+            [
+                arc(fw, &thigh, t0, t1, k)?,
+                arc(fw, "hip", h0, h1, k)?,
+                b0.clone(),
+                b1.clone(),
+            ],
+        ));
+    }
+    let junction_curves = vec![
+        CurveRef::whole(&thigh),
+        CurveRef::whole("hip"),
+        s.span_ref(&c("front"), &thigh)?,
+        s.span_ref(&c("side"), &thigh)?,
+        s.span_ref(&c("back"), &thigh)?,
+        s.span_ref(&c("inner"), &thigh)?,
+        CurveRef::whole("crotch"),
+    ];
+    for (name, [bottom, top, left, right]) in specs {
+        s.patch(
+            &format!("junction.{side}.{name}"),
+            [&bottom, &top, &left, &right],
+            junction_curves.clone(),
+        )?;
+    }
+    Ok(())
+}
+
+/// One leg's patches (`side`): four around, between hem and knee and between knee and
+/// thigh.
+fn leg_patches(s: &mut Surfacer<'_>, side: &str, n: &Bands, k: usize) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    let c = |name: &str| format!("{name}_{side}");
+    let (order, cont) = if side == "left" {
+        (LEFT_LEG, ["front", "side", "back", "inner"])
+    } else {
+        (RIGHT_LEG, ["front", "inner", "back", "side"])
+    };
+    for ((lo, hi), nv) in [("hem", "knee"), ("knee", "thigh")].into_iter().zip(n.leg) {
+        let (lo_ring, hi_ring) = (format!("{side}_{lo}"), format!("{side}_{hi}"));
+        for i in 0..4 {
+            let (a, b) = (order[i], order[(i + 1) % 4]);
+            let bottom = arc(fw, &lo_ring, a, b, k)?;
+            let top = arc(fw, &hi_ring, a, b, k)?;
+            let left = s.span(&c(cont[i]), &lo_ring, nv)?;
+            let right = s.span(&c(cont[(i + 1) % 4]), &lo_ring, nv)?;
+            let curves = vec![
+                CurveRef::whole(&lo_ring),
+                CurveRef::whole(&hi_ring),
+                s.span_ref(&c(cont[i]), &lo_ring)?,
+                s.span_ref(&c(cont[(i + 1) % 4]), &lo_ring)?,
+            ];
             s.patch(
-                &format!("junction.{side}.{name}"),
+                &format!("leg.{side}.{lo}_{hi}.{a}"),
                 [&bottom, &top, &left, &right],
-                junction_curves.clone(),
+                curves,
             )?;
         }
-        let (order, cont) = if side == "left" {
-            (LEFT_LEG, ["front", "side", "back", "inner"])
-        } else {
-            (RIGHT_LEG, ["front", "inner", "back", "side"])
-        };
-        for ((lo, hi), nv) in [("hem", "knee"), ("knee", "thigh")].into_iter().zip(n.leg) {
-            let (lo_ring, hi_ring) = (format!("{side}_{lo}"), format!("{side}_{hi}"));
-            for i in 0..4 {
-                let (a, b) = (order[i], order[(i + 1) % 4]);
-                let bottom = arc(fw, &lo_ring, a, b, k)?;
-                let top = arc(fw, &hi_ring, a, b, k)?;
-                let left = s.span(&c(cont[i]), &lo_ring, nv)?;
-                let right = s.span(&c(cont[(i + 1) % 4]), &lo_ring, nv)?;
-                let curves = vec![
-                    CurveRef::whole(&lo_ring),
-                    CurveRef::whole(&hi_ring),
-                    s.span_ref(&c(cont[i]), &lo_ring)?,
-                    s.span_ref(&c(cont[(i + 1) % 4]), &lo_ring)?,
-                ];
-                s.patch(
-                    &format!("leg.{side}.{lo}_{hi}.{a}"),
-                    [&bottom, &top, &left, &right],
-                    curves,
-                )?;
-            }
-        }
     }
-    // Front and back panels between the chest ring, the straps and the neckline.
+    Ok(())
+}
+
+/// The front and back panels between the chest ring, the straps and the neckline.
+fn panels(s: &mut Surfacer<'_>, lines: &[FeatureLine], n: &Bands, k: usize) -> Result<(), FrameworkError> {
+    let fw = s.framework();
     let (left_strap, right_strap) = (open(fw, "left_strap")?, open(fw, "right_strap")?);
     let strap = |c: &OpenCurve, front: bool| c.half(front, n.strap);
     let (seam_left, seam_right) = (line(lines, "seam_left")?, line(lines, "seam_right")?);
