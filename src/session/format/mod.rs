@@ -30,14 +30,17 @@
 //! file, line and column. Everything is checked before anything runs.
 
 //!
-//! Three parts: [`syntax`] (the typed session a parse produces), the lexer (a line into
-//! tokens) and the parser (statements into the syntax tree, every name and value checked).
+//! Four parts: [`statements`] (the table of every statement's keyword and place),
+//! [`syntax`] (the typed session a parse produces), the lexer (a line into tokens) and the
+//! parser (statements into the syntax tree, every name and value checked).
 
 mod args;
 mod lexer;
 mod parser;
+pub mod statements;
 mod suggest;
 pub mod syntax;
 
 pub use parser::parse_session;
+pub use statements::{Place, Statement};
 pub use syntax::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};

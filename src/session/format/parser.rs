@@ -1,12 +1,13 @@
 //! The parser: statements into the syntax tree, one method per statement. Scene statements
 //! come first; steps are checked against what came before them (a `set` names a dimension
-//! of the garment built before it, an `undo` needs something to take back). Each family of
-//! statements has its own file: `scene`, `garment` (garment, set), `drag` (drag, undo),
-//! `sculpt`, `nurbs` (nurbs, move), `m1` (m1, cut), `probe` (mannequin, section).
+//! of the garment built before it, an `undo` needs something to take back). Each statement
+//! has its own file in `parser/` (`move` in `move_part.rs`), and the dispatch here is one
+//! arm per entry of the statement table ([`super::statements::Statement`]).
 
 use std::path::Path;
 
 use super::lexer::{Line, tokenize};
+use super::statements::{Place, Statement};
 use super::suggest::did_you_mean;
 use super::syntax::{LogDetail, ParseError, Scene, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
@@ -14,29 +15,26 @@ use crate::constraint::SolverOptions;
 use crate::garment::TemplateKind;
 use crate::m1::M1Options;
 
+mod body;
+mod cut;
 mod drag;
+mod drape;
 mod garment;
+mod landmark;
+mod log;
 mod m1;
+mod mannequin;
+mod move_part;
 mod nurbs;
-mod probe;
-mod scene;
 mod sculpt;
+mod section;
+mod set;
+mod solver;
+mod undo;
+mod units;
 
-use probe::{mannequin, section};
-
-const SCENE_KEYWORDS: [&str; 7] = ["drape", "body", "units", "landmark", "solver", "m1", "log"];
-const STEP_KEYWORDS: [&str; 10] = [
-    "mannequin",
-    "section",
-    "garment",
-    "set",
-    "drag",
-    "undo",
-    "cut",
-    "nurbs",
-    "move",
-    "sculpt",
-];
+use mannequin::mannequin;
+use section::section;
 
 /// Parses and validates a session. `name` is used in messages; `base_dir` resolves
 /// relative body paths.
@@ -115,43 +113,45 @@ impl Parser<'_> {
         if !self.version_seen {
             return self.version(line, head, rest);
         }
-        if SCENE_KEYWORDS.contains(&keyword) && !self.steps.is_empty() {
+        let Some(statement) = Statement::from_keyword(keyword) else {
+            let scene: Vec<&str> = Statement::keywords(Place::Scene).collect();
+            let steps: Vec<&str> = Statement::keywords(Place::Step).collect();
+            return Err(line.error(
+                head.column,
+                format!(
+                    "unknown statement '{keyword}'{}: expected a scene statement ({}) or a step ({})",
+                    did_you_mean(keyword, Statement::ALL.iter().map(|(_, k, _)| *k)),
+                    scene.join(", "),
+                    steps.join(", ")
+                ),
+            ));
+        };
+        if statement.place() == Place::Scene && !self.steps.is_empty() {
             return Err(line.error(
                 head.column,
                 format!("'{keyword}' belongs to the scene and must come before the first step"),
             ));
         }
-        let op = match keyword {
-            "drape" => {
+        let op = match statement {
+            Statement::Drape => {
                 return Err(line.error(head.column, "'drape' may appear only once, as the first statement"));
             }
-            "body" => return self.body(line, head, rest),
-            "units" => return self.units(line, head, rest),
-            "landmark" => return self.landmark(line, rest),
-            "solver" => return self.solver(line, head, rest),
-            "m1" => return self.m1(line, head, rest),
-            "log" => return self.log(line, head, rest),
-            "cut" => self.cut(line, head, rest)?,
-            "drag" => self.drag(line, head, rest)?,
-            "undo" => self.undo(line, head, rest)?,
-            "mannequin" => mannequin(line, rest)?,
-            "section" => section(line, rest)?,
-            "garment" => self.garment(line, rest)?,
-            "set" => self.set(line, head, rest)?,
-            "nurbs" => self.nurbs(line, head, rest)?,
-            "move" => self.move_part(line, head, rest)?,
-            "sculpt" => self.sculpt(line, head, rest)?,
-            other => {
-                return Err(line.error(
-                    head.column,
-                    format!(
-                        "unknown statement '{other}'{}: expected a scene statement ({}) or a step ({})",
-                        did_you_mean(other, SCENE_KEYWORDS.into_iter().chain(STEP_KEYWORDS)),
-                        SCENE_KEYWORDS.join(", "),
-                        STEP_KEYWORDS.join(", ")
-                    ),
-                ));
-            }
+            Statement::Body => return self.body(line, head, rest),
+            Statement::Units => return self.units(line, head, rest),
+            Statement::Landmark => return self.landmark(line, rest),
+            Statement::Solver => return self.solver(line, head, rest),
+            Statement::M1 => return self.m1(line, head, rest),
+            Statement::Log => return self.log(line, head, rest),
+            Statement::Mannequin => mannequin(line, rest)?,
+            Statement::Section => section(line, rest)?,
+            Statement::Garment => self.garment(line, rest)?,
+            Statement::Set => self.set(line, head, rest)?,
+            Statement::Drag => self.drag(line, head, rest)?,
+            Statement::Undo => self.undo(line, head, rest)?,
+            Statement::Cut => self.cut(line, head, rest)?,
+            Statement::Nurbs => self.nurbs(line, head, rest)?,
+            Statement::Move => self.move_part(line, head, rest)?,
+            Statement::Sculpt => self.sculpt(line, head, rest)?,
         };
         self.steps.push(Step { line: line.number, op });
         Ok(())

@@ -1,5 +1,6 @@
 //! The syntax tree of a session: what a parse produces and the runner reads.
 
+use super::statements::Statement;
 use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
@@ -208,20 +209,25 @@ impl Change {
 }
 
 impl Op {
-    /// The operation's keyword.
-    pub fn keyword(&self) -> &'static str {
+    /// The statement the operation was written as.
+    pub fn statement(&self) -> Statement {
         match self {
-            Self::Mannequin(_) => "mannequin",
-            Self::Section { .. } => "section",
-            Self::Garment { .. } => "garment",
-            Self::Set { .. } => "set",
-            Self::Drag(_) => "drag",
-            Self::Undo => "undo",
-            Self::Cut { .. } => "cut",
-            Self::Nurbs { .. } => "nurbs",
-            Self::Move { .. } => "move",
-            Self::Sculpt { .. } => "sculpt",
+            Self::Mannequin(_) => Statement::Mannequin,
+            Self::Section { .. } => Statement::Section,
+            Self::Garment { .. } => Statement::Garment,
+            Self::Set { .. } => Statement::Set,
+            Self::Drag(_) => Statement::Drag,
+            Self::Undo => Statement::Undo,
+            Self::Cut { .. } => Statement::Cut,
+            Self::Nurbs { .. } => Statement::Nurbs,
+            Self::Move { .. } => Statement::Move,
+            Self::Sculpt { .. } => Statement::Sculpt,
         }
+    }
+
+    /// The operation's keyword (from the statement table).
+    pub fn keyword(&self) -> &'static str {
+        self.statement().keyword()
     }
 }
 

@@ -1,12 +1,11 @@
-//! The constraint-layer edits: `drag` and `undo`.
+//! The `drag` step: a control point or a whole curve moved.
 
+use super::Parser;
 use crate::constraint::{Edit, Target};
 use crate::session::format::args::{Args, vector};
 use crate::session::format::lexer::{Line, Token};
 use crate::session::format::suggest::did_you_mean;
 use crate::session::format::syntax::{Op, ParseError};
-
-use super::Parser;
 
 impl Parser<'_> {
     /// `drag POINT by=dx,dy,dz | to=x,y,z` or `drag CURVE by=dx,dy,dz`.
@@ -83,20 +82,5 @@ impl Parser<'_> {
         };
         self.undoable += 1;
         Ok(Op::Drag(edit))
-    }
-
-    /// `undo`.
-    pub(super) fn undo(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
-        if let Some(extra) = rest.first() {
-            return Err(line.error(extra.column, format!("unexpected '{}' after 'undo'", extra.text)));
-        }
-        if self.undoable == 0 {
-            return Err(line.error(
-                head.column,
-                "nothing to undo: 'undo' takes back a drag, set, cut or sculpt step of the garment",
-            ));
-        }
-        self.undoable -= 1;
-        Ok(Op::Undo)
     }
 }
