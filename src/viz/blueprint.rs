@@ -8,6 +8,19 @@ use rerun::blueprint::{
 
 use super::recording::METRIC_UNITS;
 
+
+/// The figures the Collision plot shows: what detection found and the response moved, and
+/// what was left in the body after M0's collision and after M1's.
+const GUARANTEE_FIGURES: [&str; 8] = [
+    "hits",
+    "responses",
+    "penetrating_vertices",
+    "crossing_edges",
+    "pierced_faces",
+    "m1_penetrating_vertices",
+    "m1_crossing_edges",
+    "m1_pierced_faces",
+];
 /// Top left, two tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
 /// the collision marks and the framework) and the Body (partition tint, landmarks, rings,
 /// partition bounds, dress forms, sections; labels on hover, the partition legend a table
@@ -104,11 +117,21 @@ pub fn default_blueprint() -> Blueprint {
             .with_row_shares([3.0, 2.0])
             .into(),
             Vertical::new([
-                Tabs::new(METRIC_UNITS.iter().map(|(unit, title)| {
-                    TimeSeriesView::new(*title)
-                        .with_origin(format!("/metrics/{unit}"))
-                        .into()
-                }))
+                // The guarantee's figures first (what the collision left, per step), then every
+                // figure of the steps by unit.
+                Tabs::new(
+                    std::iter::once(
+                        TimeSeriesView::new("Collision")
+                            .with_origin("/metrics/count/step")
+                            .with_contents(GUARANTEE_FIGURES.map(|f| format!("+ /metrics/count/step/{f}")))
+                            .into(),
+                    )
+                    .chain(METRIC_UNITS.iter().map(|(unit, title)| {
+                        TimeSeriesView::new(*title)
+                            .with_origin(format!("/metrics/{unit}"))
+                            .into()
+                    })),
+                )
                 .into(),
                 Tabs::new([
                     TextLogView::new("Log").with_origin("/log").into(),

@@ -100,10 +100,6 @@ impl RerunLogger {
                 deepest * 1e3
             ));
         }
-        self.scalar("metrics/collision/hits", d.hits.len() as f64)?;
-        self.scalar("metrics/collision/tested_vertices", d.tested as f64)?;
-        self.scalar("metrics/collision/skipped_inert", d.skipped_inert as f64)?;
-        self.scalar("metrics/collision/skipped_patch", d.skipped_patch as f64)?;
         self.text(
             TextLogLevel::INFO,
             format!(
@@ -129,15 +125,6 @@ impl RerunLogger {
         self.clearance_map(&c.mesh, &c.quality.clearance, &c.quality.near_faces)?;
         let q = &c.quality;
         self.log_left_over(outcome)?;
-        self.scalar("metrics/collision/penetrating_vertices", q.penetrating_vertices as f64)?;
-        self.scalar("metrics/collision/pierced_faces", q.pierced_faces as f64)?;
-        self.scalar("metrics/collision/face_clearance_m", q.face_clearance_m)?;
-        self.scalar("metrics/collision/crossing_edges", q.crossing_edges as f64)?;
-        self.scalar("metrics/collision/max_depth_m", q.max_depth_m)?;
-        self.scalar("metrics/collision/responses", c.responses.len() as f64)?;
-        self.scalar("metrics/collision/max_ease_error_m", q.max_ease_error_m)?;
-        self.scalar("metrics/collision/max_move_m", q.max_move_m)?;
-        self.scalar("metrics/collision/max_stretch", q.max_stretch)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {
             format!(
                 "; verified by brute force: {} inside before ({} missed: {}; {} false hits, line-line {}; verdicts the skips changed {}), {} inside, {} crossing and {} pierced faces after, quality agrees: {}, equals a full check: {}",

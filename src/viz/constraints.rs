@@ -168,8 +168,6 @@ impl RerunLogger {
         rec.log("constraints/solve", &Clear::recursive()).map_err(to_sink)?;
         self.network(&s.framework, net, tolerance)?;
         self.log_drag_path(s)?;
-        self.scalar("metrics/solver/passes", s.passes as f64)?;
-        self.scalar("metrics/solver/iterations", s.iterations.len() as f64)?;
         let worst = s.max_residual();
         let violations = s.violation_lines(net);
         let (level, verdict) = if violations.is_empty() {

@@ -159,9 +159,6 @@ impl RerunLogger {
         if step == RingStep::Fitted {
             let girths: Vec<String> = fw.rings.iter().map(girth_note).collect();
             text.push_str(&format!("; girths: {}", girths.join("; ")));
-            for r in &fw.rings {
-                self.scalar(&format!("metrics/garment/girth_m/{}", r.name), r.girth)?;
-            }
             self.control_points(fw)?;
         }
         self.text(TextLogLevel::INFO, text)
@@ -264,8 +261,6 @@ impl RerunLogger {
         let m0 = &fw.m0;
         rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
         self.m0(&m0.mesh, &m0.face_patch, &m0.edges)?;
-        self.scalar("metrics/garment/m0_vertices", m0.mesh.positions.len() as f64)?;
-        self.scalar("metrics/garment/m0_faces", m0.mesh.triangles.len() as f64)?;
         let worst = fw
             .rings
             .iter()

@@ -120,7 +120,7 @@ impl RerunLogger {
         let rec = OrderedRecording::new(rec, options.detail == LogDetail::Metrics);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
-        // The mannequin figures are one value per run: markers, polar warm and chord cool.
+        // The mannequin's figures are one value per run: markers, polar warm and chord cool.
         for region in Region::ALL {
             for (method, stat, color) in [
                 ("polar", "max", [220, 40, 30]),
@@ -128,9 +128,9 @@ impl RerunLogger {
                 ("chord", "max", [30, 110, 230]),
                 ("chord", "rms", [90, 200, 230]),
             ] {
-                let name = format!("{} {method} {stat} (mm)", region.name());
+                let name = format!("{} {method} {stat} (m)", region.name());
                 rec.log_static(
-                    metric_path(&format!("metrics/mannequin/{}/{method}_{stat}_mm", region.name())),
+                    metric_path(&format!("metrics/step/regions/{}/{method}/{stat}_m", region.name())),
                     &SeriesPoints::new()
                         .with_names([name])
                         .with_colors([color])
@@ -256,6 +256,7 @@ impl StageSink for RerunLogger {
                         self.scalar(&format!("metrics/timings/{name}"), *ms)?;
                     }
                 }
+                self.log_figures(metrics)?;
                 self.text(
                     TextLogLevel::DEBUG,
                     format!("step {} ({}) done", metrics.step, metrics.op),

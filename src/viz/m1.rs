@@ -90,12 +90,6 @@ impl RerunLogger {
         )?;
         self.log_cut_lines(outcome)?;
         let q = &c.quality;
-        self.scalar("metrics/m1/faces", m1.mesh.triangles.len() as f64)?;
-        self.scalar("metrics/m1/patches_refined", m1.selection.count() as f64)?;
-        self.scalar("metrics/m1/crossing_edges_before", c.crossing_before as f64)?;
-        self.scalar("metrics/m1/crossing_edges", q.crossing_edges as f64)?;
-        self.scalar("metrics/m1/penetrating_vertices", q.penetrating_vertices as f64)?;
-        self.scalar("metrics/m1/pierced_faces", q.pierced_faces as f64)?;
         let by_rule: Vec<String> = m1
             .selection
             .by_rule()

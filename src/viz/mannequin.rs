@@ -1,6 +1,6 @@
 //! Logging the \[spline\] mannequin study: both refined surfaces beside the body, coloured by
 //! their distance to the true surface on one scale, the measured points, and the per-region
-//! figures as scalars.
+//! figures in the log (the step's figures are plotted from its metrics).
 
 use glam::DVec3;
 use rerun::{Mesh3D, Points3D, TextLogLevel, Transform3D};
@@ -71,16 +71,6 @@ impl RerunLogger {
                 "  {:<8} polar max {pm:.3} mm rms {pr:.3} mm | chord max {cm:.3} mm rms {cr:.3} mm",
                 r.region
             ));
-            for (method, stats) in [("polar", r.polar), ("chord", r.chord)] {
-                self.scalar(
-                    &format!("metrics/mannequin/{}/{method}_max_mm", r.region),
-                    stats.max_m * 1e3,
-                )?;
-                self.scalar(
-                    &format!("metrics/mannequin/{}/{method}_rms_mm", r.region),
-                    stats.rms_m * 1e3,
-                )?;
-            }
         }
         self.text(TextLogLevel::INFO, lines.join("\n"))
     }

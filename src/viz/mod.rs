@@ -27,6 +27,7 @@ mod collision;
 pub mod colors;
 mod constraints;
 mod draw;
+mod figures;
 mod garment;
 pub mod logger;
 mod m1;

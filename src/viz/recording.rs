@@ -10,31 +10,47 @@ pub const METRIC_UNITS: [(&str, &str); 6] = [
     ("count", "Counts"),
     ("size", "Mesh sizes"),
     ("m", "Lengths (m)"),
-    ("mm", "Mannequin (mm)"),
+    ("deg", "Angles (deg)"),
     ("ratio", "Ratios"),
     ("ms", "Time (ms)"),
 ];
 
 /// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
-/// `metrics/mm/...` for names ending in `_mm`, `metrics/m/...` for lengths and residuals
-/// (`_m`, `girth_m`, `residual`), `metrics/ratio/...` for stretches, `metrics/size/...` for
-/// mesh sizes and the vertices a detection tested or skipped (thousands, which would flatten
-/// the collision counts beside them), `metrics/count/...` otherwise.
+/// `metrics/m/...` for lengths, heights, points and residuals (`_m`, `girth`, `_y`,
+/// `point`, `dragged_to`, `residual`), `metrics/deg/...` for names ending in `_deg`,
+/// `metrics/ratio/...` for stretches and relative errors, `metrics/size/...` for mesh sizes
+/// (vertices, faces, edges, triangles) and what a check tested, skipped, reused or welded
+/// (thousands, which would flatten the collision counts beside them), `metrics/count/...`
+/// otherwise.
 pub fn metric_path(path: &str) -> String {
     let Some(rest) = path.strip_prefix("metrics/") else {
         return path.to_string();
     };
     let unit = if rest.starts_with("timings/") {
         "ms"
-    } else if rest.ends_with("_mm") {
-        "mm"
-    } else if rest.ends_with("_m") || rest.contains("_m/") || rest.contains("residual") {
+    } else if rest.ends_with("_deg") {
+        "deg"
+    } else if rest.ends_with("_m")
+        || rest.contains("_m/")
+        || rest.contains("residual")
+        || rest.ends_with("girth")
+        || rest.ends_with("_y")
+        || rest.ends_with("/y")
+        || rest.contains("/point/")
+        || rest.contains("dragged_to/")
+    {
         "m"
-    } else if rest.contains("stretch") {
+    } else if rest.contains("stretch") || rest.contains("relative_error") {
         "ratio"
-    } else if rest.ends_with("faces")
-        || (rest.ends_with("_vertices") && !rest.contains("penetrating"))
+    } else if (rest.ends_with("faces") && !rest.contains("pierced"))
+        || (rest.ends_with("vertices") && !rest.contains("penetrating"))
+        || (rest.ends_with("_edges") && !rest.contains("crossing"))
         || rest.contains("skipped")
+        || rest.contains("tested")
+        || rest.contains("reused/")
+        || rest.contains("welded")
+        || rest.ends_with("triangles")
+        || rest.ends_with("triangle_count")
     {
         "size"
     } else {

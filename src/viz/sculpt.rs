@@ -154,7 +154,6 @@ impl RerunLogger {
         .map_err(to_sink)?;
         self.log_drag("sculpt", &s.displacement, outcome.drag.radius, outcome.drag.peak)?;
         self.log_levels("sculpt/levels", &s.refined.levels, DVec3::ZERO)?;
-        self.scalar("metrics/size/sculpt/faces", mesh.triangles.len() as f64)?;
         self.text(
             if q.is_clear() {
                 TextLogLevel::INFO

@@ -391,3 +391,88 @@ fn lighter_log_details_keep_the_metrics_and_drop_the_rest() {
         |v: &[String]| -> Vec<String> { v.iter().filter(|e| e.starts_with("/metrics")).cloned().collect() };
     assert_eq!(metric_entities(&metrics), metric_entities(&all));
 }
+
+/// Every number a step records (its `--metrics` figures) reaches the recording, once, at
+/// the step's end, under `metrics/<unit>/step/...`, with the same value; and nothing else is
+/// logged there. The truth is the run's own metrics report, walked here independently of
+/// the logger's walk: each figure's leaves, an object's by field name, a list's by its
+/// elements' name (`name`, `ring`, `region` or `id`, else the text fields joined) or index.
+#[test]
+fn every_figure_a_step_records_is_logged_at_its_end() {
+    fn leaves(path: &str, value: &serde_json::Value, out: &mut BTreeMap<String, f64>) {
+        match value {
+            serde_json::Value::Number(n) => {
+                out.insert(path.to_string(), n.as_f64().expect("a finite figure"));
+            }
+            serde_json::Value::Object(fields) => {
+                for (k, v) in fields {
+                    leaves(&format!("{path}/{k}"), v, out);
+                }
+            }
+            serde_json::Value::Array(items) => {
+                let mut used = std::collections::BTreeSet::new();
+                for (i, item) in items.iter().enumerate() {
+                    let fields = item.as_object();
+                    let named = ["name", "ring", "region", "id"]
+                        .iter()
+                        .find_map(|k| fields.and_then(|f| f.get(*k)).and_then(|v| v.as_str()).map(str::to_string));
+                    let joined = fields
+                        .map(|f| f.values().filter_map(|v| v.as_str()).collect::<Vec<_>>().join("_"))
+                        .filter(|s| !s.is_empty());
+                    let mut key = named.or(joined).unwrap_or_else(|| i.to_string());
+                    if !used.insert(key.clone()) {
+                        key = format!("{key}_{i}");
+                    }
+                    leaves(&format!("{path}/{key}"), item, out);
+                }
+            }
+            _ => {}
+        }
+    }
+    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
+    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
+    let report = {
+        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
+        run_session(&session, &RunOptions::default(), &mut [&mut logger])
+    };
+    assert!(report.error.is_none(), "{:?}", report.error);
+    // The truth: (step, figure path) -> value.
+    let mut truth: BTreeMap<(i64, String), f64> = BTreeMap::new();
+    for m in &report.steps {
+        let mut out = BTreeMap::new();
+        for (k, v) in &m.figures {
+            leaves(&format!("/{k}"), v, &mut out);
+        }
+        truth.extend(out.into_iter().map(|(p, v)| ((m.step as i64, p), v)));
+    }
+    // What was logged under metrics/<unit>/step/, by the `step` timeline.
+    let mut logged: BTreeMap<(i64, String), Vec<f64>> = BTreeMap::new();
+    for msg in storage.take() {
+        let LogMsg::ArrowMsg(store, arrow) = msg else { continue };
+        if store.kind() != rerun::StoreKind::Recording {
+            continue;
+        }
+        let chunk = Chunk::from_arrow_msg(&arrow).expect("chunk decodes");
+        let path = chunk.entity_path().to_string();
+        let parts: Vec<&str> = path.splitn(4, '/').collect();
+        let ["", "metrics", _unit, rest] = parts.as_slice() else { continue };
+        let Some(figure) = rest.strip_prefix("step") else { continue };
+        let id: rerun::ComponentIdentifier = "Scalars:scalars".into();
+        for ((step, _), batch) in chunk
+            .iter_component_indices("step".into(), id)
+            .zip(chunk.iter_component::<rerun::components::Scalar>(id))
+        {
+            for s in batch.iter() {
+                logged.entry((step.as_i64(), figure.to_string())).or_default().push(s.0.0);
+            }
+        }
+    }
+    assert!(truth.len() > 500, "{} figures: too few to trust", truth.len());
+    let missing: Vec<_> = truth.keys().filter(|k| !logged.contains_key(*k)).take(5).collect();
+    assert!(missing.is_empty(), "figures not logged: {missing:?}");
+    let extra: Vec<_> = logged.keys().filter(|k| !truth.contains_key(*k)).take(5).collect();
+    assert!(extra.is_empty(), "logged, not figures: {extra:?}");
+    for (key, values) in &logged {
+        assert_eq!(values, &vec![truth[key]], "{key:?}: logged {values:?}, recorded {}", truth[key]);
+    }
+}
