@@ -257,7 +257,7 @@ fn self_constraints(
             // points between eased samples sit a sagitta inside the eased polyline).
             let need = flat.iter().map(|q| signed_gap(*q, &sflat).min(most)).collect();
             own(Kind::OutsideBody { section, need });
-            if let Some(pairs) = centred_pairs(fw, c, &roles) {
+            if let Some(pairs) = centred_pairs(fw, c, roles) {
                 let rest = pairs.iter().map(|&(a, b)| pts[b] - mirror(pts[a], mid_x)).collect();
                 own(Kind::Symmetry { mid_x, pairs, rest });
             }

@@ -8,7 +8,6 @@ use rerun::blueprint::{
 
 use super::recording::METRIC_UNITS;
 
-
 /// The figures the Collision plot shows: what detection found and the response moved, and
 /// what was left in the body after M0's collision and after M1's.
 const GUARANTEE_FIGURES: [&str; 8] = [

@@ -413,9 +413,12 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
                 let mut used = std::collections::BTreeSet::new();
                 for (i, item) in items.iter().enumerate() {
                     let fields = item.as_object();
-                    let named = ["name", "ring", "region", "id"]
-                        .iter()
-                        .find_map(|k| fields.and_then(|f| f.get(*k)).and_then(|v| v.as_str()).map(str::to_string));
+                    let named = ["name", "ring", "region", "id"].iter().find_map(|k| {
+                        fields
+                            .and_then(|f| f.get(*k))
+                            .and_then(|v| v.as_str())
+                            .map(str::to_string)
+                    });
                     let joined = fields
                         .map(|f| f.values().filter_map(|v| v.as_str()).collect::<Vec<_>>().join("_"))
                         .filter(|s| !s.is_empty());
@@ -455,15 +458,22 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
         let chunk = Chunk::from_arrow_msg(&arrow).expect("chunk decodes");
         let path = chunk.entity_path().to_string();
         let parts: Vec<&str> = path.splitn(4, '/').collect();
-        let ["", "metrics", _unit, rest] = parts.as_slice() else { continue };
-        let Some(figure) = rest.strip_prefix("step") else { continue };
+        let ["", "metrics", _unit, rest] = parts.as_slice() else {
+            continue;
+        };
+        let Some(figure) = rest.strip_prefix("step") else {
+            continue;
+        };
         let id: rerun::ComponentIdentifier = "Scalars:scalars".into();
         for ((step, _), batch) in chunk
             .iter_component_indices("step".into(), id)
             .zip(chunk.iter_component::<rerun::components::Scalar>(id))
         {
             for s in batch.iter() {
-                logged.entry((step.as_i64(), figure.to_string())).or_default().push(s.0.0);
+                logged
+                    .entry((step.as_i64(), figure.to_string()))
+                    .or_default()
+                    .push(s.0.0);
             }
         }
     }
@@ -473,6 +483,11 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
     let extra: Vec<_> = logged.keys().filter(|k| !truth.contains_key(*k)).take(5).collect();
     assert!(extra.is_empty(), "logged, not figures: {extra:?}");
     for (key, values) in &logged {
-        assert_eq!(values, &vec![truth[key]], "{key:?}: logged {values:?}, recorded {}", truth[key]);
+        assert_eq!(
+            values,
+            &vec![truth[key]],
+            "{key:?}: logged {values:?}, recorded {}",
+            truth[key]
+        );
     }
 }

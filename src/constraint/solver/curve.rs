@@ -27,7 +27,7 @@ impl Run<'_> {
         let tol_m = tol * self.net.scale;
         let node = self.node(c).clone();
         let touching = self.net.touching(c);
-        let (driven_by, moved, pinned) = self.from_solved(c, &node, &touching, moves, solved);
+        let (driven_by, moved, pinned) = self.driven_by_solved(c, &node, &touching, moves, solved);
         let mut control = curves::spread(&self.fw, &node, &moved);
         if node.kind == CurveKind::Open {
             // An open curve's plane is the vertical plane through its ends.
@@ -80,11 +80,11 @@ impl Run<'_> {
         })
     }
 
-    /// 1. From the solved neighbours of curve `c` (`node`): the moves their violated
-    /// constraints drive (added to `moves`), the points shared with them (pinned, for split
+    /// The solve's first part, from the solved neighbours of curve `c` (`node`): the moves
+    /// their violated constraints drive (added to `moves`), the points shared with them (pinned, for split
     /// chains), and a contour's end tangent from the open curve it runs on from. Returns the
     /// driving constraints, the moves and the pinned points.
-    fn from_solved(
+    fn driven_by_solved(
         &mut self,
         c: usize,
         node: &CurveNode,
@@ -146,7 +146,8 @@ impl Run<'_> {
         (driven_by, moved, pinned)
     }
 
-    /// 2. The curve's own symmetry in its plane: each mirrored pair takes its driven side, or
+    /// The solve's second part, the curve's own symmetry in its plane: each mirrored pair
+    /// takes its driven side, or
     /// the side that leaves the control polygon uncrossed, or the side the ease and the
     /// region (`limits`) move less, or the side whose pair stands further off the body.
     fn keep_symmetry(

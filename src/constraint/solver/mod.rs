@@ -89,8 +89,9 @@ pub fn solve(
         iterations: Vec::new(),
     };
     // The edit as moves of the active curve's points.
-    let (active, moves, dragged, whole) = edit_moves(fw, net, edit)?;
-    check_limits(fw, net, edit, (active, &moves, dragged, whole), probe)?;
+    let asked = edit_moves(fw, net, edit)?;
+    check_limits(fw, net, edit, &asked, probe)?;
+    let (active, moves, dragged, whole) = asked;
     let mut path = Vec::new();
     if let Some((c, p)) = dragged {
         let at = curves::points(fw, &net.curves[c])[p];
@@ -226,9 +227,10 @@ fn check_limits(
     fw: &Framework,
     net: &ConstraintNet,
     edit: &Edit,
-    (active, moves, dragged, whole): (usize, &[(usize, DVec3)], Option<(usize, usize)>, Option<DVec3>),
+    asked: &EditMoves,
     probe: &BodyProbe,
 ) -> Result<(), EditError> {
+    let (active, moves, dragged, whole) = (asked.0, &asked.1, asked.2, asked.3);
     if let Some(by) = whole {
         limits_of_edit::check_band(fw, &net.curves[active], by, probe)?;
         limits_of_edit::check_around(fw, &net.curves[active], by, probe)?;

@@ -54,7 +54,7 @@ pub enum Statement {
 impl Statement {
     /// The table: every statement with its keyword and place, scene statements first, in
     /// the order the messages list them.
-    pub const ALL: [(Statement, &'static str, Place); 17] = [
+    pub const ALL: &'static [(Statement, &'static str, Place)] = &[
         (Self::Drape, "drape", Place::Scene),
         (Self::Body, "body", Place::Scene),
         (Self::Units, "units", Place::Scene),
