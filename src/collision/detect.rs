@@ -287,6 +287,28 @@ fn test_vertex(
     (hit, m)
 }
 
+/// The patches whose curves did not move (none moved more than the patch threshold of the
+/// mean edge `edge` since `controls`); none on a `fresh` state or without patch skipping.
+fn still_patches(
+    garment: &GarmentInput<'_>,
+    options: &DetectOptions,
+    controls: &BTreeMap<String, Vec<DVec3>>,
+    (fresh, edge): (bool, f64),
+) -> Vec<bool> {
+    garment
+        .patch_curves
+        .iter()
+        .map(|curves| {
+            options.patch_skipping
+                && !fresh
+                && !curves.is_empty()
+                && curves.iter().all(|r| {
+                    max_move(controls.get(&r.curve), garment.controls.get(&r.curve), r) < options.patch_threshold * edge
+                })
+        })
+        .collect()
+}
+
 /// Detects the penetrating vertices of `garment`, skipping what `state` allows, and
 /// updates `state` (reset it when the garment's topology changes).
 pub fn detect(
@@ -322,20 +344,7 @@ pub fn detect(
     } else {
         mean_edge(garment.positions, garment.edges)
     };
-    // Patches whose curves did not move.
-    let patch_still: Vec<bool> = garment
-        .patch_curves
-        .iter()
-        .map(|curves| {
-            options.patch_skipping
-                && !fresh
-                && !curves.is_empty()
-                && curves.iter().all(|r| {
-                    max_move(state.controls.get(&r.curve), garment.controls.get(&r.curve), r)
-                        < options.patch_threshold * edge
-                })
-        })
-        .collect();
+    let patch_still = still_patches(garment, options, &state.controls, (fresh, edge));
     let mut out = Detection {
         hits: Vec::new(),
         partition: Vec::with_capacity(n),

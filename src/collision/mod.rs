@@ -289,36 +289,18 @@ pub fn collide(
     responses.extend(edge_responses);
     let triangles = &garment.mesh.triangles;
     let (face_rounds, pierced_before_rounds) = timed(&mut timings.respond_faces, || {
-        // Faces the rounds of this step have not tested, or whose corners moved since a
-        // check found them clear.
-        let check: Vec<u32> = {
-            let reuse = &mut state.reuse;
-            reuse.begin_pass(&positions, &garment.edges);
-            reuse.begin_faces(triangles);
-            (0..triangles.len() as u32)
-                .filter(|&f| reuse.face(f as usize, triangles[f as usize]) != Some(false))
-                .collect()
-        };
         let known = KnownClearance {
             at: &measured.at,
             free: &free,
         };
-        let rounds = respond_faces(
+        let rounds = step_face_rounds(
             index,
-            &mut positions,
-            (triangles, &garment.edges),
-            check.clone(),
-            &detection.partition,
-            &roles,
+            (garment, &mut positions),
+            (&detection.partition, &roles),
             ease,
             &options.response,
-            Some(known),
+            (&mut state.reuse, known),
         );
-        // The first round's verdicts, at the pass begun before it (a face whose corners
-        // the rounds move since is tested again by the check).
-        for &f in &check {
-            state.reuse.set_face(f as usize, rounds.first.binary_search(&f).is_ok());
-        }
         responses.extend(rounds.lifts);
         (rounds.found, rounds.first)
     });
@@ -360,4 +342,40 @@ pub fn collide(
         timings,
         reused,
     }
+}
+
+/// The face rounds of a step on `positions` (the garment after its vertex and edge
+/// responses): the faces the step's rounds have not tested, or whose corners moved since a
+/// check found them clear, lifted where pierced; the first round's verdicts kept in `reuse`.
+fn step_face_rounds(
+    index: &BodyIndex,
+    (garment, positions): (&GarmentMesh, &mut [DVec3]),
+    (partition, roles): (&[usize], &VertexRoles<'_>),
+    ease: f64,
+    options: &ResponseOptions,
+    (reuse, known): (&mut Reuse, KnownClearance<'_>),
+) -> faces::FaceRounds {
+    let triangles = &garment.mesh.triangles;
+    reuse.begin_pass(positions, &garment.edges);
+    reuse.begin_faces(triangles);
+    let check: Vec<u32> = (0..triangles.len() as u32)
+        .filter(|&f| reuse.face(f as usize, triangles[f as usize]) != Some(false))
+        .collect();
+    let rounds = respond_faces(
+        index,
+        positions,
+        (triangles, &garment.edges),
+        check.clone(),
+        partition,
+        roles,
+        ease,
+        options,
+        Some(known),
+    );
+    // The first round's verdicts, at the pass begun before it (a face whose corners
+    // the rounds move since is tested again by the check).
+    for &f in &check {
+        reuse.set_face(f as usize, rounds.first.binary_search(&f).is_ok());
+    }
+    rounds
 }

@@ -251,6 +251,34 @@ pub fn respond(
     (out, responses)
 }
 
+/// A response direction `d` kept in the plane of the vertex's ring (normal `iso`): its part
+/// in the plane, or the vertex normal `n`'s where `d` is almost across the plane.
+fn in_ring_plane(d: DVec3, n: DVec3, iso: Option<DVec3>) -> DVec3 {
+    let Some(pn) = iso else {
+        return d;
+    };
+    let along = d - pn * d.dot(pn);
+    if along.length() > 1e-3 * d.length().max(1e-300) {
+        along
+    } else {
+        n - pn * n.dot(pn)
+    }
+}
+
+/// The self-collision guard where the body has ring centres at `p`'s height: a direction
+/// `d` that points (horizontally) towards the local centre is turned away from it. Returns
+/// the new direction and the centre, or `None` where `d` stands.
+fn guard(index: &BodyIndex, p: DVec3, d: DVec3) -> Option<(DVec3, DVec2)> {
+    let c = index.slices.at(p.y).and_then(|s| s.centres)?;
+    let local = c.local_of(flat(p));
+    let g = flat(p) - local;
+    (d != DVec3::ZERO && g.length() > 0.0 && horizontal(d).dot(DVec3::new(g.x, 0.0, g.y)) <= 0.0)
+        .then(|| (DVec3::new(g.x, 0.0, g.y).normalize(), local))
+}
+
+/// One round of the vertex response: each hit moved along its rule's direction (or the
+/// shortest way out) to its target gap `target(hit)`, every vertex reading the positions
+/// before the round; `out` takes the moves.
 pub(super) fn respond_round(
     index: &BodyIndex,
     out: &mut [DVec3],
@@ -284,25 +312,13 @@ pub(super) fn respond_round(
             None => d,
         };
         let (mut d, mut rule, mut centre) = rule_direction(index, hit, p, roles, options);
-        if let Some(pn) = iso {
-            let along = d - pn * d.dot(pn);
-            d = if along.length() > 1e-3 * d.length().max(1e-300) {
-                along
-            } else {
-                n - pn * n.dot(pn)
-            };
-        }
-        d = d.normalize_or_zero();
+        d = in_ring_plane(d, n, iso).normalize_or_zero();
         let proposed = d;
         // Self-collision guard where the body has ring centres.
-        if let Some(c) = index.slices.at(p.y).and_then(|s| s.centres) {
-            let local = c.local_of(flat(p));
-            let g = flat(p) - local;
-            if d != DVec3::ZERO && g.length() > 0.0 && horizontal(d).dot(DVec3::new(g.x, 0.0, g.y)) <= 0.0 {
-                d = DVec3::new(g.x, 0.0, g.y).normalize();
-                rule = AppliedRule::Guard;
-                centre = Some(local);
-            }
+        if let Some((guarded, local)) = guard(index, p, d) {
+            d = guarded;
+            rule = AppliedRule::Guard;
+            centre = Some(local);
         }
         // A direction more than 75 degrees off the way out would drag the vertex through
         // the body (a horizontal ring ray under the crotch): take the way out instead.

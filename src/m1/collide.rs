@@ -202,10 +202,10 @@ pub fn collide_refined(
     responses.extend(rounds.lifts.iter().copied());
     // After the response only what moved (and what was inside) is measured again, with the
     // edges at those vertices; the others stand as the check before found them.
-    let mut again = vec![false; positions.len()];
-    for &v in responses.iter().map(|r| &r.vertex).chain(&before.inside) {
-        again[v as usize] = true;
-    }
+    let again = marked(
+        positions.len(),
+        responses.iter().map(|r| r.vertex).chain(before.inside.iter().copied()),
+    );
     let remeasured: Vec<u32> = (0..positions.len() as u32).filter(|&v| again[v as usize]).collect();
     let (touching, untouched): (Vec<usize>, Vec<usize>) =
         (0..edges.len()).partition(|&e| edges[e].iter().any(|&v| again[v as usize]));
@@ -226,16 +226,7 @@ pub fn collide_refined(
     );
     let inside_after = with_kept(&mut quality, &kept_inside, crossing_after_edges.len());
     // The faces again, each vertex's distance as last measured where it stands now.
-    let free_now: Vec<f64> = (0..positions.len())
-        .map(|v| {
-            if again[v] {
-                free_at(quality.clearance[v])
-            } else {
-                free[v]
-            }
-        })
-        .collect();
-    let (again_faces, after) = pierced_again(index, &moved, (&subset, &rounds), &free_now);
+    let (again_faces, after) = pierced_again(index, &moved, (&subset, &rounds), (&quality.clearance, &again, &free));
     pierced_after.extend(after.iter().map(|&k| faces[again_faces[k as usize] as usize]));
     pierced_after.sort_unstable();
     let face_rounds = rounds.found;
@@ -301,16 +292,19 @@ fn faces_to_check(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'
     (pierced, faces)
 }
 
-/// The checked faces (`subset`) pierced after the face rounds `rounds`, at `moved` with
-/// each vertex free by `free_now`: only the faces the first round found pierced, or with a
+/// The checked faces (`subset`) pierced after the face rounds `rounds`, at `moved`, each
+/// vertex free by its `clearance` where measured `again`, else by `free`: only the faces the first round found pierced, or with a
 /// corner moved since, can be. Returns the faces looked at (indices into `subset`) and
 /// those of them pierced (indices into the first list).
 fn pierced_again(
     index: &BodyIndex,
     moved: &[DVec3],
     (subset, rounds): (&[[u32; 3]], &FaceRounds),
-    free_now: &[f64],
+    (clearance, again, free): (&[f64], &[bool], &[f64]),
 ) -> (Vec<u32>, Vec<u32>) {
+    let free_now: Vec<f64> = (0..moved.len())
+        .map(|v| if again[v] { free_at(clearance[v]) } else { free[v] })
+        .collect();
     let mut since = vec![false; moved.len()];
     for r in &rounds.lifts {
         since[r.vertex as usize] = true;
@@ -319,7 +313,7 @@ fn pierced_again(
         .filter(|&k| rounds.first.binary_search(&k).is_ok() || subset[k as usize].iter().any(|&v| since[v as usize]))
         .collect();
     let again_subset: Vec<[u32; 3]> = again_faces.iter().map(|&k| subset[k as usize]).collect();
-    let after = pierced_faces(index, moved, &again_subset, free_now, None);
+    let after = pierced_faces(index, moved, &again_subset, &free_now, None);
     (again_faces, after)
 }
 
@@ -383,6 +377,15 @@ fn with_kept(quality: &mut Quality, kept_inside: &[u32], crossing: usize) -> Vec
     quality.inside.clear();
     quality.crossing.clear();
     inside_after
+}
+
+/// A flag per vertex of `n`, set for those of `vertices`.
+fn marked(n: usize, vertices: impl Iterator<Item = u32>) -> Vec<bool> {
+    let mut flags = vec![false; n];
+    for v in vertices {
+        flags[v as usize] = true;
+    }
+    flags
 }
 
 /// A face's corners in ascending order (the same face whatever its orientation).

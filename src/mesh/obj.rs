@@ -91,67 +91,8 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
             continue;
         };
         match keyword {
-            "v" => {
-                let mut xyz = [0.0; 3];
-                let mut last_column = keyword.len() + 1;
-                for (k, slot) in xyz.iter_mut().enumerate() {
-                    let Some((column, token)) = tokens.next() else {
-                        return Err(syntax(
-                            line,
-                            last_column,
-                            format!("expected 3 coordinates after 'v', found {k}"),
-                        ));
-                    };
-                    last_column = column + token.len();
-                    let value: f64 = token
-                        .parse()
-                        .map_err(|_| syntax(line, column, format!("'{token}' is not a number")))?;
-                    if !value.is_finite() {
-                        return Err(syntax(line, column, format!("coordinate '{token}' is not finite")));
-                    }
-                    *slot = value * scale;
-                }
-                positions.push(DVec3::from_array(xyz));
-            }
-            "f" => {
-                let mut corners = Vec::new();
-                for (column, token) in tokens {
-                    let index_text = token.split('/').next().unwrap_or("");
-                    let index: i64 = index_text
-                        .parse()
-                        .map_err(|_| syntax(line, column, format!("'{token}' is not a vertex index")))?;
-                    if index == 0 {
-                        return Err(syntax(
-                            line,
-                            column,
-                            "vertex index 0 is invalid (OBJ indices start at 1)".into(),
-                        ));
-                    }
-                    // Negative indices count back from the vertices read so far.
-                    let resolved = if index < 0 {
-                        positions.len() as i64 + index + 1
-                    } else {
-                        index
-                    };
-                    if resolved < 1 {
-                        return Err(syntax(
-                            line,
-                            column,
-                            format!("relative index {index} reaches before the first vertex"),
-                        ));
-                    }
-                    corners.push((column, resolved));
-                }
-                if corners.len() < 3 {
-                    let end = content.trim_end().len() + 1;
-                    return Err(syntax(
-                        line,
-                        end,
-                        format!("a face needs at least 3 vertices, found {}", corners.len()),
-                    ));
-                }
-                faces.push((line, corners));
-            }
+            "v" => positions.push(vertex(tokens, line, scale, &syntax)?),
+            "f" => faces.push((line, face(tokens, (line, content), positions.len(), &syntax)?)),
             _ => {}
         }
     }
@@ -198,6 +139,78 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
         triangle_lines,
         polygons_triangulated,
     })
+}
+
+/// The coordinates of a `v` line (after its keyword), scaled to metres.
+fn vertex<'t>(
+    mut tokens: impl Iterator<Item = (usize, &'t str)>,
+    line: usize,
+    scale: f64,
+    syntax: &dyn Fn(usize, usize, String) -> ObjError,
+) -> Result<DVec3, ObjError> {
+    let mut xyz = [0.0; 3];
+    let mut last_column = 2;
+    for (k, slot) in xyz.iter_mut().enumerate() {
+        let Some((column, token)) = tokens.next() else {
+            return Err(syntax(
+                line,
+                last_column,
+                format!("expected 3 coordinates after 'v', found {k}"),
+            ));
+        };
+        last_column = column + token.len();
+        let value: f64 = token
+            .parse()
+            .map_err(|_| syntax(line, column, format!("'{token}' is not a number")))?;
+        if !value.is_finite() {
+            return Err(syntax(line, column, format!("coordinate '{token}' is not finite")));
+        }
+        *slot = value * scale;
+    }
+    Ok(DVec3::from_array(xyz))
+}
+
+/// The corners of an `f` line (after its keyword), each with its column and its index from
+/// 1 (a negative one counted back from the `read` vertices so far); at least 3.
+fn face<'t>(
+    tokens: impl Iterator<Item = (usize, &'t str)>,
+    (line, content): (usize, &str),
+    read: usize,
+    syntax: &dyn Fn(usize, usize, String) -> ObjError,
+) -> Result<Vec<(usize, i64)>, ObjError> {
+    let mut corners = Vec::new();
+    for (column, token) in tokens {
+        let index_text = token.split('/').next().unwrap_or("");
+        let index: i64 = index_text
+            .parse()
+            .map_err(|_| syntax(line, column, format!("'{token}' is not a vertex index")))?;
+        if index == 0 {
+            return Err(syntax(
+                line,
+                column,
+                "vertex index 0 is invalid (OBJ indices start at 1)".into(),
+            ));
+        }
+        // Negative indices count back from the vertices read so far.
+        let resolved = if index < 0 { read as i64 + index + 1 } else { index };
+        if resolved < 1 {
+            return Err(syntax(
+                line,
+                column,
+                format!("relative index {index} reaches before the first vertex"),
+            ));
+        }
+        corners.push((column, resolved));
+    }
+    if corners.len() < 3 {
+        let end = content.trim_end().len() + 1;
+        return Err(syntax(
+            line,
+            end,
+            format!("a face needs at least 3 vertices, found {}", corners.len()),
+        ));
+    }
+    Ok(corners)
 }
 
 /// Whitespace-separated tokens with their 1-based byte columns.
