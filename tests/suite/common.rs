@@ -380,15 +380,20 @@ impl PlainRoles {
     }
 }
 
+/// The private tools venv that the README's test command prepares (`scripts/setup-browser`):
+/// `DRAPE_TOOLS_VENV`, else `~/.cache/drape-tools/venv`.
+pub fn tools_venv() -> std::path::PathBuf {
+    std::env::var_os("DRAPE_TOOLS_VENV").map_or_else(
+        || std::path::Path::new(&std::env::var_os("HOME").unwrap_or_default()).join(".cache/drape-tools/venv"),
+        std::path::PathBuf::from,
+    )
+}
+
 /// Rerun's own command (`rerun`, rerun-sdk 0.36.3) from the private tools venv that the
 /// README's test command prepares (`scripts/setup-browser`; `DRAPE_TOOLS_VENV` moves it).
 /// Missing, the test fails: a check that skips itself on a fresh machine proves nothing.
 pub fn rerun_cli() -> std::process::Command {
-    let venv = std::env::var_os("DRAPE_TOOLS_VENV").map_or_else(
-        || std::path::Path::new(&std::env::var_os("HOME").unwrap_or_default()).join(".cache/drape-tools/venv"),
-        std::path::PathBuf::from,
-    );
-    let cli = venv.join("bin/rerun");
+    let cli = tools_venv().join("bin/rerun");
     assert!(
         cli.exists(),
         "{} is missing: run scripts/setup-browser (the README's test command does), which installs rerun-sdk==0.36.3",

@@ -73,10 +73,7 @@ fn interrupt(child: &mut Child) -> Option<i32> {
 
 /// The Python with Playwright that `scripts/setup-browser` prepares.
 fn browser_python() -> PathBuf {
-    std::env::var_os("DRAPE_TOOLS_PYTHON").map_or_else(
-        || Path::new(&std::env::var_os("HOME").unwrap_or_default()).join(".cache/drape-tools/venv/bin/python"),
-        PathBuf::from,
-    )
+    std::env::var_os("DRAPE_TOOLS_PYTHON").map_or_else(|| super::common::tools_venv().join("bin/python"), PathBuf::from)
 }
 
 /// The web viewer drape serves, opened in Debian's Chromium (headless, software WebGL),
