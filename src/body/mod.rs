@@ -14,7 +14,9 @@ pub mod rings;
 pub mod shell;
 pub mod slices;
 
-pub use landmarks::{Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side};
+pub use landmarks::{
+    ArmAxis, Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side, girth_across,
+};
 pub use load::{Body, BodyError, build_partitions, cut_rings, find_landmarks};
 pub use mesh::{BUILTIN_BODY_NAME, BUILTIN_BODY_OBJ, BodyMesh, BodySource};
 pub use partition::{DetectionMethod, Partition, PartitionId, PartitionOptions, ResponseRule};

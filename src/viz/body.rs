@@ -83,8 +83,26 @@ impl RerunLogger {
                     .with_show_labels(false), // on hover: labels over the body hide it
             )
             .map_err(to_sink)?;
+        // Each arm's centre line (the sleeve's axis), shoulder to wrist, the elbow marked.
+        for (side, axis) in ["left", "right"].into_iter().zip(&landmarks.arm_axis) {
+            if axis.points.len() < 2 {
+                continue;
+            }
+            self.rec
+                .log(
+                    format!("body/arms/{side}"),
+                    &LineStrips3D::new([f32s(&axis.points)])
+                        .with_radii([0.003])
+                        .with_colors([[255, 200, 40]])
+                        .with_labels([format!("{side} arm axis")])
+                        .with_show_labels(false),
+                )
+                .map_err(to_sink)?;
+        }
         let listed: Vec<String> = LandmarkKind::ALL
             .iter()
+            .chain(&LandmarkKind::ARMS)
+            .filter(|k| landmarks.items.iter().any(|l| l.kind == **k))
             .map(|k| format!("{} {:.3}", k.name(), landmarks.height(*k)))
             .collect();
         let tilt = landmarks.neck_plane().map_or_else(

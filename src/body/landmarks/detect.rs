@@ -4,8 +4,8 @@
 use glam::{DVec2, DVec3};
 
 use super::scan::{Scan, front_z_at};
-use super::types::{Landmark, LandmarkError, LandmarkKind, LandmarkOptions, Landmarks, Side};
-use super::{legs, neck, overrides, torso};
+use super::types::{ArmAxis, Landmark, LandmarkError, LandmarkKind, LandmarkOptions, Landmarks, Side};
+use super::{arms, legs, neck, overrides, torso};
 use crate::body::mesh::BodyMesh;
 use crate::body::profile::{MeasuredLoop, loop_at};
 use crate::mesh::TriMesh;
@@ -100,7 +100,44 @@ pub fn detect_landmarks(body: &BodyMesh, options: &LandmarkOptions) -> Result<La
     push(LandmarkKind::SideNeck, Side::Left, side_neck[0]);
     push(LandmarkKind::SideNeck, Side::Right, side_neck[1]);
     push(LandmarkKind::Neck, Side::Centre, centre_point(&torso[neck_index].1));
-    items.sort_by_key(|l| (LandmarkKind::ALL.iter().position(|k| *k == l.kind), l.side));
+    // The arms, each followed down from the last level it was seen beside the torso.
+    let step = height / levels as f64;
+    let mut arm_axis: [ArmAxis; 2] = Default::default();
+    for (k, side) in [Side::Left, Side::Right].into_iter().enumerate() {
+        let Some((index, centroid)) = t.last_arms[k] else {
+            continue;
+        };
+        let y = torso[index].0;
+        let loops = scan.loops(y);
+        let Some(start) = loops.iter().find(|l| l.contains(centroid)) else {
+            continue;
+        };
+        let Some(arm) = arms::scan_arm(&scan, (y, start), step) else {
+            continue;
+        };
+        let outer = |l: &MeasuredLoop| {
+            if side == Side::Left {
+                l.extreme(|p| p.x)
+            } else {
+                l.extreme(|p| -p.x)
+            }
+        };
+        push(LandmarkKind::Elbow, side, outer(&arm.chain[arm.elbow].1));
+        push(LandmarkKind::Wrist, side, outer(&arm.chain[arm.wrist].1));
+        let mut points = vec![shoulder[k]];
+        points.extend((0..=arm.wrist).map(|j| arm.centre(j)));
+        arm_axis[k] = ArmAxis {
+            points,
+            elbow: arm.elbow + 1,
+        };
+    }
+    let order = |kind: LandmarkKind| {
+        LandmarkKind::ALL
+            .into_iter()
+            .chain(LandmarkKind::ARMS)
+            .position(|k| k == kind)
+    };
+    items.sort_by_key(|l| (order(l.kind), l.side));
 
     let leg_axis = leg.iter().map(|(y, l, r)| (*y, l.centroid, r.centroid)).collect();
     let torso_axis = torso[..=neck_index].iter().map(|(y, l)| (*y, l.centroid)).collect();
@@ -109,6 +146,7 @@ pub fn detect_landmarks(body: &BodyMesh, options: &LandmarkOptions) -> Result<La
         mid_x,
         leg_axis,
         torso_axis,
+        arm_axis,
     };
     overrides::apply_overrides(&scan, &mut landmarks, &options.overrides);
     Ok(landmarks)

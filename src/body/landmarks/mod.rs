@@ -23,6 +23,7 @@
 //!
 //! Left is `+x` (the body faces `+z`, `y` up).
 
+mod arms;
 mod detect;
 mod legs;
 mod neck;
@@ -31,5 +32,6 @@ mod scan;
 mod torso;
 mod types;
 
+pub use arms::{bend, girth_across};
 pub use detect::detect_landmarks;
-pub use types::{Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side};
+pub use types::{ArmAxis, Landmark, LandmarkError, LandmarkKind, LandmarkOptions, LandmarkOverride, Landmarks, Side};

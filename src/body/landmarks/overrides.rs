@@ -1,7 +1,7 @@
 //! Landmark corrections from the session: a height re-measures the landmark on the body at
 //! that height, a point is taken as given.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::scan::{Scan, front_z_at};
 use super::{LandmarkKind, LandmarkOverride, Landmarks, Side};
@@ -24,6 +24,7 @@ pub(super) fn apply_overrides(
             LandmarkOverride::Point(p) => landmarks.torso_at(p.y),
         };
         let mid_x = landmarks.mid_x;
+        let arm_axis = landmarks.arm_axis.clone();
         for item in landmarks.items.iter_mut().filter(|l| l.kind == kind) {
             let point = match correction {
                 LandmarkOverride::Point(p) => {
@@ -35,7 +36,18 @@ pub(super) fn apply_overrides(
                 }
                 LandmarkOverride::Height(y) => {
                     let loops = scan.loops(y);
+                    let arm = match item.side {
+                        Side::Left => &arm_axis[0],
+                        _ => &arm_axis[1],
+                    };
+                    let on_arm = arm
+                        .points
+                        .iter()
+                        .skip(1)
+                        .min_by(|a, b| (a.y - y).abs().total_cmp(&(b.y - y).abs()))
+                        .map(|p| DVec2::new(p.x, p.z));
                     let anchor = match (item.side, legs, torso) {
+                        _ if matches!(kind, LandmarkKind::Elbow | LandmarkKind::Wrist) => on_arm,
                         (Side::Left, Some((l, _)), _) if matches!(kind, LandmarkKind::Ankle | LandmarkKind::Knee) => {
                             Some(l)
                         }

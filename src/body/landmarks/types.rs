@@ -32,6 +32,10 @@ pub enum LandmarkKind {
     SideNeck,
     /// Shoulder point (acromion), the outer end of the shoulder line.
     Shoulder,
+    /// The arm's bend between shoulder and wrist (the outer point of its section there).
+    Elbow,
+    /// Narrowest arm girth above the hand (the outer point of its section there).
+    Wrist,
 }
 
 impl LandmarkKind {
@@ -50,6 +54,10 @@ impl LandmarkKind {
         Self::Neck,
     ];
 
+    /// The arm's kinds, shoulder to hand (found when an arm hangs apart from the body; not in
+    /// [`Self::ALL`], whose order is the heights').
+    pub const ARMS: [Self; 2] = [Self::Elbow, Self::Wrist];
+
     /// The name used in sessions and the viewer.
     pub fn name(self) -> &'static str {
         match self {
@@ -64,17 +72,22 @@ impl LandmarkKind {
             Self::FrontNeck => "front_neck",
             Self::SideNeck => "side_neck",
             Self::Shoulder => "shoulder",
+            Self::Elbow => "elbow",
+            Self::Wrist => "wrist",
         }
     }
 
     /// The kind with this session name.
     pub fn from_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|k| k.name() == name)
+        Self::ALL.into_iter().chain(Self::ARMS).find(|k| k.name() == name)
     }
 
     /// Whether the landmark comes as a left/right pair.
     pub fn is_paired(self) -> bool {
-        matches!(self, Self::Ankle | Self::Knee | Self::SideNeck | Self::Shoulder)
+        matches!(
+            self,
+            Self::Ankle | Self::Knee | Self::SideNeck | Self::Shoulder | Self::Elbow | Self::Wrist
+        )
     }
 }
 
@@ -203,6 +216,35 @@ pub struct Landmarks {
     pub leg_axis: Vec<(f64, DVec2, DVec2)>,
     /// Torso centroid `(y, (x, z))`, m, crotch to neck.
     pub torso_axis: Vec<(f64, DVec2)>,
+    /// Each arm's centre line (left, right): the shoulder point, then its sections' centroids
+    /// down to the wrist; empty where the arm was not found.
+    pub arm_axis: [ArmAxis; 2],
+}
+
+/// An arm's centre line, the sleeve's axis.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ArmAxis {
+    /// The shoulder point, then the centroids of the arm's sections down to the wrist, m.
+    pub points: Vec<DVec3>,
+    /// The elbow's point on it (index into `points`).
+    pub elbow: usize,
+}
+
+impl ArmAxis {
+    /// The line's direction at point `k` (unit; zero on a line of one point).
+    pub fn direction(&self, k: usize) -> DVec3 {
+        let n = self.points.len();
+        if n < 2 {
+            return DVec3::ZERO;
+        }
+        let (a, b) = (k.saturating_sub(1), (k + 1).min(n - 1));
+        (self.points[b] - self.points[a]).normalize_or_zero()
+    }
+
+    /// Its length along the line, shoulder to wrist, m.
+    pub fn length(&self) -> f64 {
+        self.points.windows(2).map(|w| w[0].distance(w[1])).sum()
+    }
 }
 
 impl Landmarks {

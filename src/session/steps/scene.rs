@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::body::{self, Body, BodyMesh, BodyRing, BodySource, Landmark, Partition};
+use crate::body::{self, Body, BodyMesh, BodyRing, BodySource, Landmark, Partition, Side};
 use crate::mesh::MeshReport;
 use crate::session::emit::StepScope;
 use crate::session::error::StepError;
@@ -26,6 +26,44 @@ struct MeshFigures<'a> {
     repairs: Vec<String>,
     /// The whole validation report.
     mesh_report: &'a MeshReport,
+}
+
+/// Each arm found: its centre line's length and the girths across it.
+#[derive(Serialize)]
+struct ArmsFigures {
+    arms: Vec<ArmFigures>,
+}
+
+/// One arm's figures.
+#[derive(Serialize)]
+struct ArmFigures {
+    /// `left` or `right`.
+    side: &'static str,
+    /// Along the centre line, shoulder to wrist, m.
+    length_m: f64,
+    /// Shoulder to elbow along it, m.
+    upper_m: f64,
+    /// The centre line's bend at the elbow, degrees.
+    bend_deg: f64,
+    /// Tape girths across the line at the elbow and at the wrist, m.
+    elbow_girth: Option<f64>,
+    wrist_girth: Option<f64>,
+}
+
+/// The figures of the arm `axis` on `mesh`.
+fn arm_figures(mesh: &BodyMesh, side: Side, axis: &body::ArmAxis) -> ArmFigures {
+    let (p, e) = (&axis.points, axis.elbow);
+    let last = p.len() - 1;
+    let upper: f64 = p[..=e].windows(2).map(|w| w[0].distance(w[1])).sum();
+    let (u, l) = ((p[e] - p[0]).normalize_or_zero(), (p[last] - p[e]).normalize_or_zero());
+    ArmFigures {
+        side: if side == Side::Left { "left" } else { "right" },
+        length_m: axis.length(),
+        upper_m: upper,
+        bend_deg: u.dot(l).clamp(-1.0, 1.0).acos().to_degrees(),
+        elbow_girth: body::girth_across(mesh, p[e], axis.direction(e)),
+        wrist_girth: body::girth_across(mesh, p[last], axis.direction(last)),
+    }
 }
 
 /// The landmarks.
@@ -85,6 +123,14 @@ pub(in crate::session) fn run(
     scope.record(&LandmarkFigures {
         landmarks: &landmarks.items,
         neck_plane_tilt_deg: landmarks.neck_plane().map(|p| p.tilt().to_degrees()),
+    });
+    scope.record(&ArmsFigures {
+        arms: [Side::Left, Side::Right]
+            .into_iter()
+            .zip(&landmarks.arm_axis)
+            .filter(|(_, a)| a.points.len() > 2)
+            .map(|(side, a)| arm_figures(&mesh, side, a))
+            .collect(),
     });
     scope.emit("body.landmarks", Stage::Body(BodyStage::Landmarks(&mesh, &landmarks)));
     let rings = scope.timed("body.rings", || body::cut_rings(&mesh, &landmarks))?;

@@ -13,7 +13,11 @@ impl Parser<'_> {
         let Some((which, args)) = rest.split_first() else {
             return Err(line.error(line.end_column, "expected a landmark name after 'landmark'"));
         };
-        let names: Vec<&str> = LandmarkKind::ALL.iter().map(|k| k.name()).collect();
+        let names: Vec<&str> = LandmarkKind::ALL
+            .iter()
+            .chain(&LandmarkKind::ARMS)
+            .map(|k| k.name())
+            .collect();
         let kind = LandmarkKind::from_name(which.text).ok_or_else(|| {
             line.error(
                 which.column,
