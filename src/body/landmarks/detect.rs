@@ -101,36 +101,8 @@ pub fn detect_landmarks(body: &BodyMesh, options: &LandmarkOptions) -> Result<La
     push(LandmarkKind::SideNeck, Side::Right, side_neck[1]);
     push(LandmarkKind::Neck, Side::Centre, centre_point(&torso[neck_index].1));
     // The arms, each followed down from the last level it was seen beside the torso.
-    let step = height / levels as f64;
-    let mut arm_axis: [ArmAxis; 2] = Default::default();
-    for (k, side) in [Side::Left, Side::Right].into_iter().enumerate() {
-        let Some((index, centroid)) = t.last_arms[k] else {
-            continue;
-        };
-        let y = torso[index].0;
-        let loops = scan.loops(y);
-        let Some(start) = loops.iter().find(|l| l.contains(centroid)) else {
-            continue;
-        };
-        let Some(arm) = arms::scan_arm(&scan, (y, start), step) else {
-            continue;
-        };
-        let outer = |l: &MeasuredLoop| {
-            if side == Side::Left {
-                l.extreme(|p| p.x)
-            } else {
-                l.extreme(|p| -p.x)
-            }
-        };
-        push(LandmarkKind::Elbow, side, outer(&arm.chain[arm.elbow].1));
-        push(LandmarkKind::Wrist, side, outer(&arm.chain[arm.wrist].1));
-        let mut points = vec![shoulder[k]];
-        points.extend((0..=arm.wrist).map(|j| arm.centre(j)));
-        arm_axis[k] = ArmAxis {
-            points,
-            elbow: arm.elbow + 1,
-        };
-    }
+    let (arm_items, arm_axis) = arm_landmarks(&scan, &t, height / levels as f64, shoulder);
+    items.extend(arm_items);
     let order = |kind: LandmarkKind| {
         LandmarkKind::ALL
             .into_iter()
@@ -150,6 +122,54 @@ pub fn detect_landmarks(body: &BodyMesh, options: &LandmarkOptions) -> Result<La
     };
     overrides::apply_overrides(&scan, &mut landmarks, &options.overrides);
     Ok(landmarks)
+}
+
+/// Each arm (left, right) followed down from the last level it was seen beside the torso
+/// (levels `step` apart): its elbow and wrist landmarks and its centre line from `shoulder`.
+/// An arm that cannot be followed (touching the body all the way) has neither.
+fn arm_landmarks(
+    scan: &Scan<'_>,
+    t: &torso::TorsoScan,
+    step: f64,
+    shoulder: [DVec3; 2],
+) -> (Vec<Landmark>, [ArmAxis; 2]) {
+    let landmark = |kind, side, point: DVec3| Landmark {
+        kind,
+        side,
+        point: point.to_array(),
+        overridden: false,
+    };
+    let mut items = Vec::new();
+    let mut arm_axis: [ArmAxis; 2] = Default::default();
+    for (k, side) in [Side::Left, Side::Right].into_iter().enumerate() {
+        let Some((index, centroid)) = t.last_arms[k] else {
+            continue;
+        };
+        let y = t.torso[index].0;
+        let loops = scan.loops(y);
+        let Some(start) = loops.iter().find(|l| l.contains(centroid)) else {
+            continue;
+        };
+        let Some(arm) = arms::scan_arm(scan, (y, start), step) else {
+            continue;
+        };
+        let outer = |l: &MeasuredLoop| {
+            if side == Side::Left {
+                l.extreme(|p| p.x)
+            } else {
+                l.extreme(|p| -p.x)
+            }
+        };
+        items.push(landmark(LandmarkKind::Elbow, side, outer(&arm.chain[arm.elbow].1)));
+        items.push(landmark(LandmarkKind::Wrist, side, outer(&arm.chain[arm.wrist].1)));
+        let mut points = vec![shoulder[k]];
+        points.extend((0..=arm.wrist).map(|j| arm.centre(j)));
+        arm_axis[k] = ArmAxis {
+            points,
+            elbow: arm.elbow + 1,
+        };
+    }
+    (items, arm_axis)
 }
 
 /// The body's mid-plane `x`: the area-weighted mean `x` of its surface (the middle of its
