@@ -294,3 +294,29 @@ fn every_shipped_body_has_elbows_between_its_shoulders_and_wrists() {
         }
     }
 }
+
+#[test]
+fn an_elbow_override_moves_both_elbows_to_that_height_on_the_arms() {
+    let mesh = BodyMesh::load(&drape::body::BodySource::Builtin, 1.0).unwrap();
+    let mut options = LandmarkOptions::default();
+    options.overrides = vec![(LandmarkKind::Elbow, LandmarkOverride::Height(1.05))];
+    let body = Body::analyse(mesh, &options, &PartitionOptions::default()).unwrap();
+    let lm = &body.landmarks;
+    let torso = drape::body::profile::outer_loops(&body.mesh, 1.05, body.mesh.height())
+        .into_iter()
+        .find(|l| l.contains(glam::DVec2::new(lm.mid_x, lm.torso_at(1.05).unwrap().y)))
+        .expect("the torso's section");
+    for (k, side) in [Side::Left, Side::Right].into_iter().enumerate() {
+        let e = lm.get(LandmarkKind::Elbow, side).unwrap();
+        assert!(e.overridden && e.point[1] == 1.05, "{side:?}: {:?}", e.point);
+        // On the arm: outside the torso's section, beside the arm's axis at that height.
+        let x = e.point[0];
+        assert!(if k == 0 { x > torso.max.x } else { x < torso.min.x }, "{side:?}: x {x}");
+        let axis = lm.arm_axis[k]
+            .points
+            .iter()
+            .min_by(|a, b| (a.y - 1.05).abs().total_cmp(&(b.y - 1.05).abs()))
+            .unwrap();
+        assert!(e.position().distance(*axis) < 0.08, "{side:?}: {:?} vs {axis}", e.point);
+    }
+}
