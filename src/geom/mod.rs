@@ -12,6 +12,7 @@ pub mod predicates;
 pub mod ray;
 pub mod section;
 pub mod spline;
+pub mod triangle_patch;
 
 pub use chord_spline::{ChordSpline3, CurveEnds};
 pub use coons::{CoonsPatch, CornerMismatch, ParametricCurve};
@@ -20,3 +21,4 @@ pub use local_spline::LocalSpline3;
 pub use plane::Plane;
 pub use section::{SectionLoop, section_mesh, section_mesh_banded};
 pub use spline::{CubicSpline, EndCondition, SplineError};
+pub use triangle_patch::{TrianglePatch, triangle_grid};

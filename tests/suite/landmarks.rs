@@ -311,7 +311,10 @@ fn an_elbow_override_moves_both_elbows_to_that_height_on_the_arms() {
         assert!(e.overridden && e.point[1] == 1.05, "{side:?}: {:?}", e.point);
         // On the arm: outside the torso's section, beside the arm's axis at that height.
         let x = e.point[0];
-        assert!(if k == 0 { x > torso.max.x } else { x < torso.min.x }, "{side:?}: x {x}");
+        assert!(
+            if k == 0 { x > torso.max.x } else { x < torso.min.x },
+            "{side:?}: x {x}"
+        );
         let axis = lm.arm_axis[k]
             .points
             .iter()
