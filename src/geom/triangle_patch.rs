@@ -4,17 +4,18 @@
 //! With boundaries `c0` from `V0` to `V1`, `c1` from `V1` to `V2` and `c2` from `V2` to `V0`,
 //! each on `[0, 1]`, and barycentric coordinates `b = (b0, b1, b2)`: for each corner `Vi` the
 //! side-vertex line runs from `Vi` to the point of the opposite side where the line through
-//! `Vi` meets it,
+//! `Vi` meets it, and `Pi` follows that line by a cubic Hermite curve in `bi`, its end
+//! derivatives blended from the sides' (see `along_line`),
 //!
 //! ```text
-//! Pi(b) = bi Vi + (1 - bi) Ci(b_k / (b_j + b_k))        (Ci the side opposite Vi, from Vj to Vk)
+//! Pi(b) = H(Ci(b_k / (b_j + b_k)), Vi; bi)               (Ci the side opposite Vi, from Vj to Vk)
 //! S(b)  = sum_i wi Pi(b),  wi = (b_j b_k)^2 / ((b0 b1)^2 + (b1 b2)^2 + (b2 b0)^2)
 //! ```
 //!
 //! On a side (`bi = 0`), the two side-vertex lines ending there give the side's own point and
 //! the third weight is 0: the patch interpolates all three boundaries exactly. With straight
-//! sides parametrised by arc length each `Pi` is the affine point `b0 V0 + b1 V1 + b2 V2`,
-//! so a flat triangle is reproduced exactly. At a corner the weights are 0/0: the corner
+//! sides parametrised uniformly each `Pi` is the affine point `b0 V0 + b1 V1 + b2 V2`, so a
+//! flat triangle is reproduced exactly. At a corner the weights are 0/0: the corner
 //! itself is taken there. Unlike a four-sided patch with one side collapsed to a point, no
 //! row of the patch's sampling shrinks to a point, so its triangles have no degenerate
 //! normals at the apex.
@@ -59,6 +60,36 @@ impl<C: ParametricCurve> TrianglePatch<C> {
         self.sides[i].sample(t.clamp(0.0, 1.0))
     }
 
+    /// The derivative of the boundary leaving corner `i` towards corner `j` at `Vi`, by its
+    /// side's parameter (central differences of the side's samples).
+    fn leaving(&self, i: usize, j: usize) -> DVec3 {
+        const H: f64 = 1e-5;
+        if j == (i + 1) % 3 {
+            (self.side(i, H) - self.side(i, 0.0)) / H
+        } else {
+            // Side j runs from Vj to Vi: leaving Vi is going back along it.
+            (self.side(j, 1.0 - H) - self.side(j, 1.0)) / H
+        }
+    }
+
+    /// The point at `tau` of corner `i`'s side-vertex line through the opposite side's
+    /// point at `s`: the cubic Hermite curve from that point (`tau = 0`) to `Vi` (`tau = 1`),
+    /// its end derivatives blended from the sides' at the corners (at `Vi`, the two sides
+    /// leaving it, weighted `1 - s` and `s`; at the opposite side, the sides leaving its ends
+    /// towards `Vi`, weighted alike). Straight sides give the straight line.
+    fn along_line(&self, i: usize, s: f64, tau: f64) -> DVec3 {
+        let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+        let start = self.side(j, s);
+        let end = self.corners[i];
+        let d_start = self.leaving(j, i) * (1.0 - s) + self.leaving(k, i) * s;
+        let d_end = -(self.leaving(i, j) * (1.0 - s) + self.leaving(i, k) * s);
+        let (t2, t3) = (tau * tau, tau * tau * tau);
+        start * (2.0 * t3 - 3.0 * t2 + 1.0)
+            + d_start * (t3 - 2.0 * t2 + tau)
+            + end * (-2.0 * t3 + 3.0 * t2)
+            + d_end * (t3 - t2)
+    }
+
     /// `S(b)` for barycentric coordinates `b` (non-negative, summing to 1), by the formula
     /// of the module docs.
     pub fn sample(&self, b: [f64; 3]) -> DVec3 {
@@ -69,11 +100,11 @@ impl<C: ParametricCurve> TrianglePatch<C> {
         }
         // Corner i's side-vertex point: the opposite side is side (i + 1) % 3, running from
         // corner (i + 1) % 3 to corner (i + 2) % 3; the line through Vi meets it at
-        // t = b_{i+2} / (b_{i+1} + b_{i+2}).
+        // s = b_{i+2} / (b_{i+1} + b_{i+2}), and runs from there (tau = 0) to Vi (tau = bi).
         let point = |i: usize| -> DVec3 {
             let (j, k) = ((i + 1) % 3, (i + 2) % 3);
-            let t = b[k] / (b[j] + b[k]);
-            self.corners[i] * b[i] + self.side(j, t) * (1.0 - b[i])
+            let s = b[k] / (b[j] + b[k]);
+            self.along_line(i, s, b[i])
         };
         let w = [(b1 * b2).powi(2), (b2 * b0).powi(2), (b0 * b1).powi(2)];
         let total: f64 = w.iter().sum();

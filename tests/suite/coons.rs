@@ -90,7 +90,8 @@ fn barycentric(n: usize) -> Vec<[f64; 3]> {
 }
 
 #[test]
-fn a_three_sided_patch_reproduces_a_flat_triangle_exactly() {
+fn a_three_sided_patch_reproduces_a_flat_triangle() {
+    // To 1e-9: the sides' derivatives are taken by differences of their samples.
     use drape::geom::TrianglePatch;
     let v = [
         DVec3::new(0.1, 0.2, 0.3),
@@ -100,7 +101,11 @@ fn a_three_sided_patch_reproduces_a_flat_triangle_exactly() {
     let patch = TrianglePatch::try_new([lerp(v[0], v[1]), lerp(v[1], v[2]), lerp(v[2], v[0])], 1e-12).unwrap();
     for b in barycentric(12) {
         let want = v[0] * b[0] + v[1] * b[1] + v[2] * b[2];
-        assert!(patch.sample(b).distance(want) < 1e-12, "{b:?}");
+        assert!(
+            patch.sample(b).distance(want) < 1e-9,
+            "{b:?}: {}",
+            patch.sample(b).distance(want)
+        );
     }
 }
 
@@ -108,11 +113,10 @@ fn a_three_sided_patch_reproduces_a_flat_triangle_exactly() {
 fn a_three_sided_patch_on_great_circle_arcs_stays_near_the_sphere() {
     use drape::geom::TrianglePatch;
     // The octant of the unit sphere bounded by three quarter circles: the sides are met
-    // exactly and the patch's triangles all face outwards with no degenerate one. The
-    // inside is the linear side-vertex blend's: each side-vertex line is a chord, so the
-    // middle sinks to 0.74 of the radius (measured: 0.263 below it). Before garments use the
-    // patch, the blend needs the sides' cross derivatives (Nielson's cubic form); this test
-    // holds the sinking to what it is today, so that a better blend shows here.
+    // exactly, the inside stays within 5% of the radius (measured 4.4%: the blend knows the
+    // sides and their tangents at the corners, not the sphere; linear side-vertex lines,
+    // chords, sank it by 26%), and the patch's triangles all face outwards with no
+    // degenerate one.
     let arc = |a: DVec3, b: DVec3| {
         move |t: f64| a * (std::f64::consts::FRAC_PI_2 * t).cos() + b * (std::f64::consts::FRAC_PI_2 * t).sin()
     };
@@ -137,7 +141,7 @@ fn a_three_sided_patch_on_great_circle_arcs_stays_near_the_sphere() {
         .into_iter()
         .map(|b| (patch.sample(b).length() - 1.0).abs())
         .fold(0.0, f64::max);
-    assert!(worst < 0.27, "largest radial error {worst}");
+    assert!(worst < 0.05, "largest radial error {worst}");
     let n = 16;
     let points = patch.grid(n);
     let triangles = drape::geom::triangle_grid(n);
