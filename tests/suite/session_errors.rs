@@ -96,8 +96,8 @@ fn scene_after_a_step() {
 #[test]
 fn unknown_landmark() {
     assert_eq!(
-        error_of("drape 1\nlandmark elbow y=1\n"),
-        "s.drape:2:10: unknown landmark 'elbow': expected one of ankle, knee, crotch, hip, waist, bust, armpit, shoulder, front_neck, side_neck, neck"
+        error_of("drape 1\nlandmark thumb y=1\n"),
+        "s.drape:2:10: unknown landmark 'thumb': expected one of ankle, knee, crotch, hip, waist, bust, armpit, shoulder, front_neck, side_neck, neck, elbow, wrist"
     );
 }
 
