@@ -42,6 +42,33 @@ def bodies():
     return sorted(glob.glob(os.path.join(ROOT, "assets", "bodies", "*.obj")))
 
 
+def arms_table(drape):
+    """One row per body: its arms' figures from the scene (the left arm; the right mirrors
+    it), in metres and degrees."""
+    rows = [
+        "| body | arm, shoulder to wrist | upper arm | bend at the elbow | girth across at the elbow "
+        "| at the wrist | elbow height | wrist height |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    with tempfile.TemporaryDirectory() as tmp:
+        session = os.path.join(tmp, "scene.drape")
+        with open(session, "w") as f:
+            f.write("drape 1\nbody builtin\n")
+        for body in bodies():
+            scene = run(drape, session, body, tmp)[0]
+            arm = next((a for a in scene.get("arms", []) if a["side"] == "left"), None)
+            if arm is None:
+                rows.append(f"| {os.path.basename(body)[:-4]} | no arm found | | | | | | |")
+                continue
+            height = {(l["kind"], l["side"]): l["point"][1] for l in scene["landmarks"]}
+            girth = lambda v: "-" if v is None else f"{v:.3f} m"
+            rows.append(
+                f"| {os.path.basename(body)[:-4]} | {arm['length_m']:.3f} m | {arm['upper_m']:.3f} m "
+                f"| {arm['bend_deg']:.0f} deg | {girth(arm['elbow_girth'])} | {girth(arm['wrist_girth'])} "
+                f"| {height[('elbow', 'left')]:.3f} m | {height[('wrist', 'left')]:.3f} m |")
+    return "\n".join(rows)
+
+
 def summary(drape, session):
     """One row per body: the session's collision steps in a line (no timings, so the rows
     are the same run to run)."""

@@ -313,6 +313,14 @@ def bodies_tables():
     return "\n\n".join(out)
 
 
+def arms_table():
+    """The arms' figures on every shipped body (scripts/body_figures.py)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import body_figures
+
+    return body_figures.arms_table(built())
+
+
 def sections(steps):
     texts = step_texts()
     return {
@@ -321,6 +329,7 @@ def sections(steps):
         "demo-busiest": busiest_step(steps),
         "landmarks": landmarks(steps),
         "bodies": bodies_tables(),
+        "arms": arms_table(),
         "sculpt-compare": sculpt_compare(),
     }
 
