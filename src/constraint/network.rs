@@ -49,7 +49,7 @@ impl ConstraintNet {
     /// The network of a framework's template: the template says which curves mirror each
     /// other, which rings are centred, where open curves end and what drives a tangent.
     pub fn for_framework(fw: &Framework, probe: &BodyProbe, options: &NetworkOptions) -> Self {
-        let roles = template::of(fw.template).roles();
+        let roles = template::styled(fw.template, fw.style).roles();
         let curves = curve_nodes(fw);
         let mut out: Vec<Constraint> = Vec::new();
         let mid_x = mid_plane(fw, &roles);

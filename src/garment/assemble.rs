@@ -37,7 +37,7 @@ pub struct Assembled {
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
 /// whose sides did not change are taken from it.
 pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>) -> Result<Assembled, FrameworkError> {
-    let spec = template::of(fw.template);
+    let spec = template::styled(fw.template, fw.style);
     let lines = spec.lines(fw, probe)?;
     let mut s = Surfacer::new(fw, probe, previous);
     spec.patches(&mut s, &lines)?;

@@ -4,7 +4,7 @@
 
 use super::assemble::assemble;
 use super::m0::M0;
-use super::model::{Dimensions, Fit, Framework, FrameworkError, TemplateKind};
+use super::model::{Dimensions, Fit, Framework, FrameworkError, Style, TemplateKind};
 use super::probe::BodyProbe;
 use super::solve::{BuildCtx, FrameworkOptions, Parts};
 use super::template;
@@ -35,10 +35,16 @@ pub fn build_framework(
         (0.0, 0.1 * height),
         "ease must be between 0 and a tenth of the body's height",
     )?;
-    let spec = template::of(template);
+    if !template.takes_style() && options.style != Style::default() {
+        return Err(FrameworkError::Section {
+            curve: template.name().to_string(),
+            what: "takes no sleeves or collar".into(),
+        });
+    }
+    let spec = template::styled(template, options.style);
     let fit = spec.fit(options.fit);
     let parts = spec.curves(&mut ctx, fit)?;
-    let mut fw = finish(&ctx, template, fit, parts)?;
+    let mut fw = finish(&ctx, (template, options.style), fit, parts)?;
     fw.dimensions = std::mem::take(&mut ctx.dimensions);
     fw.dimensions.sort_by(|a, b| a.name.cmp(&b.name));
     Ok(fw)
@@ -46,9 +52,15 @@ pub fn build_framework(
 
 /// Assembles the lines, patches and M0 from the curves (patch interiors cleared off the
 /// body, see [`super::surface`]).
-fn finish(ctx: &BuildCtx<'_>, template: TemplateKind, fit: Fit, parts: Parts) -> Result<Framework, FrameworkError> {
+fn finish(
+    ctx: &BuildCtx<'_>,
+    (template, style): (TemplateKind, Style),
+    fit: Fit,
+    parts: Parts,
+) -> Result<Framework, FrameworkError> {
     let mut fw = Framework {
         template,
+        style,
         fit,
         planes: parts.planes,
         rings: parts.rings,

@@ -32,7 +32,8 @@ pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, convexi
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};
 pub use m0::{CurveRef, M0, PatchGrid, StitchReport, stitch, weld};
 pub use model::{
-    DimensionValue, Dimensions, FeatureLine, Fit, Framework, FrameworkError, NamedPlane, Straightened, TemplateKind,
+    Collar, DimensionValue, Dimensions, FeatureLine, Fit, Framework, FrameworkError, NamedPlane, Sleeves, Straightened,
+    Style, TemplateKind,
 };
 pub use probe::BodyProbe;
 pub use resample::{ResampleError, resample_closed, resample_open, resample_open_at};

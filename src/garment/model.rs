@@ -21,28 +21,117 @@ use crate::geom::{Plane, SplineError};
 /// The garments drape can build.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
 pub enum TemplateKind {
-    /// Sleeveless jumpsuit.
+    /// Jumpsuit (sleeveless unless its [`Style`] says otherwise).
     Jumpsuit,
     /// Skirt or dress from the waist.
     Dress,
+    /// Shirt: the jumpsuit's bodice down to the hip, with sleeves and a collar.
+    Shirt,
 }
 
 impl TemplateKind {
     /// Every template.
-    pub const ALL: [Self; 2] = [Self::Jumpsuit, Self::Dress];
+    pub const ALL: [Self; 3] = [Self::Jumpsuit, Self::Dress, Self::Shirt];
 
     /// Session spelling.
     pub fn name(self) -> &'static str {
         match self {
             Self::Jumpsuit => "jumpsuit",
             Self::Dress => "dress",
+            Self::Shirt => "shirt",
         }
+    }
+
+    /// The style a session gets when it names none: the shirt has long sleeves and a stand
+    /// collar, the others neither.
+    pub fn default_style(self) -> Style {
+        match self {
+            Self::Shirt => Style {
+                sleeves: Sleeves::Long,
+                collar: Collar::Stand,
+            },
+            _ => Style::default(),
+        }
+    }
+
+    /// Whether the template can take sleeves and a collar (the dress cannot: it starts at
+    /// the waist).
+    pub fn takes_style(self) -> bool {
+        self != Self::Dress
     }
 
     /// From the session spelling.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|t| t.name() == name)
     }
+}
+
+/// A garment's sleeves ([frame] type-I parts on the armholes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub enum Sleeves {
+    /// Armholes left open (the straps over the shoulders).
+    #[default]
+    None,
+    /// Down to above the elbow.
+    Short,
+    /// Down to the wrist.
+    Long,
+}
+
+impl Sleeves {
+    /// Every choice.
+    pub const ALL: [Self; 3] = [Self::None, Self::Short, Self::Long];
+
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Short => "short",
+            Self::Long => "long",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// A garment's collar ([frame] type-I part on the neckline).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub enum Collar {
+    /// The neckline left open.
+    #[default]
+    None,
+    /// A stand collar rising from the neckline.
+    Stand,
+}
+
+impl Collar {
+    /// Every choice.
+    pub const ALL: [Self; 2] = [Self::None, Self::Stand];
+
+    /// Session spelling.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Stand => "stand",
+        }
+    }
+
+    /// From the session spelling.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// The type-I parts a garment carries: its sleeves and its collar (default: neither).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, PartialOrd, Ord, Hash, serde::Serialize)]
+pub struct Style {
+    /// Sleeves.
+    pub sleeves: Sleeves,
+    /// Collar.
+    pub collar: Collar,
 }
 
 /// How contours run below the top ring of a loose part.
@@ -167,6 +256,8 @@ pub struct Straightened {
 pub struct Framework {
     /// Template.
     pub template: TemplateKind,
+    /// Its sleeves and collar.
+    pub style: Style,
     /// Fit.
     pub fit: Fit,
     /// Planes used.
@@ -201,6 +292,7 @@ impl Framework {
     pub fn without_surface(&self) -> Framework {
         Framework {
             template: self.template,
+            style: self.style,
             fit: self.fit,
             planes: self.planes.clone(),
             rings: self.rings.clone(),
@@ -306,6 +398,10 @@ pub enum Counts {
         torso: [usize; 3],
         /// Leg bands hem-knee, knee-thigh.
         leg: [usize; 2],
+        /// Sleeve bands, armhole to cuff (none without sleeves).
+        sleeve: Vec<usize>,
+        /// The collar's band, neckline to top (0 without a collar).
+        collar: usize,
     },
     /// The dress: bands hem-thigh, thigh-hip, hip-waist.
     Dress([usize; 3]),

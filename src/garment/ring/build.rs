@@ -30,9 +30,11 @@ struct Attempt {
     girth: f64,
 }
 
-fn flat_area(points: &[DVec3]) -> f64 {
-    // Counter-clockwise seen from above is counter-clockwise in (z, x).
-    let flat: Vec<DVec2> = points.iter().map(|p| DVec2::new(p.z, p.x)).collect();
+/// The signed area of `points` around `plane`'s normal: positive counter-clockwise about
+/// it (for a horizontal plane, counter-clockwise seen from above, in `(z, x)`; a sleeve's
+/// ring, whose normal points up the sleeve, counter-clockwise seen from the hand).
+fn flat_area(points: &[DVec3], plane: &Plane) -> f64 {
+    let flat: Vec<DVec2> = points.iter().map(|p| plane.project(*p)).collect();
     polygon::signed_area(&flat)
 }
 
@@ -184,14 +186,15 @@ impl GarmentRing {
     }
 }
 
-/// The ring's section loops (those of 3 points or more, each counter-clockwise from above)
+/// The ring's section loops (those of 3 points or more, each counter-clockwise about the
+/// plane's normal: from above for a horizontal ring)
 /// and the loop the ring is made from: the one loop, or the common convex hull of several
 /// in the plane (a skirt around both legs).
 fn section_loop(input: &RingInput<'_>, name: &str) -> Result<(Vec<Vec<DVec3>>, Vec<DVec3>), RingBuildError> {
     let plane = input.plane;
     let mut raw: Vec<Vec<DVec3>> = input.raw.iter().filter(|l| l.len() >= 3).cloned().collect();
     for l in &mut raw {
-        if flat_area(l) < 0.0 {
+        if flat_area(l, &plane) < 0.0 {
             l.reverse();
         }
     }
@@ -207,7 +210,7 @@ fn section_loop(input: &RingInput<'_>, name: &str) -> Result<(Vec<Vec<DVec3>>, V
                 .iter()
                 .filter_map(|h| flat.iter().position(|f| f == h).map(|i| all[i]))
                 .collect();
-            if flat_area(&ring) < 0.0 {
+            if flat_area(&ring, &plane) < 0.0 {
                 ring.reverse();
             }
             ring

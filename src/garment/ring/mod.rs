@@ -145,7 +145,8 @@ pub struct GarmentRing {
     pub plane: Plane,
     /// Every sub-step.
     pub stages: RingStages,
-    /// The fitted closed spline (counter-clockwise seen from above, starting at the first anchor).
+    /// The fitted closed spline (counter-clockwise about the plane's normal, from above for
+    /// a horizontal ring, starting at the first anchor).
     pub spline: ChordSpline3,
     /// Anchors in ring order.
     pub anchors: Vec<Anchor>,

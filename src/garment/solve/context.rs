@@ -95,8 +95,25 @@ impl BuildCtx<'_> {
         anchors: &[AnchorSpec],
         ease: Ease,
     ) -> Result<GarmentRing, FrameworkError> {
+        self.ring_with(name, &[], plane, raw, anchors, ease)
+    }
+
+    /// [`Self::ring`], its girth target the `<name>_girth` dimension or else the first of
+    /// `shared` set (a dimension both sleeves share: `cuff_girth`).
+    pub fn ring_with(
+        &mut self,
+        name: &str,
+        shared: &[&str],
+        plane: Plane,
+        raw: Vec<Vec<DVec3>>,
+        anchors: &[AnchorSpec],
+        ease: Ease,
+    ) -> Result<GarmentRing, FrameworkError> {
         let key = format!("{name}_girth");
-        let target = self.dims.get(&key);
+        let target = self
+            .dims
+            .get(&key)
+            .or_else(|| shared.iter().find_map(|k| self.dims.get(k)));
         let ring = GarmentRing::build(
             &RingInput {
                 name,

@@ -9,7 +9,7 @@ pub use context::{BuildCtx, find, landmark, point, section_error};
 pub use contours::{ContourSpec, fit_contours, loosen};
 
 use super::contour::{Contour, ContourKind};
-use super::model::{Fit, Layout, NamedPlane, Straightened};
+use super::model::{Fit, Layout, NamedPlane, Straightened, Style};
 use super::open_curve::OpenCurve;
 use super::ring::{GarmentRing, RingOptions};
 
@@ -34,6 +34,9 @@ pub struct FrameworkOptions {
     pub weld_threshold: f64,
     /// Default ease as a fraction of the body's height (default 0.012: 1.9 cm on 1.59 m).
     pub ease_fraction: f64,
+    /// Sleeves and collar (default neither; the session gives the shirt long sleeves and
+    /// a stand collar).
+    pub style: Style,
 }
 
 impl Default for FrameworkOptions {
@@ -45,6 +48,7 @@ impl Default for FrameworkOptions {
             ring: RingOptions::default(),
             weld_threshold: 1e-5,
             ease_fraction: 0.012,
+            style: Style::default(),
         }
     }
 }
@@ -59,6 +63,12 @@ impl FrameworkOptions {
     /// With this fit.
     pub fn with_fit(mut self, fit: Fit) -> Self {
         self.fit = fit;
+        self
+    }
+
+    /// With this style.
+    pub fn with_style(mut self, style: Style) -> Self {
+        self.style = style;
         self
     }
 

@@ -28,12 +28,12 @@ impl Template for Dress {
         TemplateKind::Dress
     }
 
-    fn rings(&self) -> &'static [&'static str] {
-        &RINGS
+    fn rings(&self) -> Vec<&'static str> {
+        RINGS.to_vec()
     }
 
-    fn lengths(&self) -> &'static [(&'static str, &'static str)] {
-        &[(
+    fn lengths(&self) -> Vec<(&'static str, &'static str)> {
+        vec![(
             "length",
             "waist height minus hem height, m (default: down to the knees)",
         )]
@@ -43,8 +43,8 @@ impl Template for Dress {
         RINGS.iter().map(|r| (*r, &QUAD[..])).collect()
     }
 
-    fn contours(&self) -> &'static [&'static str] {
-        &CONTOURS
+    fn contours(&self) -> Vec<&'static str> {
+        CONTOURS.to_vec()
     }
 
     fn fit(&self, _asked: Fit) -> Fit {

@@ -15,20 +15,52 @@
 //! of the body's height. A new template is a new module here implementing [`Template`], a
 //! [`TemplateKind`] variant and one arm in [`of`].
 
+pub mod collar;
 mod dress;
 mod jumpsuit;
+pub mod sleeve;
 mod spec;
 
 pub use dress::Dress;
 pub use jumpsuit::Jumpsuit;
 pub use spec::{BRIDGE_REACH, CurveRoles, EndJoint, THIGH_DROP, TangentJoint, Template};
 
-use super::model::TemplateKind;
+use super::model::{Collar, Sleeves, Style, TemplateKind};
 
-/// The template of a kind.
+/// Every jumpsuit (legs) and shirt (no legs), by legs, sleeves and collar.
+static BODICES: [[[Jumpsuit; 2]; 3]; 2] = {
+    const fn row(legs: bool, sleeves: Sleeves) -> [Jumpsuit; 2] {
+        [
+            Jumpsuit::new(legs, sleeves, Collar::None),
+            Jumpsuit::new(legs, sleeves, Collar::Stand),
+        ]
+    }
+    const fn set(legs: bool) -> [[Jumpsuit; 2]; 3] {
+        [
+            row(legs, Sleeves::None),
+            row(legs, Sleeves::Short),
+            row(legs, Sleeves::Long),
+        ]
+    }
+    [set(false), set(true)]
+};
+
+/// The template of a kind, without sleeves or a collar.
 pub fn of(kind: TemplateKind) -> &'static dyn Template {
+    styled(kind, Style::default())
+}
+
+/// The template of a kind with `style` (the dress takes none: its style is ignored).
+pub fn styled(kind: TemplateKind, style: Style) -> &'static dyn Template {
+    let sleeves = match style.sleeves {
+        Sleeves::None => 0,
+        Sleeves::Short => 1,
+        Sleeves::Long => 2,
+    };
+    let collar = usize::from(style.collar == Collar::Stand);
     match kind {
-        TemplateKind::Jumpsuit => &Jumpsuit,
+        TemplateKind::Jumpsuit => &BODICES[1][sleeves][collar],
+        TemplateKind::Shirt => &BODICES[0][sleeves][collar],
         TemplateKind::Dress => &Dress,
     }
 }

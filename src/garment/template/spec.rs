@@ -1,7 +1,7 @@
 //! What a template is ([`Template`]) and what its curves are to the constraint network
 //! ([`CurveRoles`]), with the lengths the templates share.
 
-use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, TemplateKind};
+use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, Style, TemplateKind};
 use crate::garment::probe::BodyProbe;
 use crate::garment::solve::{BuildCtx, Parts};
 use crate::garment::surface::Surfacer;
@@ -20,11 +20,16 @@ pub trait Template: Sync {
     /// Which template this is.
     fn kind(&self) -> TemplateKind;
 
+    /// Its sleeves and collar.
+    fn style(&self) -> Style {
+        Style::default()
+    }
+
     /// Its rings, top to bottom.
-    fn rings(&self) -> &'static [&'static str];
+    fn rings(&self) -> Vec<&'static str>;
 
     /// Its length dimensions, each with what it measures.
-    fn lengths(&self) -> &'static [(&'static str, &'static str)];
+    fn lengths(&self) -> Vec<(&'static str, &'static str)>;
 
     /// Every dimension a session may set, sorted: `ease`, `<ring>_girth` and `<ring>_ease`
     /// for every ring, and the lengths.
@@ -43,12 +48,12 @@ pub trait Template: Sync {
     fn ring_anchors(&self) -> Vec<(&'static str, &'static [&'static str])>;
 
     /// The open curves with the name of their apex (`crotch` and `point`).
-    fn open_curves(&self) -> &'static [(&'static str, &'static str)] {
-        &[]
+    fn open_curves(&self) -> Vec<(&'static str, &'static str)> {
+        Vec::new()
     }
 
     /// The contours, by name.
-    fn contours(&self) -> &'static [&'static str];
+    fn contours(&self) -> Vec<&'static str>;
 
     /// Every control point a drag may name (`waist.front`, `crotch.point`, ...), in the
     /// order of the curves.

@@ -12,7 +12,7 @@ use super::suggest::did_you_mean;
 use super::syntax::{LogDetail, ParseError, Scene, Session, Step, Units};
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::SolverOptions;
-use crate::garment::TemplateKind;
+use crate::garment::{Style, TemplateKind};
 use crate::m1::M1Options;
 
 mod body;
@@ -97,7 +97,7 @@ struct Parser<'p> {
     log: Option<(LogDetail, usize)>,
     steps: Vec<Step>,
     /// The template of the last `garment` step.
-    garment: Option<TemplateKind>,
+    garment: Option<(TemplateKind, Style)>,
     /// Garment steps that `undo` can take back.
     undoable: usize,
     /// NURBS parts added so far, with their lines.

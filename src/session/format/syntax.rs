@@ -5,7 +5,7 @@ use thiserror::Error;
 
 use crate::body::{BodySource, LandmarkKind, LandmarkOverride};
 use crate::constraint::{Edit, SolverOptions};
-use crate::garment::{ContourKind, Fit, TemplateKind};
+use crate::garment::{ContourKind, Fit, Style, TemplateKind};
 use crate::m1::{CutPlane, M1Options};
 use crate::mannequin::MannequinOptions;
 
@@ -126,6 +126,8 @@ pub enum Op {
     Garment {
         /// Template.
         template: TemplateKind,
+        /// Sleeves and collar.
+        style: Style,
         /// Contour fit.
         fit: Fit,
         /// How contours pass through their points.

@@ -2,7 +2,7 @@
 //! (planes, rings through their sub-steps, open curves, contours, patches, M0), its
 //! constraint network, and the collision of M0.
 
-use crate::garment::{ContourKind, Fit, FrameworkOptions, TemplateKind};
+use crate::garment::{FrameworkOptions, TemplateKind};
 use crate::session::emit::{Shortfall, StepScope};
 use crate::session::error::StepError;
 use crate::session::flow::collide::collide_and_emit;
@@ -16,14 +16,8 @@ pub(super) fn run(
     state: &mut SessionState,
     cx: &StepContext<'_>,
     template: TemplateKind,
-    fit: Fit,
-    contours: ContourKind,
-    resolution: usize,
+    options: FrameworkOptions,
 ) -> Result<(), StepError> {
-    let options = FrameworkOptions::default()
-        .with_fit(fit)
-        .with_contours(contours)
-        .with_resolution(resolution);
     state.history.clear();
     let mut next = solve_garment(
         scope,

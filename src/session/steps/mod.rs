@@ -21,6 +21,7 @@ use super::error::StepError;
 use super::format::Op;
 use super::options::StepContext;
 use super::state::SessionState;
+use crate::garment::FrameworkOptions;
 
 /// Runs one step of the session on `state`.
 pub(super) fn run_step(
@@ -34,10 +35,18 @@ pub(super) fn run_step(
         Op::Section { name, y } => section::run(scope, state, name, *y),
         Op::Garment {
             template,
+            style,
             fit,
             contours,
             resolution,
-        } => garment::run(scope, state, cx, *template, *fit, *contours, *resolution),
+        } => {
+            let options = FrameworkOptions::default()
+                .with_style(*style)
+                .with_fit(*fit)
+                .with_contours(*contours)
+                .with_resolution(*resolution);
+            garment::run(scope, state, cx, *template, options)
+        }
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),

@@ -11,18 +11,22 @@ use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
 use crate::garment::bridge::{Bridging, bridge};
 use crate::garment::contour::Contour;
 use crate::garment::ease::Ease;
-use crate::garment::model::{Counts, Fit, FrameworkError, Layout, NamedPlane, Straightened};
+use crate::garment::model::{Counts, Fit, FrameworkError, Layout, NamedPlane, Sleeves, Straightened};
 use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
 use crate::garment::ring::GarmentRing;
 use crate::garment::solve::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
 use crate::garment::template::spec::{BRIDGE_REACH, THIGH_DROP};
+use crate::garment::template::{collar, sleeve};
+
+use super::Jumpsuit;
 use crate::geom::{Plane, SectionLoop, section_mesh};
 
 /// Solves the jumpsuit's curves on the body.
-pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, FrameworkError> {
-    let lv = levels(ctx)?;
+pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit, cut: &Jumpsuit) -> Result<Parts, FrameworkError> {
+    let lv = levels(ctx, cut)?;
     let mut planes = Vec::new();
     let neckline = neckline(ctx, lv.neck_rise, &mut planes)?;
+    let collar = collar::solve(ctx, cut.style.collar, &neckline, &mut planes)?;
     // Straps: vertical planes across each shoulder.
     let body = ctx.body;
     let strap_x = |side: Side| -> Result<f64, FrameworkError> {
@@ -33,8 +37,8 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
     let straps = (strap_x(Side::Left)?, strap_x(Side::Right)?);
     let mut rings = vec![neckline];
     let princess = chest_ring(ctx, &lv, straps, &mut rings)?;
-    torso_and_leg_rings(ctx, &lv, princess, &mut rings)?;
-    for (name, y) in [
+    torso_and_leg_rings(ctx, &lv, princess, &mut rings, cut.legs)?;
+    let levels = [
         ("chest", lv.chest_y),
         ("bust", lv.y_of(LandmarkKind::Bust)),
         ("waist", lv.y_of(LandmarkKind::Waist)),
@@ -42,16 +46,30 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit) -> Result<Parts, Framework
         ("thigh", lv.thigh_y),
         ("knee", lv.knee_y),
         ("hem", lv.hem_y),
-    ] {
+    ];
+    for (name, y) in &levels[..if cut.legs { 7 } else { 4 }] {
+        let (name, y) = (*name, *y);
         let centre = body
             .landmarks
             .torso_at(y)
             .map_or(DVec3::new(ctx.mid_x, y, 0.0), |t| DVec3::new(t.x, y, t.y));
         planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
     }
-    let open_curves = open_curves(ctx, &lv, straps, &rings, &mut planes)?;
-    let (contours, straightened) = contours(ctx, fit, &mut rings, &open_curves)?;
-    let layout = layout(ctx, &lv, &rings)?;
+    let open_curves = open_curves(ctx, &lv, straps, &rings, &mut planes, cut.legs)?;
+    let armholes = [0, 1].map(|k| {
+        sleeve::armhole_points(k).map(|(curve, anchor, _)| {
+            open_curves
+                .iter()
+                .find(|c| c.name == curve)
+                .map(|c| c.apex)
+                .unwrap_or_else(|| point(&rings, &curve, &anchor).unwrap_or(DVec3::NAN))
+        })
+    });
+    let sleeve_rings = sleeve::solve(ctx, cut.style.sleeves, armholes, &mut planes)?;
+    rings.extend(sleeve_rings);
+    rings.extend(collar);
+    let (contours, straightened) = contours(ctx, fit, &mut rings, &open_curves, cut)?;
+    let layout = layout(ctx, &lv, &rings, cut)?;
     Ok(Parts {
         planes,
         rings,
@@ -108,7 +126,7 @@ fn bridging(ctx: &BuildCtx<'_>, gap: f64) -> Bridging {
 }
 
 /// The levels, and the dimensions `inseam`, `neck_rise` and `strap_position`.
-fn levels(ctx: &mut BuildCtx<'_>) -> Result<Levels, FrameworkError> {
+fn levels(ctx: &mut BuildCtx<'_>, cut: &Jumpsuit) -> Result<Levels, FrameworkError> {
     let body = ctx.body;
     let lm = &body.landmarks;
     let h = ctx.height;
@@ -126,19 +144,51 @@ fn levels(ctx: &mut BuildCtx<'_>) -> Result<Levels, FrameworkError> {
     let thigh_count_y = crotch_y - THIGH_DROP * h;
     let knee_y = y_of(LandmarkKind::Knee);
     let ankle_y = y_of(LandmarkKind::Ankle);
-    let inseam = ctx.value(
-        "inseam",
-        crotch_y - ankle_y,
-        (crotch_y - knee_y + 0.05 * h, crotch_y - floor.y - 0.02 * h),
-        "the hem must lie between the knee and the foot",
-    )?;
+    let inseam = if cut.legs {
+        ctx.value(
+            "inseam",
+            crotch_y - ankle_y,
+            (crotch_y - knee_y + 0.05 * h, crotch_y - floor.y - 0.02 * h),
+            "the hem must lie between the knee and the foot",
+        )?
+    } else {
+        crotch_y - ankle_y
+    };
     let neck_rise = ctx.value(
         "neck_rise",
         0.0,
         (-0.02 * h, 0.03 * h),
         "the neckline must stay near the neck base",
     )?;
-    let strap_position = ctx.value("strap_position", 0.5, (0.1, 0.9), "the strap must lie on the shoulder")?;
+    // With sleeves the straps are the armholes' tops: as near the shoulder point as the
+    // chest ring allows (the strap planes within 85% of its half width), at most 0.8.
+    let strap_default = if cut.style.sleeves == Sleeves::None {
+        0.5
+    } else {
+        let chest = ctx.torso_loop("chest", chest_y)?;
+        let (xmax, xmin) = chest
+            .iter()
+            .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| (a.max(p.x), b.min(p.x)));
+        let mid = ctx.mid_x;
+        let mut f: f64 = 0.8;
+        for (side, edge) in [
+            (Side::Left, mid + 0.85 * (xmax - mid)),
+            (Side::Right, mid - 0.85 * (mid - xmin)),
+        ] {
+            let sn = landmark(body, LandmarkKind::SideNeck, side)?;
+            let sh = landmark(body, LandmarkKind::Shoulder, side)?;
+            if (sh.x - sn.x).abs() > 1e-9 {
+                f = f.min((edge - sn.x) / (sh.x - sn.x));
+            }
+        }
+        f.clamp(0.1, 0.8)
+    };
+    let strap_position = ctx.value(
+        "strap_position",
+        strap_default,
+        (0.1, 0.9),
+        "the strap must lie on the shoulder",
+    )?;
     Ok(Levels {
         h,
         chest_y,
@@ -273,6 +323,7 @@ fn torso_and_leg_rings(
     lv: &Levels,
     (fl, fr): (f64, f64),
     rings: &mut Vec<GarmentRing>,
+    legs: bool,
 ) -> Result<(), FrameworkError> {
     for (name, kind) in [
         ("bust", LandmarkKind::Bust),
@@ -285,6 +336,9 @@ fn torso_and_leg_rings(
         let ease = ctx.limited_ease(y, std::slice::from_ref(&raw), e);
         let r = ctx.ring(name, Plane::horizontal(y), vec![raw], &torso_anchors(fl, fr), ease)?;
         rings.push(r);
+    }
+    if !legs {
+        return Ok(());
     }
     for (level, y) in [("thigh", lv.thigh_y), ("knee", lv.knee_y), ("hem", lv.hem_y)] {
         let loops = ctx.leg_loops(level, y)?;
@@ -314,9 +368,27 @@ fn open_curves(
     (xl, xr): (f64, f64),
     rings: &[GarmentRing],
     planes: &mut Vec<NamedPlane>,
+    legs: bool,
 ) -> Result<Vec<OpenCurve>, FrameworkError> {
+    let mut open_curves = if legs {
+        vec![crotch_curve(ctx, lv, rings, planes)?]
+    } else {
+        Vec::new()
+    };
+    straps(ctx, lv, (xl, xr), rings, planes, &mut open_curves)?;
+    Ok(open_curves)
+}
+
+/// The crotch curve in the vertical crotch plane, from the hip's centre front down through
+/// the crotch and up to its centre back. Adds its plane.
+fn crotch_curve(
+    ctx: &BuildCtx<'_>,
+    lv: &Levels,
+    rings: &[GarmentRing],
+    planes: &mut Vec<NamedPlane>,
+) -> Result<OpenCurve, FrameworkError> {
     let body = ctx.body;
-    let (h, crotch_ref) = (lv.h, lv.crotch_ref);
+    let crotch_ref = lv.crotch_ref;
     let hip_y = lv.y_of(LandmarkKind::Hip);
     let crotch_plane = Plane::from_point_normal(DVec3::new(ctx.mid_x, 0.0, 0.0), DVec3::X);
     planes.push(ctx.plane_for(
@@ -342,7 +414,22 @@ fn open_curves(
         fitted_per_half: ctx.options.ring.fitted_points / 4,
         bridge: Some((ctx.probe, bridging(ctx, ctx.ease))),
     })?;
-    let mut open_curves = vec![crotch];
+    Ok(crotch)
+}
+
+/// A strap over each shoulder in its plane `(xl, xr)`, from the chest ring's front princess
+/// anchor to its back one: added to `open_curves`. Adds their planes.
+fn straps(
+    ctx: &BuildCtx<'_>,
+    lv: &Levels,
+    (xl, xr): (f64, f64),
+    rings: &[GarmentRing],
+    planes: &mut Vec<NamedPlane>,
+    open_curves: &mut Vec<OpenCurve>,
+) -> Result<(), FrameworkError> {
+    let body = ctx.body;
+    let h = lv.h;
+    let per_half = ctx.options.ring.resample_per_arc;
     for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
         let (name, suffix) = if side == Side::Left {
             ("left_strap", "left")
@@ -379,7 +466,7 @@ fn open_curves(
         })?;
         open_curves.push(strap);
     }
-    Ok(open_curves)
+    Ok(())
 }
 
 /// The contours (lowest point first), the leg rings straightened below the thigh for a
@@ -389,6 +476,7 @@ fn contours(
     fit: Fit,
     rings: &mut [GarmentRing],
     open_curves: &[OpenCurve],
+    cut: &Jumpsuit,
 ) -> Result<(Vec<Contour>, Vec<Straightened>), FrameworkError> {
     let side_names = [(Side::Left, "left"), (Side::Right, "right")];
     let mut specs: Vec<ContourSpec> = Vec::new();
@@ -400,6 +488,9 @@ fn contours(
     specs.push(("centre_back".into(), pts(&torso_levels, "back")));
     for (_, s) in side_names {
         let leg = |a: &str| -> Vec<(String, String)> {
+            if !cut.legs {
+                return Vec::new();
+            }
             ["hem", "knee", "thigh"]
                 .iter()
                 .map(|l| (format!("{s}_{l}"), a.to_string()))
@@ -416,7 +507,9 @@ fn contours(
         specs.push((format!("front_{s}"), front));
         specs.push((format!("side_{s}"), side));
         specs.push((format!("back_{s}"), back));
-        specs.push((format!("inner_{s}"), inner));
+        if cut.legs {
+            specs.push((format!("inner_{s}"), inner));
+        }
     }
     let mut straightened = Vec::new();
     if fit == Fit::Loose {
@@ -443,8 +536,13 @@ fn contours(
             straightened.extend(loosen(rings, &mine, &fixed, &ctx.options.ring)?);
         }
     }
-    let crotch_point = vec![("crotch.point".to_string(), open_curves[0].apex)];
-    let mut contours = fit_contours(&specs, rings, &crotch_point, ctx.options.contours)?;
+    let apexes: Vec<(String, DVec3)> = open_curves
+        .iter()
+        .map(|c| (format!("{}.{}", c.name, c.apex_name), c.apex))
+        .collect();
+    specs.extend(sleeve::contour_specs(cut.style.sleeves));
+    specs.extend(collar::contour_specs(cut.style.collar));
+    let mut contours = fit_contours(&specs, rings, &apexes, ctx.options.contours)?;
     // The princess lines run on into the straps: each meets its strap's end tangent.
     for c in &mut contours {
         let strap = match c.name.split_once('_') {
@@ -452,8 +550,11 @@ fn contours(
             _ => None,
         };
         if let Some((front, side)) = strap {
-            let i = if side == "left" { 1 } else { 2 };
-            let t = open_curves[i].end_tangent(front);
+            let name = format!("{side}_strap");
+            let Some(strap) = open_curves.iter().find(|c| c.name == name) else {
+                continue;
+            };
+            let t = strap.end_tangent(front);
             c.refit(c.points.clone(), [None, Some(t)])
                 .map_err(|e| FrameworkError::Contour(c.name.clone(), e))?;
         }
@@ -463,7 +564,7 @@ fn contours(
 
 /// The mesh's sample counts, from the landmarks (not the hem dimension: the topology stays
 /// fixed).
-fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing]) -> Result<Layout, FrameworkError> {
+fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing], cut: &Jumpsuit) -> Result<Layout, FrameworkError> {
     let k = ctx.options.resolution.max(2);
     let seam = (k / 3).max(1);
     let hip_y = lv.y_of(LandmarkKind::Hip);
@@ -478,6 +579,8 @@ fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing]) -> Result<Layo
         *n = ctx.segments(yhi - ylo, 1.0);
     }
     let leg = [lv.knee_y - lv.ankle_y, lv.thigh_count_y - lv.knee_y].map(|dy| ctx.segments(dy, 1.0));
+    let sleeve = sleeve::band_counts(ctx, cut.style.sleeves)?;
+    let collar = collar::band_count(ctx, cut.style.collar);
     Ok(ctx.layout(Counts::Jumpsuit {
         seam,
         neck: k - seam,
@@ -487,5 +590,7 @@ fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing]) -> Result<Layo
         strap: ctx.segments(lv.shoulder_y - lv.chest_y, 1.5),
         torso,
         leg,
+        sleeve,
+        collar,
     }))
 }

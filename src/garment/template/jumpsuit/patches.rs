@@ -9,6 +9,9 @@ use crate::garment::model::{Counts, FeatureLine, Framework, FrameworkError};
 use crate::garment::open_curve::OpenCurve;
 use crate::garment::probe::BodyProbe;
 use crate::garment::surface::{Surfacer, anchor, arc, contour, join, line, missing, open, reversed, through_at};
+use crate::garment::template::{collar, sleeve};
+
+use super::Jumpsuit;
 
 /// Segment counts of the bands, from the layout.
 struct Bands {
@@ -21,12 +24,13 @@ struct Bands {
     leg: [usize; 2],
 }
 
-/// Shoulder seams (neckline side to strap top) and crotch junctions (the inner contours'
-/// span from the thigh).
-pub(super) fn lines(fw: &Framework, probe: &BodyProbe) -> Result<Vec<FeatureLine>, FrameworkError> {
+/// Shoulder seams (neckline side to strap top), crotch junctions (the inner contours'
+/// span from the thigh), and with sleeves the armholes.
+pub(super) fn lines(fw: &Framework, probe: &BodyProbe, cut: &Jumpsuit) -> Result<Vec<FeatureLine>, FrameworkError> {
     let Counts::Jumpsuit {
         seam: n_seam,
         inner: n_inner,
+        strap: n_strap,
         ..
     } = fw.layout.counts
     else {
@@ -40,7 +44,7 @@ pub(super) fn lines(fw: &Framework, probe: &BodyProbe) -> Result<Vec<FeatureLine
             points: clear_line(anchor(fw, "neckline", s)?, open(fw, strap)?.apex, n_seam, probe, gap),
         });
     }
-    for s in ["left", "right"] {
+    for s in ["left", "right"].into_iter().filter(|_| cut.legs) {
         let c = contour(fw, &format!("inner_{s}"))?;
         let k = through_at(c, &format!("{s}_thigh"))?;
         lines.push(FeatureLine {
@@ -48,12 +52,15 @@ pub(super) fn lines(fw: &Framework, probe: &BodyProbe) -> Result<Vec<FeatureLine
             points: c.span(k, n_inner, Some((probe, gap))),
         });
     }
+    if cut.style.sleeves != crate::garment::model::Sleeves::None {
+        lines.extend(sleeve::armhole_lines(fw, n_strap, fw.layout.k, 48)?);
+    }
     Ok(lines)
 }
 
 /// Every patch of the jumpsuit: 24 around the torso, 8 at the crotch junction, 16 on the
 /// legs, and the front and back panels up to the neckline.
-pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(), FrameworkError> {
+pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine], cut: &Jumpsuit) -> Result<(), FrameworkError> {
     let fw = s.framework();
     let Counts::Jumpsuit {
         neck,
@@ -63,11 +70,14 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(),
         strap,
         torso,
         leg,
+        ref sleeve,
+        collar,
         ..
     } = s.layout().counts
     else {
         return Err(missing("layout", "not a jumpsuit's"));
     };
+    let sleeve_bands = sleeve.clone();
     let n = Bands {
         neck,
         junction,
@@ -79,14 +89,23 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine]) -> Result<(),
     };
     let k = s.layout().k;
     torso_patches(s, &n, k)?;
-    let crotch = open(fw, "crotch")?;
-    let crotch_front = reversed(crotch.half(true, n.crotch));
-    let crotch_back = crotch.half(false, n.crotch);
-    for side in ["left", "right"] {
-        junction_patches(s, side, &n, k, (&crotch_front, &crotch_back))?;
-        leg_patches(s, side, &n, k)?;
+    if cut.legs {
+        let crotch = open(fw, "crotch")?;
+        let crotch_front = reversed(crotch.half(true, n.crotch));
+        let crotch_back = crotch.half(false, n.crotch);
+        for side in ["left", "right"] {
+            junction_patches(s, side, &n, k, (&crotch_front, &crotch_back))?;
+            leg_patches(s, side, &n, k)?;
+        }
     }
-    panels(s, lines, &n, k)
+    panels(s, lines, &n, k)?;
+    if cut.style.sleeves != crate::garment::model::Sleeves::None {
+        sleeve::sleeve_patches(s, n.strap, k, &sleeve_bands)?;
+    }
+    if cut.style.collar != crate::garment::model::Collar::None {
+        collar::collar_patches(s, n.neck, collar)?;
+    }
+    Ok(())
 }
 
 /// The torso's patches: eight around (between the torso contours), three bands high (hip

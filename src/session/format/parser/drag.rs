@@ -32,8 +32,8 @@ impl Parser<'_> {
         }
         let a = Args::parse(line, args, &["by", "to"], "drag")?;
         let point = which.text.contains('.');
-        if let Some(template) = self.garment {
-            let spec = crate::garment::template::of(template);
+        if let Some((template, style)) = self.garment {
+            let spec = crate::garment::template::styled(template, style);
             let (what, known): (&str, Vec<String>) = if point {
                 ("control point", spec.point_names())
             } else {

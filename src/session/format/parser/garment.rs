@@ -1,19 +1,20 @@
 //! The `garment` step: a garment built from its template.
 
 use super::Parser;
-use crate::garment::{ContourKind, Fit, TemplateKind};
+use crate::garment::{Collar, ContourKind, Fit, Sleeves, TemplateKind};
 use crate::session::format::args::{Args, integer_in};
 use crate::session::format::lexer::{Line, Token};
 use crate::session::format::suggest::did_you_mean;
 use crate::session::format::syntax::{Op, ParseError};
 
 impl Parser<'_> {
-    /// `garment jumpsuit|dress fit=tight|loose contours=local|natural resolution=N`.
+    /// `garment jumpsuit|dress|shirt sleeves=none|short|long collar=none|stand
+    /// fit=tight|loose contours=local|natural resolution=N`.
     pub(super) fn garment(&mut self, line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
         let Some((which, args)) = rest.split_first() else {
             return Err(line.error(
                 line.end_column,
-                "expected a template after 'garment' (jumpsuit or dress)",
+                "expected a template after 'garment' (jumpsuit, dress or shirt)",
             ));
         };
         let names: Vec<&str> = TemplateKind::ALL.iter().map(|t| t.name()).collect();
@@ -28,7 +29,34 @@ impl Parser<'_> {
                 ),
             )
         })?;
-        let a = Args::parse(line, args, &["fit", "contours", "resolution"], "garment")?;
+        let a = Args::parse(
+            line,
+            args,
+            &["sleeves", "collar", "fit", "contours", "resolution"],
+            "garment",
+        )?;
+        let mut style = template.default_style();
+        for (key, t) in [("sleeves", a.get("sleeves")), ("collar", a.get("collar"))] {
+            let Some(t) = t else { continue };
+            if !template.takes_style() {
+                return Err(line.error(
+                    t.column,
+                    format!("the {} takes no {key}: it starts at the waist", template.name()),
+                ));
+            }
+            if key == "sleeves" {
+                style.sleeves = Sleeves::from_name(t.text).ok_or_else(|| {
+                    line.error(
+                        t.column,
+                        format!("unknown sleeves '{}': expected none, short or long", t.text),
+                    )
+                })?;
+            } else {
+                style.collar = Collar::from_name(t.text).ok_or_else(|| {
+                    line.error(t.column, format!("unknown collar '{}': expected none or stand", t.text))
+                })?;
+            }
+        }
         let fit = match a.get("fit") {
             None => Fit::Tight,
             Some(t) => Fit::from_name(t.text)
@@ -47,10 +75,11 @@ impl Parser<'_> {
             None => 6,
             Some(t) => integer_in(line, t, "resolution", 2..=24)?,
         };
-        self.garment = Some(template);
+        self.garment = Some((template, style));
         self.undoable = 0;
         Ok(Op::Garment {
             template,
+            style,
             fit,
             contours,
             resolution,

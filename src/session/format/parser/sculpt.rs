@@ -33,7 +33,7 @@ impl Parser<'_> {
         let at = if at_token.text.chars().any(|c| c.is_ascii_alphabetic()) {
             let names = self
                 .garment
-                .map(|t| crate::garment::template::of(t).point_names())
+                .map(|(t, style)| crate::garment::template::styled(t, style).point_names())
                 .unwrap_or_default();
             if !names.iter().any(|n| n == at_token.text) {
                 return Err(line.error(

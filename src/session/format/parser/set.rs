@@ -9,7 +9,7 @@ use crate::session::format::syntax::{Change, Op, ParseError};
 impl Parser<'_> {
     /// `set NAME +d | -d | value`.
     pub(super) fn set(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
-        let Some(template) = self.garment else {
+        let Some((template, style)) = self.garment else {
             return Err(line.error(head.column, "'set' needs a garment: put a 'garment' step before it"));
         };
         let (which, value) = match rest {
@@ -24,7 +24,7 @@ impl Parser<'_> {
                 return Err(line.error(extra.column, format!("unexpected '{}' after the value", extra.text)));
             }
         };
-        let known = crate::garment::template::of(template).dimension_names();
+        let known = crate::garment::template::styled(template, style).dimension_names();
         if !known.iter().any(|k| k == which.text) {
             return Err(line.error(
                 which.column,

@@ -1,0 +1,183 @@
+//! The stand collar, a \[frame\] type-I part on the neckline: positioned by the neckline
+//! curve and joined to the bodice there. Its top ring (`collar`, the paper's upper neck
+//! ring) is the neck's section by the neckline's plane moved up by `collar_height`, eased
+//! by `collar_ease` plus the lean: `collar_height * tan(collar_angle)` more (a positive
+//! angle leans the collar out, a negative one in against the neck). Four straight contours
+//! (`collar_front`, `collar_left`, `collar_back`, `collar_right`) run up from the
+//! neckline's anchors; four patches around, the top edge open.
+
+use glam::DVec3;
+
+use crate::garment::anchors::{QUAD, quad_anchors};
+use crate::garment::ease::Ease;
+use crate::garment::m0::CurveRef;
+use crate::garment::model::{Collar, FrameworkError, NamedPlane};
+use crate::garment::ring::GarmentRing;
+use crate::garment::solve::{BuildCtx, ContourSpec, section_error};
+use crate::garment::surface::{Surfacer, arc};
+use crate::geom::{Plane, polygon, section_mesh};
+
+/// The collar's top ring.
+pub const RING: &str = "collar";
+
+/// The collar's contours, in the neckline's ring order.
+pub const CONTOURS: [&str; 4] = ["collar_front", "collar_left", "collar_back", "collar_right"];
+
+/// The collar's default height as a fraction of the body's height.
+const HEIGHT: f64 = 0.02;
+
+/// The collar's rings (its top).
+pub fn rings(collar: Collar) -> Vec<&'static str> {
+    if collar == Collar::None { Vec::new() } else { vec![RING] }
+}
+
+/// The collar's contours.
+pub fn contours(collar: Collar) -> Vec<&'static str> {
+    if collar == Collar::None {
+        Vec::new()
+    } else {
+        CONTOURS.to_vec()
+    }
+}
+
+/// The collar's dimensions (its ring's `collar_girth` and `collar_ease` come with every
+/// ring).
+pub fn lengths(collar: Collar) -> Vec<(&'static str, &'static str)> {
+    if collar == Collar::None {
+        return Vec::new();
+    }
+    vec![
+        (
+            "collar_height",
+            "the collar's rise over the neckline, m (default 2% of the body's height)",
+        ),
+        (
+            "collar_angle",
+            "the collar's lean from the neck, degrees, positive outwards (default 0)",
+        ),
+    ]
+}
+
+/// The collar's contour specs: from each neckline anchor up to the collar's.
+pub fn contour_specs(collar: Collar) -> Vec<ContourSpec> {
+    if collar == Collar::None {
+        return Vec::new();
+    }
+    CONTOURS
+        .iter()
+        .zip(QUAD)
+        .map(|(c, a)| {
+            (
+                c.to_string(),
+                vec![
+                    ("neckline".to_string(), a.to_string()),
+                    (RING.to_string(), a.to_string()),
+                ],
+            )
+        })
+        .collect()
+}
+
+/// Segments up the collar, from the body's height alone (the topology stays fixed).
+pub fn band_count(ctx: &BuildCtx<'_>, collar: Collar) -> usize {
+    if collar == Collar::None {
+        0
+    } else {
+        ctx.segments(HEIGHT * ctx.height, 1.0)
+    }
+}
+
+/// Solves the collar's top ring over `neckline`; adds its plane.
+pub fn solve(
+    ctx: &mut BuildCtx<'_>,
+    collar: Collar,
+    neckline: &GarmentRing,
+    planes: &mut Vec<NamedPlane>,
+) -> Result<Option<GarmentRing>, FrameworkError> {
+    if collar == Collar::None {
+        return Ok(None);
+    }
+    let h = ctx.height;
+    let rise = ctx.value(
+        "collar_height",
+        HEIGHT * h,
+        (0.005 * h, 0.045 * h),
+        "the collar must stand on the neck, below the jaw",
+    )?;
+    let angle = ctx.value(
+        "collar_angle",
+        0.0,
+        (-30.0, 45.0),
+        "the collar may lean out up to 45 degrees and in by 30",
+    )?;
+    let e = ctx.ring_ease(RING)?;
+    let lean = rise * angle.to_radians().tan();
+    if e + lean < 0.0 {
+        return Err(FrameworkError::Dimension {
+            name: "collar_angle".into(),
+            value: angle,
+            reason: format!(
+                "leaning in this far would take the collar's top {:.4} m into the neck (collar_ease {e:.4} m): lean less or add ease",
+                -(e + lean)
+            ),
+        });
+    }
+    let plane = Plane {
+        normal: neckline.plane.normal,
+        offset: neckline.plane.offset + rise,
+    };
+    let n = neckline.stages.control.len().max(1) as f64;
+    let centre = neckline.stages.control.iter().sum::<DVec3>() / n + plane.normal * rise;
+    let c = plane.project(centre);
+    let loops = section_mesh(&ctx.body.mesh.mesh, &ctx.body.mesh.adjacency, &plane);
+    let flat = |l: &[DVec3]| -> Vec<glam::DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
+    let neck = loops
+        .iter()
+        .filter(|l| l.closed && l.points.len() >= 3)
+        .min_by(|a, b| {
+            let d = |l: &[DVec3]| {
+                if polygon::contains(&flat(l), c) {
+                    0.0
+                } else {
+                    (l.iter().sum::<DVec3>() / l.len() as f64).distance(centre)
+                }
+            };
+            d(&a.points).total_cmp(&d(&b.points))
+        })
+        .ok_or_else(|| {
+            section_error(
+                RING,
+                "the plane over the neckline cuts no closed loop of the neck".into(),
+            )
+        })?;
+    let ring = ctx.ring(
+        RING,
+        plane,
+        vec![neck.points.clone()],
+        &quad_anchors(),
+        Ease::Uniform(e + lean),
+    )?;
+    planes.push(ctx.plane_for(RING, plane, centre));
+    Ok(Some(ring))
+}
+
+/// The collar's four patches between the neckline and its top ring, `neck` segments along
+/// each neckline arc (the panels' count there), `up` segments up.
+pub fn collar_patches(s: &mut Surfacer<'_>, neck: usize, up: usize) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    for i in 0..4 {
+        let (a, b) = (QUAD[i], QUAD[(i + 1) % 4]);
+        let bottom = arc(fw, "neckline", a, b, neck)?;
+        let top = arc(fw, RING, a, b, neck)?;
+        let left = s.span(CONTOURS[i], "neckline", up)?;
+        let right = s.span(CONTOURS[(i + 1) % 4], "neckline", up)?;
+        let curves = vec![
+            CurveRef::whole("neckline"),
+            CurveRef::whole(RING),
+            s.span_ref(CONTOURS[i], "neckline")?,
+            s.span_ref(CONTOURS[(i + 1) % 4], "neckline")?,
+        ];
+        s.patch(&format!("collar.{a}"), [&bottom, &top, &left, &right], curves)?;
+    }
+    Ok(())
+}
