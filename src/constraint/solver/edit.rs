@@ -111,6 +111,25 @@ pub enum EditError {
         /// What is above.
         above: String,
     },
+    /// A whole ring of a type-I part (a sleeve's) dragged out of its band along its axis
+    /// (past the ring next to it on one of its contours).
+    #[error(
+        "ring '{curve}' dragged to {at:.4} m along its axis would leave its band, {lo:.4}..{hi:.4} m between {below} and {above} (measured up the sleeve along the ring's normal): edit refused"
+    )]
+    OutOfAxialBand {
+        /// Ring.
+        curve: String,
+        /// Where it would go (mean of its control points along its plane's normal), m.
+        at: f64,
+        /// Least allowed, m.
+        lo: f64,
+        /// Most allowed, m.
+        hi: f64,
+        /// What is below (towards the hand).
+        below: String,
+        /// What is above (towards the shoulder).
+        above: String,
+    },
     /// A whole ring dragged off the part of the body it goes around (the leg a hem goes
     /// round, the torso a waist goes round): that part passes through the ring's plane
     /// outside the ring, so the garment between it and the next ring would pass through the

@@ -9,25 +9,41 @@ use glam::{DVec2, DVec3};
 
 use super::EditError;
 use crate::constraint::curves::{self, CurveKind, CurveNode};
-use crate::garment::{BodyProbe, Framework};
+use crate::garment::{BodyProbe, Framework, template};
 use crate::geom::polygon;
 
 /// A ring may come no nearer its neighbours (or the body's ends) than this fraction of the
 /// body's height.
 const BAND_MARGIN: f64 = 0.01;
 
-/// The height of a named control point (`ring.anchor`, `crotch.point`), m.
-fn point_height(fw: &Framework, name: &str) -> Option<f64> {
+/// The height of a named control point (`ring.anchor`, `crotch.point`) along `up`, m.
+fn point_height(fw: &Framework, name: &str, up: DVec3) -> Option<f64> {
     fw.control_points()
         .into_iter()
         .find(|(n, _)| n == name)
-        .map(|(_, p)| p.y)
+        .map(|(_, p)| along(p, up))
 }
 
-/// The mean height of a curve's control points, m.
-fn height_of(fw: &Framework, c: &CurveNode) -> f64 {
+/// `p`'s coordinate along the unit `up`: exactly `p.y` for `+y`.
+fn along(p: DVec3, up: DVec3) -> f64 {
+    if up == DVec3::Y { p.y } else { p.dot(up) }
+}
+
+/// The mean height of a curve's control points along `up`, m.
+fn height_of(fw: &Framework, c: &CurveNode, up: DVec3) -> f64 {
     let pts = curves::points(fw, c);
-    pts.iter().map(|p| p.y).sum::<f64>() / pts.len().max(1) as f64
+    pts.iter().map(|p| along(*p, up)).sum::<f64>() / pts.len().max(1) as f64
+}
+
+/// The direction a ring's band runs in: up the body, or for a ring of a type-I part (a
+/// sleeve's, positioned by its own axis) its plane's normal, up the sleeve.
+fn band_direction(fw: &Framework, c: &CurveNode) -> Option<DVec3> {
+    let roles = template::styled(fw.template, fw.style).roles();
+    if roles.axial.contains(&c.name.as_str()) {
+        fw.ring(&c.name).map(|r| r.plane.normal)
+    } else {
+        None
+    }
 }
 
 /// Refuses a whole-ring drag by `by` that would take the ring out of its band: between the
@@ -37,6 +53,8 @@ pub(super) fn check_band(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyP
     if c.kind != CurveKind::Ring {
         return Ok(());
     }
+    let axial = band_direction(fw, c);
+    let up = axial.unwrap_or(DVec3::Y);
     let index = probe.index();
     let (floor, top) = index
         .positions
@@ -47,25 +65,43 @@ pub(super) fn check_band(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyP
     let margin = BAND_MARGIN * index.height;
     let (mut lo, mut below) = (floor, "the floor".to_string());
     let (mut hi, mut above) = (top, "the top of the body".to_string());
+    if axial.is_some() {
+        // Along a sleeve the body's ends bound nothing: its neighbours on the contours do.
+        (lo, below) = (f64::NEG_INFINITY, "the hand".to_string());
+        (hi, above) = (f64::INFINITY, "the shoulder".to_string());
+    }
     let prefix = format!("{}.", c.name);
     for contour in &fw.contours {
         let Some(k) = contour.through.iter().position(|t| t.starts_with(&prefix)) else {
             continue;
         };
         if let Some(name) = k.checked_sub(1).and_then(|j| contour.through.get(j))
-            && let Some(y) = point_height(fw, name)
+            && let Some(y) = point_height(fw, name, up)
             && y > lo
         {
             (lo, below) = (y, name.clone());
         }
         if let Some(name) = contour.through.get(k + 1)
-            && let Some(y) = point_height(fw, name)
+            && let Some(y) = point_height(fw, name, up)
             && y < hi
         {
             (hi, above) = (y, name.clone());
         }
     }
-    let y = height_of(fw, c) + by.y;
+    let y = height_of(fw, c, up) + along(by, up);
+    if axial.is_some() {
+        if y < lo + margin || y > hi - margin {
+            return Err(EditError::OutOfAxialBand {
+                curve: c.name.clone(),
+                at: y,
+                lo: lo + margin,
+                hi: hi - margin,
+                below,
+                above,
+            });
+        }
+        return Ok(());
+    }
     if y < lo + margin || y > hi - margin {
         return Err(EditError::OutOfBand {
             curve: c.name.clone(),
@@ -87,13 +123,15 @@ pub(super) fn check_band(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyP
 /// centre is nearest) must still lie around a centre inside the dragged ring, or the part
 /// would leave the garment through its wall.
 pub(super) fn check_around(fw: &Framework, c: &CurveNode, by: DVec3, probe: &BodyProbe) -> Result<(), EditError> {
-    if c.kind != CurveKind::Ring {
+    // A sleeve's ring goes around the arm across its own axis, not a horizontal slice: the
+    // collision keeps the arm inside it.
+    if c.kind != CurveKind::Ring || band_direction(fw, c).is_some() {
         return Ok(());
     }
     let slices = &probe.index().slices;
     let ring: Vec<DVec2> = curves::points(fw, c).iter().map(|p| DVec2::new(p.x, p.z)).collect();
     let moved: Vec<DVec2> = ring.iter().map(|p| *p + DVec2::new(by.x, by.z)).collect();
-    let y = height_of(fw, c);
+    let y = height_of(fw, c, DVec3::Y);
     let (Some(before), Some(after)) = (slices.at(y), slices.at(y + by.y)) else {
         return Ok(());
     };

@@ -98,11 +98,16 @@ pub fn solve(
         return Ok(None);
     }
     let h = ctx.height;
+    let n = neckline.stages.control.len().max(1) as f64;
+    let base_centre = neckline.stages.control.iter().sum::<DVec3>() / n;
+    let e_default = ctx.dims.get("collar_ease").unwrap_or(ctx.ease);
+    let jaw = neck_reach(ctx, &neckline.plane, base_centre);
+    let most = (jaw - e_default).min(0.045 * h);
     let rise = ctx.value(
         "collar_height",
-        HEIGHT * h,
-        (0.005 * h, 0.045 * h),
-        "the collar must stand on the neck, below the jaw",
+        (HEIGHT * h).min(0.5 * most),
+        (0.005 * h, most),
+        "the collar must stand on the neck, its top an ease below the jaw",
     )?;
     let angle = ctx.value(
         "collar_angle",
@@ -126,37 +131,14 @@ pub fn solve(
         normal: neckline.plane.normal,
         offset: neckline.plane.offset + rise,
     };
-    let n = neckline.stages.control.len().max(1) as f64;
-    let centre = neckline.stages.control.iter().sum::<DVec3>() / n + plane.normal * rise;
-    let c = plane.project(centre);
-    let loops = section_mesh(&ctx.body.mesh.mesh, &ctx.body.mesh.adjacency, &plane);
-    let flat = |l: &[DVec3]| -> Vec<glam::DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
-    let neck = loops
-        .iter()
-        .filter(|l| l.closed && l.points.len() >= 3)
-        .min_by(|a, b| {
-            let d = |l: &[DVec3]| {
-                if polygon::contains(&flat(l), c) {
-                    0.0
-                } else {
-                    (l.iter().sum::<DVec3>() / l.len() as f64).distance(centre)
-                }
-            };
-            d(&a.points).total_cmp(&d(&b.points))
-        })
-        .ok_or_else(|| {
-            section_error(
-                RING,
-                "the plane over the neckline cuts no closed loop of the neck".into(),
-            )
-        })?;
-    let ring = ctx.ring(
-        RING,
-        plane,
-        vec![neck.points.clone()],
-        &quad_anchors(),
-        Ease::Uniform(e + lean),
-    )?;
+    let centre = base_centre + plane.normal * rise;
+    let neck = neck_loop(ctx, &plane, centre).ok_or_else(|| {
+        section_error(
+            RING,
+            "the plane over the neckline cuts no closed loop of the neck".into(),
+        )
+    })?;
+    let ring = ctx.ring(RING, plane, vec![neck], &quad_anchors(), Ease::Uniform(e + lean))?;
     planes.push(ctx.plane_for(RING, plane, centre));
     Ok(Some(ring))
 }
@@ -180,4 +162,57 @@ pub fn collar_patches(s: &mut Surfacer<'_>, neck: usize, up: usize) -> Result<()
         s.patch(&format!("collar.{a}"), [&bottom, &top, &left, &right], curves)?;
     }
     Ok(())
+}
+
+/// The neck's section loop in `plane`: the closed loop around `centre`, or the nearest.
+fn neck_loop(ctx: &BuildCtx<'_>, plane: &Plane, centre: DVec3) -> Option<Vec<DVec3>> {
+    let c = plane.project(centre);
+    let loops = section_mesh(&ctx.body.mesh.mesh, &ctx.body.mesh.adjacency, plane);
+    let flat = |l: &[DVec3]| -> Vec<glam::DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
+    loops
+        .into_iter()
+        .filter(|l| l.closed && l.points.len() >= 3)
+        .min_by(|a, b| {
+            let d = |l: &[DVec3]| {
+                if polygon::contains(&flat(l), c) {
+                    0.0
+                } else {
+                    (l.iter().sum::<DVec3>() / l.len() as f64).distance(centre)
+                }
+            };
+            d(&a.points).total_cmp(&d(&b.points))
+        })
+        .map(|l| l.points)
+}
+
+/// How far over the neckline's plane (along its normal, from `centre`) the neck stays a
+/// neck, m: the last rise, in steps of a 400th of the body's height, before the section's
+/// area grows past 1.3 times the least seen below it (the jaw and the chin join it) or its
+/// centre moves off the neck's by more than the neck's radius.
+fn neck_reach(ctx: &BuildCtx<'_>, neckline: &Plane, centre: DVec3) -> f64 {
+    let h = ctx.height;
+    let step = h / 400.0;
+    let mut least = f64::INFINITY;
+    let mut reach = 0.0;
+    for i in 0..=40 {
+        let rise = step * i as f64;
+        let plane = Plane {
+            normal: neckline.normal,
+            offset: neckline.offset + rise,
+        };
+        let at = centre + plane.normal * rise;
+        let Some(l) = neck_loop(ctx, &plane, at) else {
+            break;
+        };
+        let flat: Vec<glam::DVec2> = l.iter().map(|p| plane.project(*p)).collect();
+        let area = polygon::signed_area(&flat).abs();
+        let radius = (area / std::f64::consts::PI).sqrt();
+        let mid = l.iter().sum::<DVec3>() / l.len() as f64;
+        if area > 1.3 * least || mid.distance(at) > radius {
+            break;
+        }
+        least = least.min(area);
+        reach = rise;
+    }
+    reach
 }

@@ -119,6 +119,9 @@ pub struct CurveRoles {
     /// The open curve whose plane is the body's mirror plane (else the mean `x` of the
     /// rings' `front` anchors is used).
     pub mirror_plane: Option<&'static str>,
+    /// Rings of type-I parts (sleeves), positioned along their own axis: their band runs
+    /// along their plane's normal, not up the body.
+    pub axial: Vec<&'static str>,
 }
 
 /// An open curve whose front and back ends lie on a ring's anchors.

@@ -226,6 +226,7 @@ impl Template for Jumpsuit {
             ends,
             tangents,
             mirror_plane: self.legs.then_some("crotch"),
+            axial: sleeve::rings(sleeves),
         }
     }
 }
