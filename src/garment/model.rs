@@ -400,6 +400,9 @@ pub enum Counts {
         leg: [usize; 2],
         /// Sleeve bands, armhole to cuff (none without sleeves).
         sleeve: Vec<usize>,
+        /// With sleeves, the strap's upper parts (the armhole from `A` to the top); the
+        /// lower parts have as many as a ring's anchor arc.
+        armhole: usize,
         /// The collar's band, neckline to top (0 without a collar).
         collar: usize,
     },

@@ -217,6 +217,51 @@ impl OpenCurve {
         out
     }
 
+    /// The spline parameter on the front (or back) half where the curve is halfway up from
+    /// that end to the apex (the height midway between them), by bisection on the half.
+    pub fn midway(&self, front: bool) -> f64 {
+        let (end, a, b) = if front {
+            (self.front_end(), 0.0, self.apex_param)
+        } else {
+            (self.back_end(), self.apex_param, self.spline.length())
+        };
+        let y = 0.5 * (end.y + self.apex.y);
+        // The front half rises from its end to the apex, the back half falls to its end.
+        let (mut lo, mut hi) = (a, b);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if (self.spline.sample(mid).y < y) == front {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        0.5 * (lo + hi)
+    }
+
+    /// `n + 1` samples (m) from parameter `a` to `b` (`b` may be below `a`), the ends
+    /// exact where they are the curve's ends or its apex.
+    pub fn between(&self, a: f64, b: f64, n: usize) -> Vec<DVec3> {
+        let n = n.max(1);
+        let exact = |l: f64| {
+            if l == 0.0 {
+                self.front_end()
+            } else if l == self.apex_param {
+                self.apex
+            } else if l == self.spline.length() {
+                self.back_end()
+            } else {
+                self.spline.sample(l)
+            }
+        };
+        let mut out: Vec<DVec3> = (0..=n)
+            .map(|s| self.spline.sample(a + (b - a) * s as f64 / n as f64))
+            .collect();
+        out[0] = exact(a);
+        out[n] = exact(b);
+        out
+    }
+
     /// The unit tangent at the front (or back) end, pointing into the curve.
     pub fn end_tangent(&self, front: bool) -> DVec3 {
         if front {

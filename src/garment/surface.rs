@@ -241,7 +241,30 @@ impl<'a> Surfacer<'a> {
             self.patches.push(p.clone());
             return Ok(());
         }
-        let mut grid = PatchGrid::coons(name, sides, self.layout.weld)?.with_curves(curves);
+        let grid = PatchGrid::coons(name, sides, self.layout.weld)?.with_curves(curves);
+        self.surface(name, grid);
+        Ok(())
+    }
+
+    /// Surfaces one three-sided patch (see [`PatchGrid::triangle`]), or keeps the previous
+    /// one when its three sides and the clearance are the same.
+    pub fn triangle(&mut self, name: &str, sides: [&[DVec3]; 3], curves: Vec<CurveRef>) -> Result<(), FrameworkError> {
+        if let Some(old) = self.previous
+            && old.layout.clearance == self.layout.clearance
+            && let Some(p) = old.patches.iter().find(|p| p.name == name)
+            && p.curves == curves
+            && p.triangle_sides_are(sides)
+        {
+            self.patches.push(p.clone());
+            return Ok(());
+        }
+        let grid = PatchGrid::triangle(name, sides, self.layout.weld)?.with_curves(curves);
+        self.surface(name, grid);
+        Ok(())
+    }
+
+    /// Clears a new patch's interior off the body and keeps it.
+    fn surface(&mut self, name: &str, mut grid: PatchGrid) {
         // The blend of four boundaries that stand off the body can still dip into it where
         // the body bulges between them (the inner thigh and the belly over a tall crotch
         // junction): interior samples stand the clearance off, as contour spans do.
@@ -253,7 +276,6 @@ impl<'a> Surfacer<'a> {
         }
         self.patches.push(grid);
         self.resurfaced.push(name.to_string());
-        Ok(())
     }
 }
 
@@ -278,21 +300,17 @@ struct Cleared {
 
 /// Clears every interior sample of `grid` off the body by `gap` (m).
 fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> Cleared {
-    let (nu, nv) = (grid.nu, grid.nv);
     let mut out = Cleared {
         moved: vec![false; grid.points.len()],
         found: vec![None; grid.points.len()],
         balls: vec![None; grid.points.len()],
     };
-    for j in 1..nv {
-        for i in 1..nu {
-            let k = j * (nu + 1) + i;
-            let (p, n, ball) = probe.clear_keeping_ball(grid.points[k], gap);
-            out.moved[k] = p != grid.points[k];
-            grid.points[k] = p;
-            out.found[k] = n;
-            out.balls[k] = ball.filter(|_| out.moved[k] && n.is_some());
-        }
+    for (k, _) in grid.interior() {
+        let (p, n, ball) = probe.clear_keeping_ball(grid.points[k], gap);
+        out.moved[k] = p != grid.points[k];
+        grid.points[k] = p;
+        out.found[k] = n;
+        out.balls[k] = ball.filter(|_| out.moved[k] && n.is_some());
     }
     out
 }
@@ -317,31 +335,33 @@ fn relax(
     gap: f64,
     scale: f64,
 ) {
-    let (nu, nv) = (grid.nu, grid.nv);
-    let at = |i: usize, j: usize| j * (nu + 1) + i;
+    let interior = grid.interior();
     for _ in 0..RELAX_ROUNDS {
         let before = grid.points.clone();
         let mut most: f64 = 0.0;
-        for j in 1..nv {
-            for i in 1..nu {
-                if !moved[at(i, j)] {
-                    continue;
-                }
-                let p = before[at(i, j)];
-                let (l, r, d, u) = (
-                    before[at(i - 1, j)],
-                    before[at(i + 1, j)],
-                    before[at(i, j - 1)],
-                    before[at(i, j + 1)],
-                );
-                let n = (r - l).cross(u - d).normalize_or_zero();
-                let lap = 0.25 * (l + r + d + u) - p;
-                let tangential = lap - n * lap.dot(n);
-                let (q, n) = probe.clear_near(p + 0.5 * tangential, gap, &mut near[at(i, j)]);
-                most = most.max(q.distance(p));
-                grid.points[at(i, j)] = q;
-                found[at(i, j)] = n;
+        for (k, around) in &interior {
+            let k = *k;
+            if !moved[k] {
+                continue;
             }
+            let p = before[k];
+            let (l, r, d, u) = (
+                before[around[0]],
+                before[around[1]],
+                before[around[2]],
+                before[around[3]],
+            );
+            let n = (r - l).cross(u - d).normalize_or_zero();
+            let lap = if around.len() == 4 {
+                0.25 * (l + r + d + u) - p
+            } else {
+                around.iter().map(|&a| before[a]).sum::<DVec3>() / around.len() as f64 - p
+            };
+            let tangential = lap - n * lap.dot(n);
+            let (q, n) = probe.clear_near(p + 0.5 * tangential, gap, &mut near[k]);
+            most = most.max(q.distance(p));
+            grid.points[k] = q;
+            found[k] = n;
         }
         if most <= 1e-4 * scale {
             break;

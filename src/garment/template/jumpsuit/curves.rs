@@ -56,15 +56,16 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit, cut: &Jumpsuit) -> Result<
         planes.push(ctx.plane_for(name, Plane::horizontal(y), centre));
     }
     let open_curves = open_curves(ctx, &lv, straps, &rings, &mut planes, cut.legs)?;
-    let armholes = [0, 1].map(|k| {
-        sleeve::armhole_points(k).map(|(curve, anchor, _)| {
-            open_curves
+    let mut armholes = [[DVec3::ZERO; 4]; 2];
+    if cut.style.sleeves != Sleeves::None {
+        for (k, s) in ["left", "right"].into_iter().enumerate() {
+            let strap = open_curves
                 .iter()
-                .find(|c| c.name == curve)
-                .map(|c| c.apex)
-                .unwrap_or_else(|| point(&rings, &curve, &anchor).unwrap_or(DVec3::NAN))
-        })
-    });
+                .find(|c| c.name == format!("{s}_strap"))
+                .ok_or_else(|| section_error(s, "no strap".into()))?;
+            armholes[k] = sleeve::ArmholePoints::new(strap, point(&rings, "chest", s)?).all();
+        }
+    }
     let sleeve_rings = sleeve::solve(ctx, cut.style.sleeves, armholes, &mut planes)?;
     rings.extend(sleeve_rings);
     rings.extend(collar);
@@ -580,6 +581,11 @@ fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing], cut: &Jumpsuit
     }
     let leg = [lv.knee_y - lv.ankle_y, lv.thigh_count_y - lv.knee_y].map(|dy| ctx.segments(dy, 1.0));
     let sleeve = sleeve::band_counts(ctx, cut.style.sleeves)?;
+    let armhole = if sleeve.is_empty() {
+        0
+    } else {
+        ctx.segments(0.5 * (lv.shoulder_y - lv.chest_y), 1.5)
+    };
     let collar = collar::band_count(ctx, cut.style.collar);
     Ok(ctx.layout(Counts::Jumpsuit {
         seam,
@@ -591,6 +597,7 @@ fn layout(ctx: &BuildCtx<'_>, lv: &Levels, rings: &[GarmentRing], cut: &Jumpsuit
         torso,
         leg,
         sleeve,
+        armhole,
         collar,
     }))
 }

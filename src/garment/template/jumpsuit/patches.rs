@@ -53,8 +53,34 @@ pub(super) fn lines(fw: &Framework, probe: &BodyProbe, cut: &Jumpsuit) -> Result
         });
     }
     if cut.style.sleeves != crate::garment::model::Sleeves::None {
-        lines.extend(sleeve::armhole_lines(fw, n_strap, fw.layout.k, 48)?);
+        let Counts::Jumpsuit {
+            armhole: upper,
+            ref sleeve,
+            ..
+        } = fw.layout.counts
+        else {
+            return Err(missing("layout", "not a jumpsuit's"));
+        };
+        let k = fw.layout.k;
+        lines.extend(sleeve::armhole_lower_lines(fw, k, probe, gap)?);
+        // The ring halfway between the armpit and the shoulder point, across the panels
+        // from armhole to armhole.
+        let [l, r] = [0, 1].map(|side| sleeve::ArmholePoints::on(fw, side));
+        let (l, r) = (l?, r?);
+        lines.push(FeatureLine {
+            name: "armpit_shoulder_front".into(),
+            points: clear_line(r.front, l.front, 2 * k, probe, gap),
+        });
+        lines.push(FeatureLine {
+            name: "armpit_shoulder_back".into(),
+            points: clear_line(l.back, r.back, 2 * k, probe, gap),
+        });
+        let cap = sleeve.first().copied().unwrap_or(1);
+        lines.extend(sleeve::cap_lines(fw, cap, probe, gap)?);
+        let fitted = sleeve::armhole_lines(fw, &lines, upper, 48)?;
+        lines.extend(fitted);
     }
+    let _ = n_strap;
     Ok(lines)
 }
 
@@ -71,6 +97,7 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine], cut: &Jumpsui
         torso,
         leg,
         ref sleeve,
+        armhole,
         collar,
         ..
     } = s.layout().counts
@@ -78,6 +105,7 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine], cut: &Jumpsui
         return Err(missing("layout", "not a jumpsuit's"));
     };
     let sleeve_bands = sleeve.clone();
+    let sleeved = cut.style.sleeves != crate::garment::model::Sleeves::None;
     let n = Bands {
         neck,
         junction,
@@ -98,9 +126,12 @@ pub(super) fn patches(s: &mut Surfacer<'_>, lines: &[FeatureLine], cut: &Jumpsui
             leg_patches(s, side, &n, k)?;
         }
     }
-    panels(s, lines, &n, k)?;
-    if cut.style.sleeves != crate::garment::model::Sleeves::None {
-        sleeve::sleeve_patches(s, n.strap, k, &sleeve_bands)?;
+    if sleeved {
+        sleeved_panels(s, lines, &n, k, armhole)?;
+        underarm_triangles(s, lines, k)?;
+        sleeve::sleeve_patches(s, lines, armhole, k, &sleeve_bands)?;
+    } else {
+        panels(s, lines, &n, k)?;
     }
     if cut.style.collar != crate::garment::model::Collar::None {
         collar::collar_patches(s, n.neck, collar)?;
@@ -244,6 +275,132 @@ fn leg_patches(s: &mut Surfacer<'_>, side: &str, n: &Bands, k: usize) -> Result<
             s.patch(
                 &format!("leg.{side}.{lo}_{hi}.{a}"),
                 [&bottom, &top, &left, &right],
+                curves,
+            )?;
+        }
+    }
+    Ok(())
+}
+
+/// The panels' tops, front and back: the shoulder seams and the neckline between them.
+fn panel_tops(fw: &Framework, lines: &[FeatureLine], n: &Bands) -> Result<[Vec<DVec3>; 2], FrameworkError> {
+    let (seam_left, seam_right) = (line(lines, "seam_left")?, line(lines, "seam_right")?);
+    let front_top = join(&[
+        reversed(seam_right.to_vec()),
+        arc(fw, "neckline", "right", "front", n.neck)?,
+        arc(fw, "neckline", "front", "left", n.neck)?,
+        seam_left.to_vec(),
+    ]);
+    let back_top = join(&[
+        reversed(seam_left.to_vec()),
+        arc(fw, "neckline", "left", "back", n.neck)?,
+        arc(fw, "neckline", "back", "right", n.neck)?,
+        seam_right.to_vec(),
+    ]);
+    Ok([front_top, back_top])
+}
+
+/// The panels' bottoms on the chest ring, front and back.
+fn panel_bottoms(fw: &Framework, k: usize) -> Result<[Vec<DVec3>; 2], FrameworkError> {
+    Ok([
+        join(&[
+            arc(fw, "chest", "front_right", "front", k)?,
+            arc(fw, "chest", "front", "front_left", k)?,
+        ]),
+        join(&[
+            arc(fw, "chest", "back_left", "back", k)?,
+            arc(fw, "chest", "back", "back_right", k)?,
+        ]),
+    ])
+}
+
+/// With sleeves, the front and back panels in two each, below and above the ring halfway
+/// between the armpit and the shoulder point: the lower ones between the chest ring and it,
+/// the upper ones between it and the neckline, each held by the strap's part there (`k`
+/// segments below `A`, `upper` above).
+fn sleeved_panels(
+    s: &mut Surfacer<'_>,
+    lines: &[FeatureLine],
+    n: &Bands,
+    k: usize,
+    upper: usize,
+) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    let [front_top, back_top] = panel_tops(fw, lines, n)?;
+    let [front_bottom, back_bottom] = panel_bottoms(fw, k)?;
+    let (mid_front, mid_back) = (
+        line(lines, "armpit_shoulder_front")?.to_vec(),
+        line(lines, "armpit_shoulder_back")?.to_vec(),
+    );
+    let part = |side: usize, front: bool, lower: bool| {
+        sleeve::strap_part(fw, side, front, lower, if lower { k } else { upper })
+    };
+    let curves: Vec<CurveRef> = [
+        "chest",
+        "neckline",
+        "left_strap",
+        "right_strap",
+        "seam_left",
+        "seam_right",
+        "armpit_shoulder_front",
+        "armpit_shoulder_back",
+    ]
+    .map(CurveRef::whole)
+    .to_vec();
+    s.patch(
+        "panel.front.lower",
+        [&front_bottom, &mid_front, &part(1, true, true)?, &part(0, true, true)?],
+        curves.clone(),
+    )?;
+    s.patch(
+        "panel.front.upper",
+        [&mid_front, &front_top, &part(1, true, false)?, &part(0, true, false)?],
+        curves.clone(),
+    )?;
+    s.patch(
+        "panel.back.lower",
+        [&back_bottom, &mid_back, &part(0, false, true)?, &part(1, false, true)?],
+        curves.clone(),
+    )?;
+    s.patch(
+        "panel.back.upper",
+        [&mid_back, &back_top, &part(0, false, false)?, &part(1, false, false)?],
+        curves,
+    )
+}
+
+/// With sleeves, the three-sided patches under each armhole, in front and behind: between
+/// the chest ring's arc from its princess anchor to its side, the strap below `A` (or `A'`),
+/// and the armhole's lower line from the side up to `A`; `k` segments a side. Corners in the
+/// chest ring's order (counter-clockwise from above), so that they face out like their
+/// neighbours.
+fn underarm_triangles(s: &mut Surfacer<'_>, lines: &[FeatureLine], k: usize) -> Result<(), FrameworkError> {
+    let fw = s.framework();
+    for (side, sname) in ["left", "right"].into_iter().enumerate() {
+        for front in [true, false] {
+            let princess = format!("{}_{sname}", if front { "front" } else { "back" });
+            // The chest arc in ring order, from `p` to `q`; one of them is the side.
+            let (p, q) = match (sname, front) {
+                ("left", true) | ("right", false) => (princess.clone(), sname.to_string()),
+                _ => (sname.to_string(), princess.clone()),
+            };
+            let bottom = arc(fw, "chest", &p, &q, k)?;
+            let strap = sleeve::strap_part(fw, side, front, true, k)?;
+            let armhole = line(
+                lines,
+                &format!("{sname}_armhole_{}", if front { "front" } else { "back" }),
+            )?
+            .to_vec();
+            // From `q` up to the armhole's point, and from there down to `p`.
+            let (up, down) = if q == sname {
+                (armhole, reversed(strap))
+            } else {
+                (strap, reversed(armhole))
+            };
+            let curves = ["chest", &format!("{sname}_strap")].map(CurveRef::whole).to_vec();
+            s.triangle(
+                &format!("underarm.{sname}.{}", if front { "front" } else { "back" }),
+                [&bottom, &up, &down],
                 curves,
             )?;
         }

@@ -9,9 +9,10 @@
 //! elbow, `<side>_forearm` halfway to the cuff; long sleeves only) are interpolated: the
 //! reference plane II between C1's and C2's, the ring C4 blended from theirs
 //! ([`interpolate`]), deformed to C3, the hull of C4 and the arm's eased section
-//! ([`clear`]). Four contours run down each sleeve (`top`, `front`, `under`, `back`),
-//! through the armhole's four points: the strap's top, the chest ring's princess anchors in
-//! front and behind, and its side anchor under the arm.
+//! ([`clear`]). Four contours run down each sleeve (`top`, `front`, `under`, `back`) from
+//! the cuff to the cap ring, and on from there the cap's lines to the armhole's four points
+//! (see [`ArmholePoints`]): the strap's top, where the strap is halfway down in front and
+//! behind, and the chest ring's side under the arm.
 //!
 //! A long sleeve has 9 curves (the armhole, four rings, four contours), a short one 7.
 
@@ -21,7 +22,7 @@ mod patches;
 
 pub use axis::SleeveAxis;
 pub use interpolate::{RingFrame, clear, interpolate};
-pub use patches::{armhole, armhole_lines, sleeve_patches};
+pub use patches::{ArmholePoints, armhole, armhole_lines, armhole_lower_lines, cap_lines, sleeve_patches, strap_part};
 
 use glam::DVec3;
 
@@ -155,38 +156,21 @@ fn anchor_specs(side: usize) -> Vec<AnchorSpec> {
         .collect()
 }
 
-/// The four points an armhole passes, in the order of [`LEFT_SLEEVE`]'s names sorted
-/// `top, front, under, back`, as `(curve, anchor)`: the strap's top, the chest ring's
-/// princess anchors and its side.
-pub fn armhole_points(side: usize) -> [(String, String, &'static str); 4] {
-    let s = SIDES[side].1;
-    [
-        (format!("{s}_strap"), "top".to_string(), "top"),
-        ("chest".to_string(), format!("front_{s}"), "front"),
-        ("chest".to_string(), s.to_string(), "under"),
-        ("chest".to_string(), format!("back_{s}"), "back"),
-    ]
-}
-
-/// The sleeves' contour specs: each from the cuff up through every ring to the armhole's
-/// point (the strap's top is an extra point, `<side>_strap.top`).
+/// The sleeves' contour specs: each from the cuff up through every ring to the cap ring
+/// (above it the cap's lines run on to the armhole, see [`cap_lines`]).
 pub fn contour_specs(sleeves: Sleeves) -> Vec<ContourSpec> {
     let mut out = Vec::new();
-    for side in 0..ring_names(sleeves, 0).len().min(2) {
+    if sleeves == Sleeves::None {
+        return out;
+    }
+    for side in 0..2 {
         let rings = ring_names(sleeves, side);
         for (contour, anchor) in contour_names(sleeves, side).iter().zip(anchor_names(side)) {
-            let mut pts: Vec<(String, String)> = rings
+            let pts: Vec<(String, String)> = rings
                 .iter()
                 .rev()
                 .map(|r| (r.to_string(), anchor.to_string()))
                 .collect();
-            let [(c, a, _)] = armhole_points(side)
-                .into_iter()
-                .filter(|(_, _, n)| n == anchor)
-                .collect::<Vec<_>>()
-                .try_into()
-                .unwrap_or_else(|_| [(String::new(), String::new(), "")]);
-            pts.push((c, a));
             out.push((contour.to_string(), pts));
         }
     }
@@ -239,7 +223,7 @@ fn arm(ctx: &BuildCtx<'_>, side: usize) -> Result<SleeveAxis, FrameworkError> {
 }
 
 /// Solves both sleeves' rings: the armholes' points `armholes[side]` (`top, front, under,
-/// back`), the dimensions, the cap and cuff rings from the arm, the rings between them by
+/// back`: see [`ArmholePoints`]), the dimensions, the cap and cuff rings from the arm, the rings between them by
 /// the reference planes. Adds every ring's plane to `planes`.
 pub fn solve(
     ctx: &mut BuildCtx<'_>,
