@@ -7,6 +7,8 @@
 //! flinging their ends). The same for M1, the display mesh: clear after every step by the
 //! exact check, the last by brute force. After every step, no body edge passes through a
 //! face of M0 or M1, by a brute force written here ([`super::common::faces_pierced_by`]).
+//! The sleeved sessions (the shirt, the sleeved jumpsuit) are checked by brute force at
+//! every step.
 
 use std::path::Path;
 
@@ -65,6 +67,12 @@ const MOST_GROWTH: f64 = 1.0;
 
 /// Runs `session` on `body`; checks every step and the last one by brute force.
 fn check(session: &str, body: &Path) {
+    check_steps(session, body, false);
+}
+
+/// Runs `session` on `body`; checks every step, by brute force as well where `brute` (else
+/// the last step only).
+fn check_steps(session: &str, body: &Path, brute: bool) {
     let text = std::fs::read_to_string(session).expect("session");
     let parsed = parse_session(&text, session, Path::new(".")).expect("parses");
     let options = RunOptions {
@@ -96,17 +104,20 @@ fn check(session: &str, body: &Path) {
         );
         let after = &c.mesh.positions;
         // The largest growth of an edge, as a share of what it may grow by.
-        let growth = edges
+        let (growth, at) = edges
             .iter()
             .map(|&[a, b]| {
                 let (a, b) = (a as usize, b as usize);
                 let was = before[a].distance(before[b]);
-                (after[a].distance(after[b]) - was) / was.max(c.ease)
+                (
+                    (after[a].distance(after[b]) - was) / was.max(c.ease),
+                    [before[a], before[b], after[a], after[b]],
+                )
             })
-            .fold(0.0, f64::max);
+            .fold((0.0, [glam::DVec3::ZERO; 4]), |w, x| if x.0 > w.0 { x } else { w });
         assert!(
             growth <= MOST_GROWTH,
-            "{name}: step {step} grows an edge by {growth:.2} times its length (or the ease)"
+            "{name}: step {step} grows an edge by {growth:.2} times its length (or the ease), at {at:?}"
         );
     }
     let StepCollision {
@@ -129,6 +140,27 @@ fn check(session: &str, body: &Path) {
     );
     let body_mesh: &TriMesh = &mesh.mesh;
     super::collision::assert_meets_the_ease(last, body_mesh);
+    if brute {
+        for StepCollision {
+            step, collision, edges, ..
+        } in &sink.0
+        {
+            let truth = ground_truth(&mesh.mesh, &collision.mesh.positions, edges);
+            assert_eq!(
+                (truth.inside_count(), truth.crossing_count()),
+                (0, 0),
+                "{name}: step {step}, M0 by brute force"
+            );
+        }
+        for (step, m1, edges, _) in &sink.1 {
+            let truth = ground_truth(&mesh.mesh, &m1.positions, edges);
+            assert_eq!(
+                (truth.inside_count(), truth.crossing_count()),
+                (0, 0),
+                "{name}: step {step}, M1 by brute force"
+            );
+        }
+    }
     // M1 (the demo's scene asks for it): clear after every step by the exact check, and
     // after the last by brute force.
     for (step, m1, _, triangles) in &sink.1 {
@@ -188,5 +220,25 @@ fn the_demo_has_m1_edges_to_clear() {
 fn the_drag_session_leaves_every_body_clear() {
     for body in super::common::shipped_bodies() {
         check("assets/sessions/drags.drape", &body);
+    }
+}
+
+/// The shirt session (long sleeves, stand collar: dimension edits on the sleeves, drags of a
+/// whole elbow ring and a cuff point, the sleeves lifted, the collar raised, undo) on every
+/// body: every accepted step, M0 and M1, clear by brute force.
+#[test]
+fn the_shirt_session_leaves_every_body_clear_at_every_step() {
+    for body in super::common::shipped_bodies() {
+        check_steps("assets/sessions/shirt.drape", &body, true);
+    }
+}
+
+/// The sleeved jumpsuit session (short sleeves, the ease down to 4 mm, the cap ring pushed
+/// up into the armpit, the sleeves closed in towards the torso) on every body: every
+/// accepted step, M0 and M1, clear by brute force.
+#[test]
+fn the_sleeved_jumpsuit_session_leaves_every_body_clear_at_every_step() {
+    for body in super::common::shipped_bodies() {
+        check_steps("assets/sessions/sleeves.drape", &body, true);
     }
 }

@@ -356,25 +356,35 @@ fn loose_fit_straightens_the_legs_below_the_thigh_and_keeps_the_thigh() {
 }
 
 /// The names a template declares (for checking a session before anything runs) are the
-/// names its built framework has: every control point and every curve, both templates.
+/// names its built framework has: every control point and every curve, every template in
+/// every style.
 #[test]
 fn the_templates_declared_names_are_the_built_frameworks() {
-    for kind in TemplateKind::ALL {
+    use drape::garment::{Collar, Sleeves, Style};
+    let mut cases: Vec<(TemplateKind, Style)> = vec![(TemplateKind::Dress, Style::default())];
+    for kind in [TemplateKind::Jumpsuit, TemplateKind::Shirt] {
+        for sleeves in Sleeves::ALL {
+            for collar in Collar::ALL {
+                cases.push((kind, Style { sleeves, collar }));
+            }
+        }
+    }
+    for (kind, style) in cases {
         let fw = build_framework(
             real_body(),
             real_probe(),
             kind,
             &Dimensions::default(),
-            &FrameworkOptions::default(),
+            &FrameworkOptions::default().with_style(style),
         )
         .expect("builds");
-        let spec = drape::garment::template::of(kind);
+        let spec = drape::garment::template::styled(kind, style);
         let built: Vec<String> = fw.control_points().into_iter().map(|(n, _)| n).collect();
-        assert_eq!(spec.point_names(), built, "{kind:?} points");
+        assert_eq!(spec.point_names(), built, "{kind:?} {style:?} points");
         let curves: Vec<String> = drape::constraint::curves::curve_nodes(&fw)
             .into_iter()
             .map(|c| c.name)
             .collect();
-        assert_eq!(spec.curve_names(), curves, "{kind:?} curves");
+        assert_eq!(spec.curve_names(), curves, "{kind:?} {style:?} curves");
     }
 }

@@ -28,6 +28,7 @@ mod sculpt;
 mod sections;
 mod session_errors;
 mod shell;
+mod sleeves;
 mod snapshot;
 mod speed;
 mod spline_properties;

@@ -21,6 +21,10 @@ use crate::garment::template::{collar, sleeve};
 use super::Jumpsuit;
 use crate::geom::{Plane, SectionLoop, section_mesh};
 
+/// With sleeves, how far the chest ring drops below the armpit, as a fraction of the body's
+/// height.
+const UNDERARM_DROP: f64 = 0.01;
+
 /// Solves the jumpsuit's curves on the body.
 pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit, cut: &Jumpsuit) -> Result<Parts, FrameworkError> {
     let lv = levels(ctx, cut)?;
@@ -134,7 +138,15 @@ fn levels(ctx: &mut BuildCtx<'_>, cut: &Jumpsuit) -> Result<Levels, FrameworkErr
     let (floor, _) = body.mesh.mesh.bounds().map_or((DVec3::ZERO, DVec3::ZERO), |b| b);
     let eps = 2e-3 * h;
     let y_of = |k: LandmarkKind| lm.height(k);
-    let chest_y = y_of(LandmarkKind::Armpit) - eps;
+    // With sleeves the chest ring (whose side is the armhole's lowest point) runs a little
+    // lower, on the torso's side below the armpit's hollow: the sleeve's cap bridges the
+    // hollow from there.
+    let drop = if cut.style.sleeves == Sleeves::None {
+        0.0
+    } else {
+        UNDERARM_DROP * h
+    };
+    let chest_y = y_of(LandmarkKind::Armpit) - eps - drop;
     let crotch_y = y_of(LandmarkKind::Crotch);
     // Where the legs part: the crotch, or lower where the thighs meet below it and leave
     // the garment no room (the crotch curve bridges that gap, so the thigh rings go below).
