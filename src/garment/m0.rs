@@ -10,7 +10,7 @@
 
 use glam::DVec3;
 
-use crate::geom::{CoonsPatch, CornerMismatch, TrianglePatch, triangle_grid};
+use crate::geom::{CoonsPatch, CornerMismatch, triangle_grid};
 use crate::mesh::TriMesh;
 use crate::mesh::topology::{repeated_triangles, undirected_edges};
 
@@ -57,7 +57,7 @@ impl CurveRef {
 }
 
 /// Samples a curve given by `n + 1` samples at `t = k / n`; between samples, linear.
-struct Samples<'a>(&'a [DVec3]);
+pub(super) struct Samples<'a>(pub(super) &'a [DVec3]);
 
 impl crate::geom::ParametricCurve for Samples<'_> {
     fn sample(&self, t: f64) -> DVec3 {
@@ -104,110 +104,6 @@ impl PatchGrid {
             curves: Vec::new(),
             triangular: false,
         })
-    }
-
-    /// The three-sided patch over three sampled boundaries, corner to corner (`c0` from `V0`
-    /// to `V1`, `c1` from `V1` to `V2`, `c2` from `V2` to `V0`), each with `n + 1` samples
-    /// (\[frame\] section 4; Nielson's side-vertex blend, [`TrianglePatch`]). Corners must meet
-    /// within `tolerance`. Boundary grid points are the samples themselves, so that it meets
-    /// its neighbours sample for sample.
-    pub fn triangle(name: &str, [c0, c1, c2]: [&[DVec3]; 3], tolerance: f64) -> Result<Self, PatchError> {
-        let n = c0.len().saturating_sub(1);
-        if n == 0 || c1.len() != n + 1 || c2.len() != n + 1 {
-            return Err(PatchError::Counts {
-                patch: name.to_string(),
-                counts: [c0.len(), c1.len(), c2.len(), 0],
-            });
-        }
-        let patch = TrianglePatch::try_new([Samples(c0), Samples(c1), Samples(c2)], tolerance)
-            .map_err(|e| PatchError::Corners(name.to_string(), e))?;
-        let mut points = patch.grid(n);
-        let mut start = 0;
-        for r in 0..=n {
-            let last = start + n - r;
-            if r == 0 {
-                points[start..=last].copy_from_slice(c0);
-            }
-            // Side c1 runs up the rows' last points, c2 down their first.
-            points[last] = c1[r];
-            points[start] = c2[n - r];
-            start = last + 1;
-        }
-        Ok(Self {
-            name: name.to_string(),
-            nu: n,
-            nv: n,
-            points,
-            curves: Vec::new(),
-            triangular: true,
-        })
-    }
-
-    /// Its three sides as given to [`Self::triangle`] (none for a four-sided patch).
-    fn triangle_sides(&self) -> Option<[Vec<DVec3>; 3]> {
-        if !self.triangular {
-            return None;
-        }
-        let n = self.nu;
-        let starts: Vec<usize> = (0..=n)
-            .scan(0, |s, r| {
-                let at = *s;
-                *s += n - r + 1;
-                Some(at)
-            })
-            .collect();
-        let c0 = self.points[..=n].to_vec();
-        let c1 = (0..=n).map(|r| self.points[starts[r] + n - r]).collect();
-        let c2 = (0..=n).map(|r| self.points[starts[n - r]]).collect();
-        Some([c0, c1, c2])
-    }
-
-    /// Whether it is the three-sided patch over `sides` (as given to [`Self::triangle`]).
-    pub fn triangle_sides_are(&self, sides: [&[DVec3]; 3]) -> bool {
-        self.triangle_sides()
-            .is_some_and(|own| own.iter().zip(sides).all(|(a, b)| a.as_slice() == b))
-    }
-
-    /// The indices of its interior points (those on no side), each with its neighbours
-    /// on the grid: left, right, down and up first (they give the tangent plane), then any
-    /// others (a three-sided grid has two more, along its diagonals).
-    pub fn interior(&self) -> Vec<(usize, Vec<usize>)> {
-        let (nu, nv) = (self.nu, self.nv);
-        let mut out = Vec::new();
-        if !self.triangular {
-            let at = |i: usize, j: usize| j * (nu + 1) + i;
-            for j in 1..nv {
-                for i in 1..nu {
-                    out.push((at(i, j), vec![at(i - 1, j), at(i + 1, j), at(i, j - 1), at(i, j + 1)]));
-                }
-            }
-            return out;
-        }
-        let n = nu;
-        let starts: Vec<usize> = (0..=n)
-            .scan(0, |s, r| {
-                let at = *s;
-                *s += n - r + 1;
-                Some(at)
-            })
-            .collect();
-        let at = |i: usize, r: usize| starts[r] + i;
-        for r in 1..n {
-            for i in 1..n - r {
-                out.push((
-                    at(i, r),
-                    vec![
-                        at(i - 1, r),
-                        at(i + 1, r),
-                        at(i, r - 1),
-                        at(i, r + 1),
-                        at(i + 1, r - 1),
-                        at(i - 1, r + 1),
-                    ],
-                ));
-            }
-        }
-        out
     }
 
     /// Whether its boundary is `[bottom, top, left, right]` (as given to [`Self::coons`]).

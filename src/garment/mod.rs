@@ -25,6 +25,7 @@ pub mod ring;
 pub mod solve;
 pub mod surface;
 pub mod template;
+pub mod three_sided;
 
 pub use build::build_framework;
 pub use contour::{Contour, ContourKind};

@@ -81,7 +81,7 @@ pub enum StepError {
         count: usize,
         /// Why it was refused.
         #[source]
-        source: DragRefusal,
+        source: Box<DragRefusal>,
     },
     /// A garment step came before any garment was built.
     #[error("no garment to {verb}: a 'garment' step must come first")]

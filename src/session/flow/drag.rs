@@ -151,7 +151,7 @@ pub(in crate::session) fn replay_edits(
         let (next, _) = replayed.map_err(|source| StepError::Replay {
             index: k + 1,
             count: edits.len(),
-            source,
+            source: Box::new(source),
         })?;
         state = next;
     }

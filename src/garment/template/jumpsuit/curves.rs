@@ -8,22 +8,18 @@ use glam::DVec3;
 
 use crate::body::{LandmarkKind, Side};
 use crate::garment::anchors::{leg_anchors, quad_anchors, torso_anchors};
-use crate::garment::bridge::{Bridging, bridge};
 use crate::garment::contour::Contour;
 use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, Fit, FrameworkError, Layout, NamedPlane, Sleeves, Straightened};
-use crate::garment::open_curve::{Apex, OpenCurve, OpenInput, section_part};
+use crate::garment::open_curve::OpenCurve;
 use crate::garment::ring::GarmentRing;
 use crate::garment::solve::{BuildCtx, ContourSpec, Parts, find, fit_contours, landmark, loosen, point, section_error};
-use crate::garment::template::spec::{BRIDGE_REACH, THIGH_DROP};
 use crate::garment::template::{collar, sleeve};
 
-use super::Jumpsuit;
+use super::cut::Jumpsuit;
+use super::levels::{Levels, levels};
+use super::open_curves::open_curves;
 use crate::geom::{Plane, SectionLoop, section_mesh};
-
-/// With sleeves, how far the chest ring drops below the armpit, as a fraction of the body's
-/// height.
-const UNDERARM_DROP: f64 = 0.01;
 
 /// Solves the jumpsuit's curves on the body.
 pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit, cut: &Jumpsuit) -> Result<Parts, FrameworkError> {
@@ -82,145 +78,6 @@ pub(super) fn solve(ctx: &mut BuildCtx<'_>, fit: Fit, cut: &Jumpsuit) -> Result<
         contours,
         straightened,
         layout,
-    })
-}
-
-/// The heights the jumpsuit's curves are cut at, m, and the dimensions that place them.
-struct Levels {
-    /// The body's height.
-    h: f64,
-    /// The chest ring's: just below the armpit.
-    chest_y: f64,
-    /// The crotch landmark.
-    crotch_ref: DVec3,
-    /// The thigh rings': below where the legs part.
-    thigh_y: f64,
-    /// The thigh rings' height from the landmarks alone (the mesh's counts come from it: the
-    /// topology must not depend on the ease).
-    thigh_count_y: f64,
-    knee_y: f64,
-    ankle_y: f64,
-    hem_y: f64,
-    shoulder_y: f64,
-    /// The neckline's rise over the neck base (`neck_rise`).
-    neck_rise: f64,
-    /// Where the straps cross the shoulders, from the side neck (0) to the shoulder point
-    /// (1) (`strap_position`).
-    strap_position: f64,
-    /// Every landmark's height.
-    heights: [(LandmarkKind, f64); 4],
-}
-
-impl Levels {
-    /// A landmark's height among those kept (bust, waist, hip, shoulder).
-    fn y_of(&self, kind: LandmarkKind) -> f64 {
-        self.heights
-            .iter()
-            .find(|(k, _)| *k == kind)
-            .map_or(f64::NAN, |(_, y)| *y)
-    }
-}
-
-/// How the curves bridge a gap of the body `gap` deep (the crotch curve and the straps).
-fn bridging(ctx: &BuildCtx<'_>, gap: f64) -> Bridging {
-    Bridging {
-        gap,
-        width: (2.0 * gap).max(ctx.edge_length()),
-        reach: BRIDGE_REACH * ctx.height,
-    }
-}
-
-/// The levels, and the dimensions `inseam`, `neck_rise` and `strap_position`.
-fn levels(ctx: &mut BuildCtx<'_>, cut: &Jumpsuit) -> Result<Levels, FrameworkError> {
-    let body = ctx.body;
-    let lm = &body.landmarks;
-    let h = ctx.height;
-    let (floor, _) = body.mesh.mesh.bounds().map_or((DVec3::ZERO, DVec3::ZERO), |b| b);
-    let eps = 2e-3 * h;
-    let y_of = |k: LandmarkKind| lm.height(k);
-    // With sleeves the chest ring (whose side is the armhole's lowest point) runs a little
-    // lower, on the torso's side below the armpit's hollow: the sleeve's cap bridges the
-    // hollow from there.
-    let drop = if cut.style.sleeves == Sleeves::None {
-        0.0
-    } else {
-        UNDERARM_DROP * h
-    };
-    let chest_y = y_of(LandmarkKind::Armpit) - eps - drop;
-    let crotch_y = y_of(LandmarkKind::Crotch);
-    // Where the legs part: the crotch, or lower where the thighs meet below it and leave
-    // the garment no room (the crotch curve bridges that gap, so the thigh rings go below).
-    let crotch_ref = landmark(body, LandmarkKind::Crotch, Side::Centre)?;
-    let below = DVec3::new(ctx.mid_x, crotch_y - ctx.ease, crotch_ref.z);
-    let legs_part_y = (bridge(ctx.probe, below, DVec3::NEG_Y, &bridging(ctx, ctx.ease)).y + ctx.ease).min(crotch_y);
-    let thigh_y = legs_part_y - THIGH_DROP * h;
-    let thigh_count_y = crotch_y - THIGH_DROP * h;
-    let knee_y = y_of(LandmarkKind::Knee);
-    let ankle_y = y_of(LandmarkKind::Ankle);
-    let inseam = if cut.legs {
-        ctx.value(
-            "inseam",
-            crotch_y - ankle_y,
-            (crotch_y - knee_y + 0.05 * h, crotch_y - floor.y - 0.02 * h),
-            "the hem must lie between the knee and the foot",
-        )?
-    } else {
-        crotch_y - ankle_y
-    };
-    let neck_rise = ctx.value(
-        "neck_rise",
-        0.0,
-        (-0.02 * h, 0.03 * h),
-        "the neckline must stay near the neck base",
-    )?;
-    // With sleeves the straps are the armholes' tops: as near the shoulder point as the
-    // chest ring allows (the strap planes within 85% of its half width), at most 0.8.
-    let strap_default = if cut.style.sleeves == Sleeves::None {
-        0.5
-    } else {
-        let chest = ctx.torso_loop("chest", chest_y)?;
-        let (xmax, xmin) = chest
-            .iter()
-            .fold((f64::NEG_INFINITY, f64::INFINITY), |(a, b), p| (a.max(p.x), b.min(p.x)));
-        let mid = ctx.mid_x;
-        let mut f: f64 = 0.8;
-        for (side, edge) in [
-            (Side::Left, mid + 0.85 * (xmax - mid)),
-            (Side::Right, mid - 0.85 * (mid - xmin)),
-        ] {
-            let sn = landmark(body, LandmarkKind::SideNeck, side)?;
-            let sh = landmark(body, LandmarkKind::Shoulder, side)?;
-            if (sh.x - sn.x).abs() > 1e-9 {
-                f = f.min((edge - sn.x) / (sh.x - sn.x));
-            }
-        }
-        f.clamp(0.1, 0.8)
-    };
-    let strap_position = ctx.value(
-        "strap_position",
-        strap_default,
-        (0.1, 0.9),
-        "the strap must lie on the shoulder",
-    )?;
-    Ok(Levels {
-        h,
-        chest_y,
-        crotch_ref,
-        thigh_y,
-        thigh_count_y,
-        knee_y,
-        ankle_y,
-        hem_y: crotch_y - inseam,
-        shoulder_y: y_of(LandmarkKind::Shoulder),
-        neck_rise,
-        strap_position,
-        heights: [
-            LandmarkKind::Bust,
-            LandmarkKind::Waist,
-            LandmarkKind::Hip,
-            LandmarkKind::Shoulder,
-        ]
-        .map(|k| (k, y_of(k))),
     })
 }
 
@@ -367,117 +224,6 @@ fn torso_and_leg_rings(
             let r = ctx.ring(&name, Plane::horizontal(y), vec![raw], &leg_anchors(side), ease)?;
             rings.push(r);
         }
-    }
-    Ok(())
-}
-
-/// The open curves: the crotch curve in the vertical crotch plane, from the hip's centre
-/// front down through the crotch and up to its centre back; then a strap over each
-/// shoulder in its plane `(xl, xr)`, from the chest ring's front princess anchor to its
-/// back one. Adds their planes.
-fn open_curves(
-    ctx: &BuildCtx<'_>,
-    lv: &Levels,
-    (xl, xr): (f64, f64),
-    rings: &[GarmentRing],
-    planes: &mut Vec<NamedPlane>,
-    legs: bool,
-) -> Result<Vec<OpenCurve>, FrameworkError> {
-    let mut open_curves = if legs {
-        vec![crotch_curve(ctx, lv, rings, planes)?]
-    } else {
-        Vec::new()
-    };
-    straps(ctx, lv, (xl, xr), rings, planes, &mut open_curves)?;
-    Ok(open_curves)
-}
-
-/// The crotch curve in the vertical crotch plane, from the hip's centre front down through
-/// the crotch and up to its centre back. Adds its plane.
-fn crotch_curve(
-    ctx: &BuildCtx<'_>,
-    lv: &Levels,
-    rings: &[GarmentRing],
-    planes: &mut Vec<NamedPlane>,
-) -> Result<OpenCurve, FrameworkError> {
-    let body = ctx.body;
-    let crotch_ref = lv.crotch_ref;
-    let hip_y = lv.y_of(LandmarkKind::Hip);
-    let crotch_plane = Plane::from_point_normal(DVec3::new(ctx.mid_x, 0.0, 0.0), DVec3::X);
-    planes.push(ctx.plane_for(
-        "crotch",
-        crotch_plane,
-        DVec3::new(ctx.mid_x, crotch_ref.y, crotch_ref.z),
-    ));
-    let crotch_part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &crotch_plane)
-        .iter()
-        .filter_map(|l| section_part(l, hip_y, Apex::Lowest))
-        .min_by(|a, b| a.0[a.1].distance(crotch_ref).total_cmp(&b.0[b.1].distance(crotch_ref)))
-        .ok_or_else(|| section_error("crotch", "the crotch plane cuts no curve below the hip".into()))?;
-    let per_half = ctx.options.ring.resample_per_arc;
-    let crotch = OpenCurve::build(&OpenInput {
-        name: "crotch",
-        apex_name: "point",
-        plane: crotch_plane,
-        raw: crotch_part,
-        ease: Ease::Uniform(ctx.ease),
-        ends: [point(rings, "hip", "front")?, point(rings, "hip", "back")?],
-        per_half,
-        control_per_half: 4,
-        fitted_per_half: ctx.options.ring.fitted_points / 4,
-        bridge: Some((ctx.probe, bridging(ctx, ctx.ease))),
-    })?;
-    Ok(crotch)
-}
-
-/// A strap over each shoulder in its plane `(xl, xr)`, from the chest ring's front princess
-/// anchor to its back one: added to `open_curves`. Adds their planes.
-fn straps(
-    ctx: &BuildCtx<'_>,
-    lv: &Levels,
-    (xl, xr): (f64, f64),
-    rings: &[GarmentRing],
-    planes: &mut Vec<NamedPlane>,
-    open_curves: &mut Vec<OpenCurve>,
-) -> Result<(), FrameworkError> {
-    let body = ctx.body;
-    let h = lv.h;
-    let per_half = ctx.options.ring.resample_per_arc;
-    for (side, x) in [(Side::Left, xl), (Side::Right, xr)] {
-        let (name, suffix) = if side == Side::Left {
-            ("left_strap", "left")
-        } else {
-            ("right_strap", "right")
-        };
-        let plane = Plane::from_point_normal(DVec3::new(x, 0.0, 0.0), DVec3::X);
-        let reference = landmark(body, LandmarkKind::Shoulder, side)?;
-        let reference = DVec3::new(x, lv.shoulder_y, reference.z);
-        planes.push(ctx.plane_for(name, plane, DVec3::new(x, lv.shoulder_y - 0.04 * h, reference.z)));
-        let part = section_mesh(&body.mesh.mesh, &body.mesh.adjacency, &plane)
-            .iter()
-            .filter_map(|l| section_part(l, lv.chest_y, Apex::Highest))
-            .min_by(|a, b| a.0[a.1].distance(reference).total_cmp(&b.0[b.1].distance(reference)))
-            .ok_or_else(|| section_error(name, "the strap plane cuts no curve over the shoulder".into()))?;
-        let e = match find(rings, "chest")?.ease {
-            Ease::Uniform(v) => v,
-            Ease::PerDirection { front, .. } => front,
-        };
-        let strap = OpenCurve::build(&OpenInput {
-            name,
-            apex_name: "top",
-            plane,
-            raw: part,
-            ease: Ease::Uniform(e),
-            ends: [
-                point(rings, "chest", &format!("front_{suffix}"))?,
-                point(rings, "chest", &format!("back_{suffix}"))?,
-            ],
-            per_half,
-            control_per_half: 4,
-            fitted_per_half: ctx.options.ring.fitted_points / 4,
-            bridge: Some((ctx.probe, bridging(ctx, e))),
-        })?;
-        open_curves.push(strap);
     }
     Ok(())
 }

@@ -8,74 +8,20 @@
 //! the hip ring, its hem.
 
 mod curves;
+mod cut;
+mod levels;
+mod open_curves;
 mod patches;
+
+pub use cut::{CONTOURS, Jumpsuit};
 
 use super::spec::{CurveRoles, EndJoint, TangentJoint, Template};
 use super::{collar, sleeve};
 use crate::garment::anchors::{LEFT_LEG, QUAD, RIGHT_LEG, TORSO, mirror_pairs};
-use crate::garment::model::{Collar, FeatureLine, Fit, Framework, FrameworkError, Sleeves, Style, TemplateKind};
+use crate::garment::model::{FeatureLine, Fit, Framework, FrameworkError, Style, TemplateKind};
 use crate::garment::probe::BodyProbe;
 use crate::garment::solve::{BuildCtx, Parts};
 use crate::garment::surface::Surfacer;
-
-/// Rings of the jumpsuit, top to bottom.
-pub const RINGS: [&str; 11] = [
-    "neckline",
-    "chest",
-    "bust",
-    "waist",
-    "hip",
-    "left_thigh",
-    "right_thigh",
-    "left_knee",
-    "right_knee",
-    "left_hem",
-    "right_hem",
-];
-
-/// Contours of the jumpsuit.
-pub const CONTOURS: [&str; 10] = [
-    "centre_front",
-    "centre_back",
-    "front_left",
-    "side_left",
-    "back_left",
-    "inner_left",
-    "front_right",
-    "side_right",
-    "back_right",
-    "inner_right",
-];
-
-/// The jumpsuit template, and without its legs the shirt.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Jumpsuit {
-    /// The legs, the crotch and the junction (the shirt has none: its hem is the hip ring).
-    pub legs: bool,
-    /// Sleeves and collar.
-    pub style: Style,
-}
-
-impl Jumpsuit {
-    /// The jumpsuit, or without its legs the shirt, with `style`.
-    pub const fn new(legs: bool, sleeves: Sleeves, collar: Collar) -> Self {
-        Self {
-            legs,
-            style: Style { sleeves, collar },
-        }
-    }
-
-    /// The bodice's rings (the shirt's: the jumpsuit's above the legs).
-    fn body_rings(&self) -> &'static [&'static str] {
-        if self.legs { &RINGS } else { &RINGS[..5] }
-    }
-}
-
-impl Default for Jumpsuit {
-    fn default() -> Self {
-        Self::new(true, Sleeves::None, Collar::None)
-    }
-}
 
 impl Template for Jumpsuit {
     fn kind(&self) -> TemplateKind {

@@ -11,7 +11,7 @@ use crate::garment::probe::BodyProbe;
 use crate::garment::surface::{Surfacer, anchor, arc, contour, join, line, missing, open, reversed, through_at};
 use crate::garment::template::{collar, sleeve};
 
-use super::Jumpsuit;
+use super::cut::Jumpsuit;
 
 /// Segment counts of the bands, from the layout.
 struct Bands {

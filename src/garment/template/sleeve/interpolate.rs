@@ -2,12 +2,12 @@
 //! between the cap ring C1 and the cuff ring C2, a reference plane II is interpolated (its
 //! normal the normalized blend of theirs, through the sleeve axis' point there), the ring
 //! C4 interpolated into it (each point the blend of the two rings' points about their
-//! planes' origins, the part along II's normal taken away), then deformed to the final ring
-//! C3 that clears the arm: the convex hull of C4 and the arm's section eased.
+//! planes' origins, the part along II's normal taken away). The final ring C3 that clears
+//! the arm is the ring built around C4 and the arm's section eased (their convex hull).
 
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 
-use crate::geom::{Plane, polygon};
+use crate::geom::Plane;
 
 /// A planar ring's reference frame: its plane's origin on the sleeve axis and its normal.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,15 +46,4 @@ pub fn interpolate(
         })
         .collect();
     (RingFrame { origin, normal }, ring)
-}
-
-/// C3: the convex hull, in `plane`, of the interpolated ring `c4` and the arm's eased
-/// section `arm` (both in the plane), counter-clockwise about its normal.
-pub fn clear(c4: &[DVec3], arm: &[DVec3], plane: &Plane) -> Vec<DVec3> {
-    let flat: Vec<DVec2> = c4.iter().chain(arm).map(|p| plane.project(*p)).collect();
-    let mut hull = polygon::convex_hull(&flat);
-    if polygon::signed_area(&hull) < 0.0 {
-        hull.reverse();
-    }
-    hull.into_iter().map(|q| plane.lift(q)).collect()
 }

@@ -8,8 +8,8 @@
 //! constraint network keeps them there). The rings between them (`<side>_elbow` at the
 //! elbow, `<side>_forearm` halfway to the cuff; long sleeves only) are interpolated: the
 //! reference plane II between C1's and C2's, the ring C4 blended from theirs
-//! ([`interpolate`]), deformed to C3, the hull of C4 and the arm's eased section
-//! ([`clear`]). Four contours run down each sleeve (`top`, `front`, `under`, `back`) from
+//! ([`interpolate`]), deformed to C3, the hull of C4 and the arm's eased section (the ring
+//! is built around both loops; its raw stage keeps them). Four contours run down each sleeve (`top`, `front`, `under`, `back`) from
 //! the cuff to the cap ring, and on from there the cap's lines to the armhole's four points
 //! (see [`ArmholePoints`]): the strap's top, where the strap is halfway down in front and
 //! behind, and the chest ring's side under the arm.
@@ -21,7 +21,7 @@ mod interpolate;
 mod patches;
 
 pub use axis::SleeveAxis;
-pub use interpolate::{RingFrame, clear, interpolate};
+pub use interpolate::{RingFrame, interpolate};
 pub use patches::{ArmholePoints, armhole, armhole_lines, armhole_lower_lines, cap_lines, sleeve_patches, strap_part};
 
 use glam::DVec3;
@@ -309,9 +309,11 @@ pub fn solve(
             );
             let plane = f4.plane();
             let arm_loop = arm_section(ctx, ring, &plane, f4.origin)?;
-            let c3 = clear(&c4, &eased_section(&arm_loop, &plane, e, ring)?, &plane);
+            // C3: the ring is built around both loops, C4 and the arm's section eased, by
+            // their common convex hull (kept as its raw stage: both loops).
+            let arm = eased_section(&arm_loop, &plane, e, ring)?;
             let key = format!("{}_girth", shared(ring));
-            built.push(ctx.ring_with(ring, &[&key], plane, vec![c3], &specs, Ease::Uniform(0.0))?);
+            built.push(ctx.ring_with(ring, &[&key], plane, vec![c4, arm], &specs, Ease::Uniform(0.0))?);
         }
         built.push(c2);
         for (i, (r, &s)) in built.iter().zip(&at).enumerate() {

@@ -215,20 +215,20 @@ pub fn armhole_lines(
     samples: usize,
 ) -> Result<Vec<FeatureLine>, FrameworkError> {
     let mut out = Vec::new();
-    for side in 0..2 {
+    for (side, name) in ARMHOLES.iter().enumerate() {
         let pieces = armhole(fw, lines, side, upper)?;
         let mut boundary: Vec<DVec3> = Vec::new();
         for p in &pieces {
             boundary.extend_from_slice(&p[..p.len() - 1]);
         }
         let spline = ChordSpline3::try_new(&boundary, CurveEnds::Closed)
-            .map_err(|e| FrameworkError::Contour(ARMHOLES[side].to_string(), e))?;
+            .map_err(|e| FrameworkError::Contour(name.to_string(), e))?;
         let mut points = spline.subdivide(samples.div_ceil(boundary.len()).max(1), true);
         if let Some(first) = points.first().copied() {
             points.push(first);
         }
         out.push(FeatureLine {
-            name: ARMHOLES[side].to_string(),
+            name: name.to_string(),
             points,
         });
     }
