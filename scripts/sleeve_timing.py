@@ -35,13 +35,16 @@ def step_times(binary, folder, garment, resolution):
     session = Path(folder) / "timing.drape"
     session.write_text(SESSION.format(garment=garment, resolution=resolution))
     out = []
+    vertices = 0
     for s in run_metrics(binary, folder, "--no-index-cache", "run", session):
         if s["op"] in ("scene",):
             continue
         t = s.get("timings_ms", {})
         log = sum(v for k, v in t.items() if k.startswith("log."))
         compute = sum(v for k, v in t.items() if not k.startswith("log.") and k != "body.index")
-        out.append((s["op"], compute, log, s.get("m0_vertices", 0)))
+        # A drag keeps the garment's size: carry the last count on.
+        vertices = s.get("m0_vertices") or vertices
+        out.append((s["op"], compute, log, vertices))
     return out
 
 

@@ -74,15 +74,19 @@ impl<C: ParametricCurve> TrianglePatch<C> {
 
     /// The point at `tau` of corner `i`'s side-vertex line through the opposite side's
     /// point at `s`: the cubic Hermite curve from that point (`tau = 0`) to `Vi` (`tau = 1`),
-    /// its end derivatives blended from the sides' at the corners (at `Vi`, the two sides
-    /// leaving it, weighted `1 - s` and `s`; at the opposite side, the sides leaving its ends
-    /// towards `Vi`, weighted alike). Straight sides give the straight line.
+    /// its end derivatives' directions blended from the sides' at the corners (at `Vi`, the
+    /// two sides leaving it, weighted `1 - s` and `s`; at the opposite side, the sides leaving
+    /// its ends towards `Vi`, weighted alike), their lengths the line's chord. Straight sides
+    /// give the straight line.
     fn along_line(&self, i: usize, s: f64, tau: f64) -> DVec3 {
         let (j, k) = ((i + 1) % 3, (i + 2) % 3);
         let start = self.side(j, s);
         let end = self.corners[i];
-        let d_start = self.leaving(j, i) * (1.0 - s) + self.leaving(k, i) * s;
-        let d_end = -(self.leaving(i, j) * (1.0 - s) + self.leaving(i, k) * s);
+        // Directions blended from the sides, lengths the line's chord: a long side's
+        // derivative on a short line would overshoot (straight sides give the chord itself).
+        let chord = start.distance(end);
+        let d_start = (self.leaving(j, i) * (1.0 - s) + self.leaving(k, i) * s).normalize_or_zero() * chord;
+        let d_end = -(self.leaving(i, j) * (1.0 - s) + self.leaving(i, k) * s).normalize_or_zero() * chord;
         let (t2, t3) = (tau * tau, tau * tau * tau);
         start * (2.0 * t3 - 3.0 * t2 + 1.0)
             + d_start * (t3 - 2.0 * t2 + tau)

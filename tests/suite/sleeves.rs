@@ -380,3 +380,67 @@ fn three_sided_patches_sit_under_the_armholes_and_meet_their_neighbours() {
     let n = fw.layout.k;
     assert_eq!(faces, 4 * n * n, "n^2 faces each");
 }
+
+/// The armhole is the bodice's: a wider chest ring moves it, and the sleeve's cap follows,
+/// still welded to the bodice (the same topology, the same openings).
+#[test]
+fn the_cap_follows_a_bodice_edit() {
+    let base = shirt(LONG, TemplateKind::Shirt);
+    let chest = base.ring("chest").expect("chest").girth;
+    let mut dims = Dimensions::default();
+    dims.values.insert("chest_girth".into(), chest + 0.06);
+    let wider = build_framework(
+        real_body(),
+        real_probe(),
+        TemplateKind::Shirt,
+        &dims,
+        &FrameworkOptions::default().with_style(LONG),
+    )
+    .expect("builds");
+    let line = |fw: &Framework| {
+        fw.lines
+            .iter()
+            .find(|l| l.name == "left_armhole")
+            .expect("armhole")
+            .points
+            .clone()
+    };
+    let moved = line(&base)
+        .iter()
+        .zip(line(&wider))
+        .map(|(a, b)| a.distance(b))
+        .fold(0.0, f64::max);
+    assert!(moved > 1e-3, "the armhole moved {moved:e} m");
+    assert_eq!(
+        base.m0.mesh.positions.len(),
+        wider.m0.mesh.positions.len(),
+        "the same topology"
+    );
+    let (edges, twice) = edge_counts(&wider.m0.mesh.triangles);
+    assert!(!twice);
+    assert_eq!(boundary_loops(&edges).len(), 4, "hem, two cuffs, the collar's top");
+    // The cap's top row is the armhole's samples: every armhole point of the bodice's
+    // boundary is a vertex the cap's faces use.
+    let cap_vertices: std::collections::BTreeSet<u32> = wider
+        .m0
+        .mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .filter(|(f, _)| wider.m0.patch_names[wider.m0.face_patch[*f] as usize].starts_with("sleeve.left.cap"))
+        .flat_map(|(_, t)| t.iter().copied())
+        .collect();
+    let strap = wider
+        .open_curves
+        .iter()
+        .find(|c| c.name == "left_strap")
+        .expect("strap");
+    let top = wider
+        .m0
+        .mesh
+        .positions
+        .iter()
+        .position(|p| *p == strap.apex)
+        .expect("the strap's top is a vertex") as u32;
+    assert!(cap_vertices.contains(&top), "the cap meets the strap's top");
+}
