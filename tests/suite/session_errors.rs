@@ -432,3 +432,29 @@ fn check_names_misspelt_points_curves_and_statements_with_a_suggestion() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_style_the_template_cannot_take_is_named_at_its_column() {
+    assert_eq!(
+        error_of("drape 1\ngarment dress sleeves=long\n"),
+        "s.drape:2:23: the dress takes no sleeves: it starts at the waist"
+    );
+    assert_eq!(
+        error_of("drape 1\ngarment shirt sleeves=puff\n"),
+        "s.drape:2:23: unknown sleeves 'puff': expected none, short or long"
+    );
+    assert_eq!(
+        error_of("drape 1\ngarment jumpsuit collar=mandarin\n"),
+        "s.drape:2:25: unknown collar 'mandarin': expected none or stand"
+    );
+    // A sleeve dimension is known only to a garment with sleeves.
+    let e = error_of("drape 1\ngarment jumpsuit\nset cuff_girth 0.2\n");
+    assert!(
+        e.starts_with("s.drape:3:5: unknown dimension 'cuff_girth' for the jumpsuit"),
+        "{e}"
+    );
+    assert!(
+        error_of("drape 1\ngarment jumpsuit sleeves=long\nset cuf_girth 0.2\n").contains("did you mean 'cuff_girth'?"),
+        "a sleeved jumpsuit knows its cuffs"
+    );
+}

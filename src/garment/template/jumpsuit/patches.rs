@@ -335,18 +335,7 @@ fn sleeved_panels(
     let part = |side: usize, front: bool, lower: bool| {
         sleeve::strap_part(fw, side, front, lower, if lower { k } else { upper })
     };
-    let curves: Vec<CurveRef> = [
-        "chest",
-        "neckline",
-        "left_strap",
-        "right_strap",
-        "seam_left",
-        "seam_right",
-        "armpit_shoulder_front",
-        "armpit_shoulder_back",
-    ]
-    .map(CurveRef::whole)
-    .to_vec();
+    let curves = panel_curves(&["armpit_shoulder_front", "armpit_shoulder_back"]);
     s.patch(
         "panel.front.lower",
         [&front_bottom, &mid_front, &part(1, true, true)?, &part(0, true, true)?],
@@ -413,27 +402,9 @@ fn panels(s: &mut Surfacer<'_>, lines: &[FeatureLine], n: &Bands, k: usize) -> R
     let fw = s.framework();
     let (left_strap, right_strap) = (open(fw, "left_strap")?, open(fw, "right_strap")?);
     let strap = |c: &OpenCurve, front: bool| c.half(front, n.strap);
-    let (seam_left, seam_right) = (line(lines, "seam_left")?, line(lines, "seam_right")?);
-    let front_bottom = join(&[
-        arc(fw, "chest", "front_right", "front", k)?,
-        arc(fw, "chest", "front", "front_left", k)?,
-    ]);
-    let front_top = join(&[
-        reversed(seam_right.to_vec()),
-        arc(fw, "neckline", "right", "front", n.neck)?,
-        arc(fw, "neckline", "front", "left", n.neck)?,
-        seam_left.to_vec(),
-    ]);
-    let panel_curves: Vec<CurveRef> = [
-        "chest",
-        "neckline",
-        "left_strap",
-        "right_strap",
-        "seam_left",
-        "seam_right",
-    ]
-    .map(CurveRef::whole)
-    .to_vec();
+    let [front_top, back_top] = panel_tops(fw, lines, n)?;
+    let [front_bottom, back_bottom] = panel_bottoms(fw, k)?;
+    let curves = panel_curves(&[]);
     s.patch(
         "panel.front",
         [
@@ -442,18 +413,8 @@ fn panels(s: &mut Surfacer<'_>, lines: &[FeatureLine], n: &Bands, k: usize) -> R
             &strap(right_strap, true),
             &strap(left_strap, true),
         ],
-        panel_curves.clone(),
+        curves.clone(),
     )?;
-    let back_bottom = join(&[
-        arc(fw, "chest", "back_left", "back", k)?,
-        arc(fw, "chest", "back", "back_right", k)?,
-    ]);
-    let back_top = join(&[
-        reversed(seam_left.to_vec()),
-        arc(fw, "neckline", "left", "back", n.neck)?,
-        arc(fw, "neckline", "back", "right", n.neck)?,
-        seam_right.to_vec(),
-    ]);
     s.patch(
         "panel.back",
         [
@@ -462,6 +423,23 @@ fn panels(s: &mut Surfacer<'_>, lines: &[FeatureLine], n: &Bands, k: usize) -> R
             &reversed(strap(left_strap, false)),
             &reversed(strap(right_strap, false)),
         ],
-        panel_curves,
+        curves,
     )
+}
+
+/// The curves a panel's boundary comes from: the chest ring, the neckline, the straps and
+/// the shoulder seams, and `more`.
+fn panel_curves(more: &[&str]) -> Vec<CurveRef> {
+    [
+        "chest",
+        "neckline",
+        "left_strap",
+        "right_strap",
+        "seam_left",
+        "seam_right",
+    ]
+    .iter()
+    .chain(more)
+    .map(|c| CurveRef::whole(c))
+    .collect()
 }
