@@ -9,7 +9,7 @@
 //! elbow, `<side>_forearm` halfway to the cuff; long sleeves only) are interpolated: the
 //! reference plane II between C1's and C2's, the ring C4 blended from theirs
 //! ([`interpolate`]), deformed to C3, the hull of C4 and the arm's eased section (the ring
-//! is built around both loops; its raw stage keeps them). Four contours run down each sleeve (`top`, `front`, `under`, `back`) from
+//! is built around both loops; its raw stage keeps them). Four contours run down each sleeve (`outer`, `front`, `inner`, `back`) from
 //! the cuff to the cap ring, and on from there the cap's lines to the armhole's four points
 //! (see [`ArmholePoints`]): the strap's top, where the strap is halfway down in front and
 //! behind, and the chest ring's side under the arm.
@@ -38,10 +38,10 @@ use crate::geom::{Plane, polygon, section_mesh};
 
 /// The anchors of the left sleeve's rings, in ring order (counter-clockwise about the
 /// normal up the sleeve: seen from the hand).
-pub const LEFT_SLEEVE: [&str; 4] = ["top", "back", "under", "front"];
+pub const LEFT_SLEEVE: [&str; 4] = ["outer", "back", "inner", "front"];
 
 /// The anchors of the right sleeve's rings, in ring order (the mirror of the left's).
-pub const RIGHT_SLEEVE: [&str; 4] = ["top", "front", "under", "back"];
+pub const RIGHT_SLEEVE: [&str; 4] = ["outer", "front", "inner", "back"];
 
 /// The rings of a long sleeve, cap to cuff, left then right.
 const LONG: [[&str; 4]; 2] = [
@@ -55,15 +55,15 @@ const SHORT: [[&str; 2]; 2] = [["left_bicep", "left_cuff"], ["right_bicep", "rig
 /// The contours of the sleeves, left then right, in each sleeve's ring order.
 const CONTOURS: [[&str; 4]; 2] = [
     [
-        "left_sleeve_top",
+        "left_sleeve_outer",
         "left_sleeve_back",
-        "left_sleeve_under",
+        "left_sleeve_inner",
         "left_sleeve_front",
     ],
     [
-        "right_sleeve_top",
+        "right_sleeve_outer",
         "right_sleeve_front",
-        "right_sleeve_under",
+        "right_sleeve_inner",
         "right_sleeve_back",
     ],
 ];
@@ -137,7 +137,7 @@ pub fn lengths(sleeves: Sleeves) -> Vec<(&'static str, &'static str)> {
     out
 }
 
-/// A sleeve ring's anchors (`side` 0 left, 1 right): the top (up and out), front, under and
+/// A sleeve ring's anchors (`side` 0 left, 1 right): the outer (up and out), front, inner and
 /// back extremes, in ring order.
 fn anchor_specs(side: usize) -> Vec<AnchorSpec> {
     let out = if side == 0 { DVec3::X } else { DVec3::NEG_X };
@@ -147,8 +147,8 @@ fn anchor_specs(side: usize) -> Vec<AnchorSpec> {
         .map(|name| AnchorSpec {
             name,
             rule: AnchorRule::Extreme(match *name {
-                "top" => top,
-                "under" => -top,
+                "outer" => top,
+                "inner" => -top,
                 "front" => DVec3::Z,
                 _ => DVec3::NEG_Z,
             }),
@@ -222,7 +222,7 @@ fn arm(ctx: &BuildCtx<'_>, side: usize) -> Result<SleeveAxis, FrameworkError> {
     })
 }
 
-/// Solves both sleeves' rings: the armholes' points `armholes[side]` (`top, front, under,
+/// Solves both sleeves' rings: the armholes' points `armholes[side]` (`outer, front, inner,
 /// back`: see [`ArmholePoints`]), the dimensions, the cap and cuff rings from the arm, the rings between them by
 /// the reference planes. Adds every ring's plane to `planes`.
 pub fn solve(

@@ -64,7 +64,7 @@ impl ArmholePoints {
         }
     }
 
-    /// In the order `top, front, under, back`.
+    /// In the order `outer` (the top), `front`, `inner` (under the arm), `back`.
     pub fn all(&self) -> [DVec3; 4] {
         [self.top, self.front, self.under, self.back]
     }
@@ -72,9 +72,9 @@ impl ArmholePoints {
     /// The point of anchor `name`.
     pub fn of(&self, name: &str) -> DVec3 {
         match name {
-            "top" => self.top,
+            "outer" => self.top,
             "front" => self.front,
-            "under" => self.under,
+            "inner" => self.under,
             _ => self.back,
         }
     }
@@ -189,8 +189,8 @@ pub fn armhole(
     for i in 0..4 {
         let (p, q) = (order[i], order[(i + 1) % 4]);
         let piece = match (p, q) {
-            ("top", "front") | ("front", "top") => strap_part(fw, side, true, false, upper)?,
-            ("top", "back") | ("back", "top") => strap_part(fw, side, false, false, upper)?,
+            ("outer", "front") | ("front", "outer") => strap_part(fw, side, true, false, upper)?,
+            ("outer", "back") | ("back", "outer") => strap_part(fw, side, false, false, upper)?,
             ("front", _) | (_, "front") => line(lines, &format!("{s}_armhole_front"))?.to_vec(),
             _ => line(lines, &format!("{s}_armhole_back"))?.to_vec(),
         };
