@@ -44,6 +44,21 @@ pub enum DragRefusal {
     /// The solved curves cannot be surfaced.
     #[error("the edited curves cannot be surfaced: {0}")]
     Surface(#[source] FrameworkError),
+    /// The drag went further than the curves can follow: the solve ended with a
+    /// constraint still unmet, and the curves no longer close up into patches.
+    #[error(
+        "the drag goes further than the curves can follow: the {kind} constraint of {curves} is still {residual:.4} {unit} off after the solve: edit refused"
+    )]
+    Unmet {
+        /// The constraint's kind.
+        kind: &'static str,
+        /// Its curve, or its two curves (`'chest' and 'right_strap'`).
+        curves: String,
+        /// Its residual after the solve.
+        residual: f64,
+        /// The residual's unit (m or rad).
+        unit: &'static str,
+    },
 }
 
 /// Why a step failed.

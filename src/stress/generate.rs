@@ -4,8 +4,8 @@
 //! curves by random vectors from 0.1 mm to 1 m (log-uniform: every decade as likely), undos,
 //! and the ease down to 0.
 
-use crate::garment::TemplateKind;
 use crate::garment::template;
+use crate::garment::{Collar, Sleeves, Style, TemplateKind};
 
 use super::rng::Rng;
 
@@ -39,7 +39,16 @@ const CHANGE_RANGE_M: (f64, f64) = (1e-4, 0.5);
 /// body in its place), the garment, then `options.steps` steps.
 pub fn session_text(rng: &mut Rng, options: &GenerateOptions) -> String {
     let kind = *rng.pick(&TemplateKind::ALL);
-    let t = template::of(kind);
+    // The jumpsuit and the shirt in any style: sleeves and a collar or neither.
+    let style = if kind.takes_style() {
+        Style {
+            sleeves: *rng.pick(&Sleeves::ALL),
+            collar: *rng.pick(&Collar::ALL),
+        }
+    } else {
+        Style::default()
+    };
+    let t = template::styled(kind, style);
     let points = t.point_names();
     let curves = t.curve_names();
     let dimensions = t.dimension_names();
@@ -50,7 +59,15 @@ pub fn session_text(rng: &mut Rng, options: &GenerateOptions) -> String {
     let (lo, hi) = (*options.resolutions.start(), *options.resolutions.end());
     let resolution = lo + rng.below(hi - lo + 1);
     let fit = if rng.chance(0.5) { "tight" } else { "loose" };
-    text.push_str(&format!("garment {} fit={fit} resolution={resolution}\n", kind.name()));
+    text.push_str(&format!(
+        "garment {}{} fit={fit} resolution={resolution}\n",
+        kind.name(),
+        if kind.takes_style() {
+            format!(" sleeves={} collar={}", style.sleeves.name(), style.collar.name())
+        } else {
+            String::new()
+        }
+    ));
     // Steps that can be undone: every step after the garment is one (a refused step too).
     let mut undoable = 0usize;
     for _ in 0..options.steps {

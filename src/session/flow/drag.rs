@@ -110,7 +110,7 @@ pub(in crate::session) fn drag(
         .timed("garment.assemble", || {
             assemble(&solution.framework, probe, Some(before))
         })
-        .map_err(DragRefusal::Surface)?;
+        .map_err(|e| unmet(net, &solution).unwrap_or(DragRefusal::Surface(e)))?;
     let mut after = solution.framework.clone();
     after.lines = built.lines;
     after.patches = built.patches;
@@ -159,4 +159,25 @@ pub(in crate::session) fn replay_edits(
         replayed_drags: edits.len(),
     });
     Ok(state)
+}
+
+/// A solve that ended with constraints unmet, as the limit of the user's drag: its largest
+/// violation (`None` when the solve met every constraint).
+fn unmet(net: &ConstraintNet, solution: &Solution) -> Option<DragRefusal> {
+    if solution.converged {
+        return None;
+    }
+    let &(k, residual) = solution.violations.iter().max_by(|a, b| a.1.total_cmp(&b.1))?;
+    let c = &net.constraints[k];
+    let (a, b) = (&net.curves[c.i].name, &net.curves[c.j].name);
+    Some(DragRefusal::Unmet {
+        kind: c.kind.name(),
+        curves: if a == b {
+            format!("'{a}'")
+        } else {
+            format!("'{a}' and '{b}'")
+        },
+        residual,
+        unit: c.kind.unit(),
+    })
 }
