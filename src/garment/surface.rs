@@ -232,13 +232,7 @@ impl<'a> Surfacer<'a> {
     /// are the same: a patch is the Coons blend of its sides, cleared and relaxed against
     /// the same body, so it depends on nothing else.
     pub fn patch(&mut self, name: &str, sides: [&[DVec3]; 4], curves: Vec<CurveRef>) -> Result<(), FrameworkError> {
-        if let Some(old) = self.previous
-            && old.layout.clearance == self.layout.clearance
-            && let Some(p) = old.patches.iter().find(|p| p.name == name)
-            && p.curves == curves
-            && p.sides_are(sides)
-        {
-            self.patches.push(p.clone());
+        if self.keep(name, &curves, |p| p.sides_are(sides)) {
             return Ok(());
         }
         let grid = PatchGrid::coons(name, sides, self.layout.weld)?.with_curves(curves);
@@ -249,18 +243,27 @@ impl<'a> Surfacer<'a> {
     /// Surfaces one three-sided patch (see [`PatchGrid::triangle`]), or keeps the previous
     /// one when its three sides and the clearance are the same.
     pub fn triangle(&mut self, name: &str, sides: [&[DVec3]; 3], curves: Vec<CurveRef>) -> Result<(), FrameworkError> {
-        if let Some(old) = self.previous
-            && old.layout.clearance == self.layout.clearance
-            && let Some(p) = old.patches.iter().find(|p| p.name == name)
-            && p.curves == curves
-            && p.triangle_sides_are(sides)
-        {
-            self.patches.push(p.clone());
+        if self.keep(name, &curves, |p| p.triangle_sides_are(sides)) {
             return Ok(());
         }
         let grid = PatchGrid::triangle(name, sides, self.layout.weld)?.with_curves(curves);
         self.surface(name, grid);
         Ok(())
+    }
+
+    /// Keeps the previous framework's patch `name` when the clearance, its curves and its
+    /// sides (`same_sides`) are the same; whether it did.
+    fn keep(&mut self, name: &str, curves: &[CurveRef], same_sides: impl Fn(&PatchGrid) -> bool) -> bool {
+        if let Some(old) = self.previous
+            && old.layout.clearance == self.layout.clearance
+            && let Some(p) = old.patches.iter().find(|p| p.name == name)
+            && p.curves == curves
+            && same_sides(p)
+        {
+            self.patches.push(p.clone());
+            return true;
+        }
+        false
     }
 
     /// Clears a new patch's interior off the body and keeps it.

@@ -243,16 +243,24 @@ impl RerunLogger {
         let sizes: Vec<String> = fw
             .patches
             .iter()
-            .map(|p| format!("{} {}x{}", p.name, p.nu, p.nv))
+            .map(|p| {
+                if p.triangular {
+                    format!("{} triangle {}", p.name, p.nu)
+                } else {
+                    format!("{} {}x{}", p.name, p.nu, p.nv)
+                }
+            })
             .collect();
-        self.text(
-            TextLogLevel::INFO,
+        let triangles = fw.patches.iter().filter(|p| p.triangular).count();
+        let kinds = if triangles == 0 {
+            format!("{} Coons patches (segments u x v)", fw.patches.len())
+        } else {
             format!(
-                "{} Coons patches (segments u x v): {}",
-                fw.patches.len(),
-                sizes.join(", "),
-            ),
-        )
+                "{} Coons patches (segments u x v) and {triangles} three-sided (segments a side)",
+                fw.patches.len() - triangles
+            )
+        };
+        self.text(TextLogLevel::INFO, format!("{kinds}: {}", sizes.join(", ")))
     }
 
     /// M0, with its figures.

@@ -1,6 +1,6 @@
 //! The context a template's solve works in ([`BuildCtx`]) and the lookups it shares.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::FrameworkOptions;
 use crate::body::rings::{RingPick, pick_rings};
@@ -10,7 +10,7 @@ use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, DimensionValue, Dimensions, FrameworkError, Layout, NamedPlane};
 use crate::garment::probe::BodyProbe;
 use crate::garment::ring::{GarmentRing, RingInput};
-use crate::geom::Plane;
+use crate::geom::{Plane, polygon, section_mesh};
 
 /// What a template's solve works with: the body, its probe, the dimensions the session set,
 /// the settings, and the dimensions reached so far. The helpers cut the body's sections,
@@ -75,6 +75,27 @@ impl BuildCtx<'_> {
         pick_rings(&b.mesh, &b.landmarks, (name, None), y, RingPick::Torso)
             .map_err(|e| section_error(name, e.to_string()))
             .map(|mut r| r.remove(0).points)
+    }
+
+    /// The body's section loop in `plane` around `centre`: of the closed loops, the smallest
+    /// whose inside (in the plane) holds `centre`, else the one whose centroid is nearest.
+    /// `None` when the plane cuts no closed loop.
+    pub fn loop_around(&self, plane: &Plane, centre: DVec3) -> Option<Vec<DVec3>> {
+        let loops: Vec<Vec<DVec3>> = section_mesh(&self.body.mesh.mesh, &self.body.mesh.adjacency, plane)
+            .into_iter()
+            .filter(|l| l.closed && l.points.len() >= 3)
+            .map(|l| l.points)
+            .collect();
+        let c = plane.project(centre);
+        let flat = |l: &[DVec3]| -> Vec<DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
+        let area = |l: &[DVec3]| polygon::signed_area(&flat(l)).abs();
+        let off = |l: &[DVec3]| (l.iter().sum::<DVec3>() / l.len() as f64).distance(centre);
+        loops
+            .iter()
+            .filter(|l| polygon::contains(&flat(l), c))
+            .min_by(|a, b| area(a).total_cmp(&area(b)))
+            .or_else(|| loops.iter().min_by(|a, b| off(a).total_cmp(&off(b))))
+            .cloned()
     }
 
     /// Both legs' section loops at height `y`, each with its side.

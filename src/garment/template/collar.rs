@@ -15,7 +15,7 @@ use crate::garment::model::{Collar, FrameworkError, NamedPlane};
 use crate::garment::ring::GarmentRing;
 use crate::garment::solve::{BuildCtx, ContourSpec, section_error};
 use crate::garment::surface::{Surfacer, arc};
-use crate::geom::{Plane, polygon, section_mesh};
+use crate::geom::{Plane, polygon};
 
 /// The collar's top ring.
 pub const RING: &str = "collar";
@@ -132,7 +132,7 @@ pub fn solve(
         offset: neckline.plane.offset + rise,
     };
     let centre = base_centre + plane.normal * rise;
-    let neck = neck_loop(ctx, &plane, centre).ok_or_else(|| {
+    let neck = ctx.loop_around(&plane, centre).ok_or_else(|| {
         section_error(
             RING,
             "the plane over the neckline cuts no closed loop of the neck".into(),
@@ -164,27 +164,6 @@ pub fn collar_patches(s: &mut Surfacer<'_>, neck: usize, up: usize) -> Result<()
     Ok(())
 }
 
-/// The neck's section loop in `plane`: the closed loop around `centre`, or the nearest.
-fn neck_loop(ctx: &BuildCtx<'_>, plane: &Plane, centre: DVec3) -> Option<Vec<DVec3>> {
-    let c = plane.project(centre);
-    let loops = section_mesh(&ctx.body.mesh.mesh, &ctx.body.mesh.adjacency, plane);
-    let flat = |l: &[DVec3]| -> Vec<glam::DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
-    loops
-        .into_iter()
-        .filter(|l| l.closed && l.points.len() >= 3)
-        .min_by(|a, b| {
-            let d = |l: &[DVec3]| {
-                if polygon::contains(&flat(l), c) {
-                    0.0
-                } else {
-                    (l.iter().sum::<DVec3>() / l.len() as f64).distance(centre)
-                }
-            };
-            d(&a.points).total_cmp(&d(&b.points))
-        })
-        .map(|l| l.points)
-}
-
 /// How far over the neckline's plane (along its normal, from `centre`) the neck stays a
 /// neck, m: the last rise, in steps of a 400th of the body's height, before the section's
 /// area grows past 1.3 times the least seen below it (the jaw and the chin join it) or its
@@ -201,7 +180,7 @@ fn neck_reach(ctx: &BuildCtx<'_>, neckline: &Plane, centre: DVec3) -> f64 {
             offset: neckline.offset + rise,
         };
         let at = centre + plane.normal * rise;
-        let Some(l) = neck_loop(ctx, &plane, at) else {
+        let Some(l) = ctx.loop_around(&plane, at) else {
             break;
         };
         let flat: Vec<glam::DVec2> = l.iter().map(|p| plane.project(*p)).collect();

@@ -34,7 +34,7 @@ use crate::garment::model::{FrameworkError, NamedPlane, Sleeves};
 use crate::garment::resample::resample_closed;
 use crate::garment::ring::GarmentRing;
 use crate::garment::solve::{BuildCtx, ContourSpec, section_error};
-use crate::geom::{Plane, polygon, section_mesh};
+use crate::geom::Plane;
 
 /// The anchors of the left sleeve's rings, in ring order (counter-clockwise about the
 /// normal up the sleeve: seen from the hand).
@@ -311,7 +311,7 @@ pub fn solve(
             let arm_loop = arm_section(ctx, ring, &plane, f4.origin)?;
             // C3: the ring is built around both loops, C4 and the arm's section eased, by
             // their common convex hull (kept as its raw stage: both loops).
-            let arm = eased_section(&arm_loop, &plane, e, ring)?;
+            let arm = eased_section(ctx, &arm_loop, &plane, e, ring)?;
             let key = format!("{}_girth", shared(ring));
             built.push(ctx.ring_with(ring, &[&key], plane, vec![c4, arm], &specs, Ease::Uniform(0.0))?);
         }
@@ -344,26 +344,10 @@ pub fn solve(
 /// The arm's section in `plane`: the closed loop around `centre` (or the nearest), refused
 /// when it reaches farther than an arm could (the plane cuts the torso as well).
 fn arm_section(ctx: &BuildCtx<'_>, ring: &str, plane: &Plane, centre: DVec3) -> Result<Vec<DVec3>, FrameworkError> {
-    let loops = section_mesh(&ctx.body.mesh.mesh, &ctx.body.mesh.adjacency, plane);
-    let c = plane.project(centre);
-    let flat = |l: &[DVec3]| -> Vec<glam::DVec2> { l.iter().map(|p| plane.project(*p)).collect() };
-    let around = loops
-        .iter()
-        .filter(|l| l.closed && l.points.len() >= 3)
-        .filter(|l| polygon::contains(&flat(&l.points), c))
-        .min_by(|a, b| {
-            polygon::signed_area(&flat(&a.points))
-                .abs()
-                .total_cmp(&polygon::signed_area(&flat(&b.points)).abs())
-        })
-        .or_else(|| {
-            loops.iter().filter(|l| l.closed && l.points.len() >= 3).min_by(|a, b| {
-                let d = |l: &[DVec3]| l.iter().sum::<DVec3>().distance(centre * l.len() as f64) / l.len() as f64;
-                d(&a.points).total_cmp(&d(&b.points))
-            })
-        })
+    let around = ctx
+        .loop_around(plane, centre)
         .ok_or_else(|| section_error(ring, "its plane cuts no closed loop of the arm".into()))?;
-    let reach = around.points.iter().map(|p| p.distance(centre)).fold(0.0, f64::max);
+    let reach = around.iter().map(|p| p.distance(centre)).fold(0.0, f64::max);
     if reach > 0.12 * ctx.height {
         return Err(section_error(
             ring,
@@ -372,14 +356,20 @@ fn arm_section(ctx: &BuildCtx<'_>, ring: &str, plane: &Plane, centre: DVec3) -> 
             ),
         ));
     }
-    Ok(around.points.clone())
+    Ok(around)
 }
 
 /// The arm's section `arm` convexified and eased by `ease` in `plane` (the ring C3 must
 /// enclose it).
-fn eased_section(arm: &[DVec3], plane: &Plane, ease: f64, ring: &str) -> Result<Vec<DVec3>, FrameworkError> {
+fn eased_section(
+    ctx: &BuildCtx<'_>,
+    arm: &[DVec3],
+    plane: &Plane,
+    ease: f64,
+    ring: &str,
+) -> Result<Vec<DVec3>, FrameworkError> {
     let convex = convex_ring(arm, plane);
-    let resampled = resample_closed(&convex.points, &convex.anchors, 16)
+    let resampled = resample_closed(&convex.points, &convex.anchors, ctx.options.ring.resample_per_arc)
         .map_err(|e| FrameworkError::Ring(crate::garment::ring::RingBuildError::Resample(ring.to_string(), e)))?;
     ease_ring(&resampled, &convex.points, plane, Ease::Uniform(ease))
         .map_err(|e| FrameworkError::Ring(crate::garment::ring::RingBuildError::Ease(ring.to_string(), e)))
