@@ -40,6 +40,7 @@ pub mod mannequin;
 pub mod mesh;
 pub mod nurbs;
 pub mod par;
+pub mod pattern;
 pub mod sculpt;
 pub mod session;
 pub mod stress;

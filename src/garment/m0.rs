@@ -205,7 +205,8 @@ fn total_key(x: f64) -> u64 {
     if bits >> 63 == 1 { !bits } else { bits | 1 << 63 }
 }
 
-fn find(parent: &mut [u32], i: u32) -> u32 {
+/// The root of `i` in a union-find forest, compressing the path.
+pub(crate) fn find(parent: &mut [u32], i: u32) -> u32 {
     let mut r = i;
     while parent[r as usize] != r {
         r = parent[r as usize];

@@ -308,6 +308,37 @@ impl Framework {
         }
     }
 
+    /// Every feature curve as a dense polyline, by name: rings (closed, their last point
+    /// the first again) and open curves by their splines, contours by theirs, seams and
+    /// junction lines by their samples, and each contour's spans as the patches took them
+    /// (cleared off the body) under the contour's name again. In the framework's order:
+    /// rings, open curves, contours, spans, lines.
+    pub fn curve_polylines(&self) -> Vec<(String, Vec<DVec3>)> {
+        let mut out = Vec::new();
+        for r in &self.rings {
+            let mut points = r.spline.subdivide(16, true);
+            if let Some(&first) = points.first() {
+                points.push(first);
+            }
+            out.push((r.name.clone(), points));
+        }
+        for c in &self.open_curves {
+            out.push((c.name.clone(), c.spline.subdivide(16, false)));
+        }
+        for c in &self.contours {
+            out.push((c.name.clone(), c.polyline()));
+        }
+        // The contours' spans as the patches use them: cleared off the body where the
+        // contour dips in, so that they may stand centimetres off the contour itself.
+        for ((name, _, _), span) in &self.spans {
+            out.push((name.clone(), span.cleared.clone()));
+        }
+        for l in &self.lines {
+            out.push((l.name.clone(), l.points.clone()));
+        }
+        out
+    }
+
     /// A ring by name.
     pub fn ring(&self, name: &str) -> Option<&GarmentRing> {
         self.rings.iter().find(|r| r.name == name)

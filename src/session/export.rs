@@ -95,3 +95,36 @@ impl StageSink for ObjExporter {
         }
     }
 }
+
+/// `--patterns DIR`: every step's pattern pieces as DXF, SVG, JSON and one OBJ per piece
+/// (`step03_jumpsuit_patterns.dxf`, `step03_jumpsuit_panel_torso.front_left.obj`, ...).
+pub struct PatternExporter {
+    dir: PathBuf,
+    /// Files written, in order.
+    pub written: Vec<PathBuf>,
+}
+
+impl PatternExporter {
+    /// Exports into `dir` (created when the first pattern is written).
+    pub fn new(dir: PathBuf) -> Self {
+        Self {
+            dir,
+            written: Vec::new(),
+        }
+    }
+}
+
+impl StageSink for PatternExporter {
+    fn patterns(&mut self, info: &StageInfo, stage: crate::session::stage::PatternStage<'_>) -> Result<(), SinkError> {
+        let Ok(pattern) = stage.result else {
+            return Ok(());
+        };
+        let prefix = format!("step{:02}_{}", info.step, stage.garment);
+        let files = crate::pattern::export::write_all(&self.dir, &prefix, pattern).map_err(|e| SinkError::Backend {
+            what: "pattern export",
+            source: Box::new(e),
+        })?;
+        self.written.extend(files);
+        Ok(())
+    }
+}

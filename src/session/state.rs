@@ -71,6 +71,8 @@ pub(crate) struct GarmentState {
     pub(crate) standard: Option<Vec<glam::DVec3>>,
     /// The last M1, when the scene asks for one.
     pub(crate) m1: Option<M1Outcome>,
+    /// The last pattern, when the scene asks for one (or why it could not be made).
+    pub(crate) patterns: Option<Result<crate::pattern::Pattern, crate::pattern::PatternError>>,
     /// The cut lines, stored on M0.
     pub(crate) cuts: Vec<StoredCut>,
     /// The sculpts made, in order: made again on the new mesh after every rebuild.
@@ -93,6 +95,7 @@ impl GarmentState {
             edits: Vec::new(),
             standard: None,
             m1: None,
+            patterns: None,
             cuts: Vec::new(),
             sculpts: Vec::new(),
             sculpted: None,
@@ -100,7 +103,8 @@ impl GarmentState {
     }
 
     /// The same garment with its dimensions, detection memory and drags, to be solved again
-    /// (its framework, collision and network cleared).
+    /// (its framework, collision and network cleared; its pattern kept, for the panels the
+    /// next one does not change).
     pub(crate) fn unsolved(&self) -> Self {
         Self {
             template: self.template,
@@ -113,6 +117,7 @@ impl GarmentState {
             edits: self.edits.clone(),
             standard: self.standard.clone(),
             m1: None,
+            patterns: self.patterns.clone(),
             cuts: self.cuts.clone(),
             sculpts: self.sculpts.clone(),
             sculpted: None,

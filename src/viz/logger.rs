@@ -109,7 +109,12 @@ fn is_final(stage: &Stage<'_>) -> bool {
         Stage::Garment(g) => !matches!(g, GarmentStage::Part(_, part) if *part != crate::session::GarmentPart::Mesh),
         Stage::Collision(c) => c.part == crate::session::CollisionPart::Respond,
         Stage::Constraints(c) => matches!(c, ConstraintStage::Refused { .. }),
-        Stage::M1(_) | Stage::Step(_) | Stage::Nurbs(_) | Stage::Sculpt(_) | Stage::SculptCompare(_) => true,
+        Stage::M1(_)
+        | Stage::Patterns(_)
+        | Stage::Step(_)
+        | Stage::Nurbs(_)
+        | Stage::Sculpt(_)
+        | Stage::SculptCompare(_) => true,
         _ => false,
     }
 }

@@ -20,6 +20,7 @@ mod nasty;
 mod nurbs;
 mod nurbs_collision;
 mod obj_errors;
+mod patterns;
 mod refusals;
 mod remote;
 mod replay;

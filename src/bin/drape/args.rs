@@ -277,6 +277,12 @@ pub(crate) struct RunArgs {
     /// Write the body and every mesh a step produces as OBJ files into this folder.
     #[arg(long, value_name = "DIR")]
     pub(crate) export: Option<PathBuf>,
+    /// Write every step's pattern pieces into this folder: DXF (AAMA/ASTM layout, mm), SVG
+    /// (1:1, mm), JSON (strain per piece, mismatch per seam) and one OBJ per piece (3D
+    /// positions, 2D as vt). Cuts the pattern with the template's default seams when the
+    /// session has no `patterns` statement.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) patterns: Option<PathBuf>,
     /// Also log compute timings to the recording (makes recordings differ run to run).
     #[arg(long)]
     pub(crate) log_timings: bool,

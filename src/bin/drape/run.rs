@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use drape::session::export::ObjExporter;
+use drape::session::export::{ObjExporter, PatternExporter};
 use drape::session::metrics::metrics_json;
 use drape::session::{FailureKind, LogDetail, RunOptions, Shortfall, StageSink, run_session};
 use drape::viz::{LogOptions, RerunLogger};
@@ -17,7 +17,10 @@ use crate::load_session;
 use crate::progress::Progress;
 
 pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
-    let session = load_session(args.session.as_deref())?;
+    let mut session = load_session(args.session.as_deref())?;
+    if args.patterns.is_some() && session.scene.patterns.is_none() {
+        session.scene.patterns = Some(drape::pattern::PatternOptions::default());
+    }
     if let Some(body) = &args.body
         && !body.exists()
     {
@@ -49,6 +52,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     )
     .internal()?;
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
+    let mut pattern_exporter = args.patterns.clone().map(PatternExporter::new);
     let mut progress = Progress;
     let mut options = RunOptions {
         body_override: args.body.clone(),
@@ -72,6 +76,9 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         if let Some(e) = exporter.as_mut() {
             sinks.push(e);
         }
+        if let Some(e) = pattern_exporter.as_mut() {
+            sinks.push(e);
+        }
         run_session(&session, &options, &mut sinks)
     };
     if let Some(path) = &args.metrics {
@@ -84,6 +91,13 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
             "exported {} OBJ file(s) to {}",
             e.written.len(),
             args.export.as_deref().unwrap_or(Path::new(".")).display()
+        );
+    }
+    if let Some(e) = &pattern_exporter {
+        eprintln!(
+            "patterns: {} file(s) in {}",
+            e.written.len(),
+            args.patterns.as_deref().unwrap_or(Path::new(".")).display()
         );
     }
     drop(logger);

@@ -157,6 +157,9 @@ pub(in crate::session) fn collide_and_emit(
     cx: &StepContext<'_>,
 ) -> Option<[usize; 3]> {
     collide_garment(scope, body, index, state, cx.options, cx.session.scene.m1.as_ref());
+    if let Some(p) = &cx.session.scene.patterns {
+        super::patterns::build_patterns(scope, state, p);
+    }
     emit_collision(scope, state, index);
     let q = &state.collision.as_ref()?.collision.quality;
     (!q.is_clear()).then_some([q.penetrating_vertices, q.crossing_edges, q.pierced_faces])
@@ -288,5 +291,6 @@ pub(in crate::session) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, stat
         }
     }
     super::m1::emit_m1(scope, state);
+    super::patterns::emit_patterns(scope, state);
     super::sculpt::emit(scope, state);
 }

@@ -1,6 +1,7 @@
 //! The garment flow the steps share, below them: a framework solved
 //! ([`garment`](self::garment)), a drag solved and re-surfaced ([`drag`](self::drag)), M0
-//! collided and its stages emitted ([`collide`]), M1 built on it ([`m1`](self::m1)), the
+//! collided and its stages emitted ([`collide`]), M1 built on it ([`m1`](self::m1)), the pattern cut from it
+//! ([`patterns`](self::patterns)), the
 //! sculpts made again ([`sculpt`](self::sculpt)), and what the NURBS steps share
 //! ([`nurbs`](self::nurbs)). No file here imports a step; the steps in `steps/` import from
 //! here and never from each other.
@@ -10,4 +11,5 @@ pub(super) mod drag;
 pub(super) mod garment;
 pub(super) mod m1;
 pub(super) mod nurbs;
+pub(super) mod patterns;
 pub(super) mod sculpt;

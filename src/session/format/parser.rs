@@ -26,6 +26,7 @@ mod m1;
 mod mannequin;
 mod move_part;
 mod nurbs;
+mod patterns;
 mod sculpt;
 mod section;
 mod set;
@@ -51,6 +52,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         landmark_lines: Vec::new(),
         solver: None,
         m1: None,
+        patterns: None,
         log: None,
         steps: Vec::new(),
         garment: None,
@@ -78,6 +80,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
             landmarks: p.landmarks,
             solver: p.solver.map_or_else(SolverOptions::default, |s| s.0),
             m1: p.m1.map(|m| m.0),
+            patterns: p.patterns.map(|m| m.0),
             log: p.log.map(|l| l.0),
         },
         steps: p.steps,
@@ -94,6 +97,7 @@ struct Parser<'p> {
     landmark_lines: Vec<(LandmarkKind, usize)>,
     solver: Option<(SolverOptions, usize)>,
     m1: Option<(M1Options, usize)>,
+    patterns: Option<(crate::pattern::PatternOptions, usize)>,
     log: Option<(LogDetail, usize)>,
     steps: Vec<Step>,
     /// The template of the last `garment` step.
@@ -141,6 +145,7 @@ impl Parser<'_> {
             Statement::Landmark => return self.landmark(line, rest),
             Statement::Solver => return self.solver(line, head, rest),
             Statement::M1 => return self.m1(line, head, rest),
+            Statement::Patterns => return self.patterns(line, head, rest),
             Statement::Log => return self.log(line, head, rest),
             Statement::Mannequin => mannequin(line, rest)?,
             Statement::Section => section(line, rest)?,

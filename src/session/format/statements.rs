@@ -41,6 +41,8 @@ pub enum Statement {
     Drag,
     /// `undo`.
     Undo,
+    /// `patterns ...`, the pattern pieces' settings.
+    Patterns,
     /// `cut NAME ...`, a cut line.
     Cut,
     /// `nurbs "FILE" name=...`.
@@ -61,6 +63,7 @@ impl Statement {
         (Self::Landmark, "landmark", Place::Scene),
         (Self::Solver, "solver", Place::Scene),
         (Self::M1, "m1", Place::Scene),
+        (Self::Patterns, "patterns", Place::Scene),
         (Self::Log, "log", Place::Scene),
         (Self::Mannequin, "mannequin", Place::Step),
         (Self::Section, "section", Place::Step),

@@ -74,6 +74,8 @@ pub struct Scene {
     pub solver: SolverOptions,
     /// M1 settings (`m1 ...`); `None`: no M1, and none of its work.
     pub m1: Option<M1Options>,
+    /// Pattern pieces after every step that collides the garment (`patterns`), when set.
+    pub patterns: Option<crate::pattern::PatternOptions>,
     /// What the recording gets (`log detail=all|final|metrics`); `None`: the command
     /// line's choice (all by default).
     pub log: Option<LogDetail>,

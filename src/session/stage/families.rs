@@ -220,6 +220,15 @@ pub struct M1Stage<'a> {
     pub m0: &'a CollisionOutcome,
 }
 
+/// The pattern pieces of a step's garment (or why there are none).
+#[derive(Clone, Copy, Debug)]
+pub struct PatternStage<'a> {
+    /// The pattern, or why it could not be made.
+    pub result: &'a Result<crate::pattern::Pattern, crate::pattern::PatternError>,
+    /// The garment's template name.
+    pub garment: &'static str,
+}
+
 /// M1 and what became of it.
 #[derive(Clone, Debug)]
 pub struct M1Outcome {

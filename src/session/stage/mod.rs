@@ -16,7 +16,7 @@ mod sink;
 
 pub use families::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
-    M1Stage, NurbsStage, RingStep, SculptOutcome, SculptStage, SectionCut,
+    M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut,
 };
 pub use sink::StageSink;
 
@@ -59,6 +59,8 @@ pub enum Stage<'a> {
     Constraints(ConstraintStage<'a>),
     /// M1, the display mesh: the refined patches, its collision, the cut lines.
     M1(M1Stage<'a>),
+    /// The pattern pieces of a step's garment.
+    Patterns(PatternStage<'a>),
     /// A sculpt of the garment: the drag, the adaptive refinement, its collision.
     Sculpt(SculptStage<'a>),
     /// The same drag with no, uniform and adaptive subdivision (`drape sculpt-compare`).

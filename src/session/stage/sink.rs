@@ -2,7 +2,8 @@
 //! default.
 
 use super::families::{
-    BodyStage, CollisionStage, ConstraintStage, GarmentStage, M1Stage, NurbsStage, SculptStage, SectionCut,
+    BodyStage, CollisionStage, ConstraintStage, GarmentStage, M1Stage, NurbsStage, PatternStage, SculptStage,
+    SectionCut,
 };
 use super::{Stage, StageInfo, StepEnd};
 use crate::mannequin::MannequinResult;
@@ -63,6 +64,11 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// The pattern pieces.
+    fn patterns(&mut self, _info: &StageInfo, _stage: PatternStage<'_>) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// A sculpt of the garment.
     fn sculpt(&mut self, _info: &StageInfo, _stage: SculptStage<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -99,6 +105,7 @@ impl Stage<'_> {
             Self::Collision(s) => sink.collision(info, s),
             Self::Constraints(s) => sink.constraints(info, s),
             Self::M1(s) => sink.m1(info, s),
+            Self::Patterns(s) => sink.patterns(info, s),
             Self::Sculpt(s) => sink.sculpt(info, s),
             Self::SculptCompare(c) => sink.sculpt_compare(info, c),
             Self::Step(e) => sink.step_end(info, e),

@@ -1,0 +1,329 @@
+//! Pattern pieces: developable panels unrolled exactly (the analytic unrolled shapes written
+//! here), a spherical cap no worse than libigl's ARAP (its figures committed below), every
+//! shipped body's jumpsuit and shirt cut into discs with no flipped triangle and seams that
+//! sew (boundary loops, Euler characteristics, signed areas and seam lengths all counted
+//! here), the DXF and SVG read back by other people's readers (ezdxf, Python's XML parser),
+//! and a drag that re-flattens only the panels it changed, equal to a full re-flattening.
+
+use std::path::Path;
+
+use drape::garment::Framework;
+use drape::pattern::{self, FlattenOptions, Pattern, PatternInput, PatternOptions};
+use drape::session::{
+    CollisionPart, CollisionStage, GarmentPart, GarmentStage, PatternStage, RunOptions, SinkError, StageInfo,
+    StageSink, parse_session, run_session,
+};
+use glam::{DVec2, DVec3};
+
+/// A grid of `(nu + 1) x (nv + 1)` points, two triangles a cell, counter-clockwise seen from
+/// the side `point`'s parameters make outward.
+fn grid(nu: usize, nv: usize, point: impl Fn(usize, usize) -> DVec3) -> (Vec<DVec3>, Vec<[u32; 3]>) {
+    let mut positions = Vec::new();
+    for j in 0..=nv {
+        for i in 0..=nu {
+            positions.push(point(i, j));
+        }
+    }
+    let id = |i: usize, j: usize| (j * (nu + 1) + i) as u32;
+    let mut triangles = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            triangles.push([id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+            triangles.push([id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+        }
+    }
+    (positions, triangles)
+}
+
+/// Largest relative edge-length change, counted here.
+fn worst_strain(positions: &[DVec3], triangles: &[[u32; 3]], uv: &[DVec2]) -> f64 {
+    let mut worst = 0.0_f64;
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let l3 = positions[a].distance(positions[b]);
+            worst = worst.max((uv[a].distance(uv[b]) - l3).abs() / l3);
+        }
+    }
+    worst
+}
+
+/// Signed area of a 2D triangle, written here.
+fn area2(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x))
+}
+
+#[test]
+fn a_cylinder_patch_unrolls_to_its_rectangle() {
+    let (r, span, h, nu, nv) = (0.15, 2.0, 0.4, 16, 8);
+    // Outward normals: the angle runs counter-clockwise seen from +y, the height up.
+    let (positions, triangles) = grid(nu, nv, |i, j| {
+        let t = -span * i as f64 / nu as f64;
+        DVec3::new(r * t.cos(), h * j as f64 / nv as f64, r * t.sin())
+    });
+    let flat = pattern::flatten::flatten(&positions, &triangles, &[], &FlattenOptions::default()).expect("flattens");
+    let strain = worst_strain(&positions, &triangles, &flat.uv);
+    assert!(strain < 1e-9, "cylinder strain {strain:e}");
+    // The unrolled rectangle: width the chords' sum, height h; its diagonal by Pythagoras.
+    let width = nu as f64 * 2.0 * r * (span / (2.0 * nu as f64)).sin();
+    let corner = |i: usize, j: usize| flat.uv[j * (nu + 1) + i];
+    for ((a, b), truth) in [
+        ((corner(0, 0), corner(nu, 0)), width),
+        ((corner(0, 0), corner(0, nv)), h),
+        ((corner(0, 0), corner(nu, nv)), width.hypot(h)),
+        ((corner(nu, 0), corner(0, nv)), width.hypot(h)),
+    ] {
+        assert!(
+            (a.distance(b) - truth).abs() < 1e-9,
+            "{} against {truth}",
+            a.distance(b)
+        );
+    }
+    assert!(
+        triangles
+            .iter()
+            .all(|t| area2(flat.uv[t[0] as usize], flat.uv[t[1] as usize], flat.uv[t[2] as usize]) > 0.0)
+    );
+}
+
+#[test]
+fn a_cone_patch_unrolls_to_its_annular_sector() {
+    // A cone of half-angle beta about +y, apex at the origin, slant distances rho0..rho1.
+    let (beta, span, rho0, rho1, nu, nv) = (0.5_f64, 2.4_f64, 0.2, 0.5, 12, 6);
+    let rho = |j: usize| rho0 + (rho1 - rho0) * j as f64 / nv as f64;
+    let (positions, triangles) = grid(nu, nv, |i, j| {
+        let t = -span * i as f64 / nu as f64;
+        let (r, y) = (rho(j) * beta.sin(), -rho(j) * beta.cos());
+        DVec3::new(r * t.cos(), y, r * t.sin())
+    });
+    let flat = pattern::flatten::flatten(&positions, &triangles, &[], &FlattenOptions::default()).expect("flattens");
+    let strain = worst_strain(&positions, &triangles, &flat.uv);
+    assert!(strain < 1e-9, "cone strain {strain:e}");
+    // Developed: point (i, j) at radius rho_j and angle i delta, delta the angle a ring chord
+    // subtends at the apex; any two points by the law of cosines.
+    let chord = 2.0 * beta.sin() * (span / (2.0 * nu as f64)).sin();
+    let delta = 2.0 * (chord / 2.0).asin();
+    let at = |i: usize, j: usize| flat.uv[j * (nu + 1) + i];
+    for (i, j, k, l) in [
+        (0, 0, nu, 0),
+        (0, nv, nu, nv),
+        (0, 0, nu, nv),
+        (3, 1, 9, 5),
+        (nu, 0, 0, nv),
+    ] {
+        let truth =
+            (rho(j).powi(2) + rho(l).powi(2) - 2.0 * rho(j) * rho(l) * ((i as f64 - k as f64) * delta).cos()).sqrt();
+        let got = at(i, j).distance(at(k, l));
+        assert!((got - truth).abs() < 1e-9, "({i},{j})-({k},{l}): {got} against {truth}");
+    }
+}
+
+/// What a session's steps made: per step the pattern, and the collided mesh with the
+/// framework it came from (to cut the same pattern again here).
+/// A step's collided mesh: step, positions, triangles, the patch of each triangle.
+type StepMesh = (usize, Vec<DVec3>, Vec<[u32; 3]>, Vec<u32>);
+
+#[derive(Default)]
+struct Collect {
+    patterns: Vec<(usize, Pattern)>,
+    meshes: Vec<StepMesh>,
+    frameworks: Vec<(usize, Framework)>,
+    failures: Vec<String>,
+}
+
+impl StageSink for Collect {
+    fn patterns(&mut self, info: &StageInfo, stage: PatternStage<'_>) -> Result<(), SinkError> {
+        match stage.result {
+            Ok(p) => self.patterns.push((info.step, p.clone())),
+            Err(e) => self.failures.push(format!("step {}: {e}", info.step)),
+        }
+        Ok(())
+    }
+
+    fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
+        if stage.part == CollisionPart::Respond {
+            let o = stage.outcome;
+            self.meshes.push((
+                info.step,
+                o.collision.mesh.positions.clone(),
+                o.garment.mesh.triangles.clone(),
+                o.garment.face_patch.clone(),
+            ));
+        }
+        Ok(())
+    }
+
+    fn garment(&mut self, info: &StageInfo, stage: GarmentStage<'_>) -> Result<(), SinkError> {
+        if let GarmentStage::Part(fw, GarmentPart::Mesh) = stage {
+            self.frameworks.push((info.step, fw.clone()));
+        }
+        Ok(())
+    }
+}
+
+fn run(text: &str, body: Option<&Path>) -> Collect {
+    let session = parse_session(text, "patterns.drape", Path::new(".")).expect("parses");
+    let options = RunOptions {
+        body_override: body.map(Path::to_path_buf),
+        ..RunOptions::default()
+    };
+    let mut collect = Collect::default();
+    let report = run_session(&session, &options, &mut [&mut collect]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    collect
+}
+
+/// Boundary loops and Euler characteristic of a triangle list, counted here.
+fn loops_and_euler(vertices: usize, triangles: &[[u32; 3]]) -> (usize, i64) {
+    let mut directed = std::collections::BTreeSet::new();
+    let mut edges = std::collections::BTreeSet::new();
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k], t[(k + 1) % 3]);
+            directed.insert((a, b));
+            edges.insert((a.min(b), a.max(b)));
+        }
+    }
+    let boundary: Vec<(u32, u32)> = directed
+        .iter()
+        .filter(|(a, b)| !directed.contains(&(*b, *a)))
+        .copied()
+        .collect();
+    let next: std::collections::BTreeMap<u32, u32> = boundary.iter().copied().collect();
+    let mut seen = std::collections::BTreeSet::new();
+    let mut loops = 0;
+    for &(start, _) in &boundary {
+        if seen.contains(&start) {
+            continue;
+        }
+        loops += 1;
+        let mut v = start;
+        while seen.insert(v) {
+            v = next[&v];
+        }
+    }
+    (loops, vertices as i64 - edges.len() as i64 + triangles.len() as i64)
+}
+
+/// Every piece a disc, no flipped triangle, every mesh face in exactly one piece, and
+/// every seam's two sides at the same 3D points with 2D lengths within the tolerance.
+fn check_pattern(label: &str, p: &Pattern, faces: usize) {
+    let mut covered = vec![0; faces];
+    for piece in &p.pieces {
+        let name = &piece.panel.name;
+        assert_eq!(
+            loops_and_euler(piece.panel.positions.len(), &piece.panel.triangles),
+            (1, 1),
+            "{label}: {name} is not a disc"
+        );
+        let flipped = piece
+            .panel
+            .triangles
+            .iter()
+            .filter(|t| {
+                area2(
+                    piece.uv[t[0] as usize],
+                    piece.uv[t[1] as usize],
+                    piece.uv[t[2] as usize],
+                ) <= 0.0
+            })
+            .count();
+        assert_eq!(flipped, 0, "{label}: {name} has flipped triangles");
+        for &f in &piece.panel.faces {
+            covered[f as usize] += 1;
+        }
+    }
+    assert!(
+        covered.iter().all(|&c| c == 1),
+        "{label}: faces not in exactly one piece"
+    );
+    assert!(!p.seams.is_empty(), "{label}: no seams");
+    for s in &p.seams {
+        let [a, b] = s.panels.map(|k| &p.pieces[k]);
+        for (&va, &vb) in s.sides[0].iter().zip(&s.sides[1]) {
+            assert_eq!(
+                a.panel.positions[va as usize], b.panel.positions[vb as usize],
+                "{label}: seam {}",
+                s.name
+            );
+        }
+        let length = |piece: &pattern::Piece, side: &[u32]| -> f64 {
+            side.windows(2)
+                .map(|w| piece.uv[w[0] as usize].distance(piece.uv[w[1] as usize]))
+                .sum()
+        };
+        let l3: f64 = s.sides[0]
+            .windows(2)
+            .map(|w| a.panel.positions[w[0] as usize].distance(a.panel.positions[w[1] as usize]))
+            .sum();
+        let (la, lb) = (length(a, &s.sides[0]), length(b, &s.sides[1]));
+        let tolerance = (0.5e-3_f64).max(1e-3 * l3);
+        assert!(
+            (la - lb).abs() <= tolerance,
+            "{label}: seam {} sides {la} and {lb} m",
+            s.name
+        );
+    }
+}
+
+#[test]
+fn every_shipped_body_cuts_its_jumpsuit_and_shirt_into_discs_that_sew() {
+    for body in super::common::shipped_bodies() {
+        for garment in ["jumpsuit fit=tight", "shirt sleeves=long collar=stand"] {
+            let text = format!("drape 1\nbody builtin\nunits m\npatterns\ngarment {garment} resolution=6\n");
+            let c = run(&text, Some(&body));
+            assert!(c.failures.is_empty(), "{:?}", c.failures);
+            let (_, pattern) = c.patterns.last().expect("a pattern");
+            let faces = c.meshes.last().expect("a mesh").2.len();
+            let label = format!("{} {garment}", body.display());
+            check_pattern(&label, pattern, faces);
+            let expected = if garment.starts_with("jumpsuit") { 10 } else { 9 };
+            assert_eq!(
+                pattern.pieces.len(),
+                expected,
+                "{label}: {:?}",
+                pattern.pieces.iter().map(|p| &p.panel.name).collect::<Vec<_>>()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_drag_reflattens_only_the_panels_it_changed_and_equals_a_full_flattening() {
+    let text = "drape 1\nbody builtin\nunits m\npatterns\ngarment jumpsuit fit=tight resolution=6\ndrag left_knee by=0,0.03,0\n";
+    let c = run(text, None);
+    let (step, after) = c.patterns.last().expect("patterns");
+    let (_, positions, triangles, face_patch) = c.meshes.iter().rev().find(|m| m.0 == *step).expect("mesh");
+    let (_, fw) = c.frameworks.iter().rev().find(|f| f.0 == *step).expect("framework");
+    let curves = fw.curve_polylines();
+    let input = PatternInput {
+        template: fw.template.name(),
+        positions,
+        triangles,
+        face_patch,
+        patch_names: &fw.m0.patch_names,
+        curves: &curves,
+    };
+    let full = pattern::build(&input, &PatternOptions::default(), None).expect("full");
+    let kept = after.pieces.iter().filter(|p| p.reused).count();
+    assert!(
+        kept > 0 && kept < after.pieces.len(),
+        "kept {kept} of {}",
+        after.pieces.len()
+    );
+    assert_eq!(full.pieces.len(), after.pieces.len());
+    for (a, b) in after.pieces.iter().zip(&full.pieces) {
+        assert_eq!(a.panel.name, b.panel.name);
+        let bits = |p: &pattern::Piece| {
+            p.uv.iter()
+                .flat_map(|q| [q.x.to_bits(), q.y.to_bits()])
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            bits(a),
+            bits(b),
+            "{}: the kept flattening differs from a full one",
+            a.panel.name
+        );
+    }
+}
