@@ -7,7 +7,8 @@
 Starts `rerun FILE --headless` (Rerun 0.36.3, CPU Vulkan: `apt-get install mesa-vulkan-drivers`
 and `pip install rerun-sdk==0.36.3 pillow`), sends it a blueprint with one 3D view whose camera
 stands at --eye looking at --target (y up; the body's front is +z), shows the last stage, and
-saves the first screenshot that two captures in a row agree on. The README's crotch pictures:
+saves the first screenshot that two captures in a row agree on (--patterns: the pattern pieces
+in 2D beside the garment by panel and by strain). The README's crotch pictures:
 
   drape run assets/sessions/jumpsuit.drape --body assets/bodies/female-old-heavy.obj --save /tmp/g.rrd
   python3 scripts/closeup.py assets/figures/crotch-old-heavy-after.png /tmp/g.rrd \
@@ -117,6 +118,8 @@ def main() -> int:
     ap.add_argument("--eye", required=True)
     ap.add_argument("--target", required=True)
     ap.add_argument("--contents", nargs="*", default=["+ /body/mesh", "+ /garment/m0/**", "+ /collision/mesh/**", "+ /collision/guarantee"])
+    ap.add_argument("--patterns", action="store_true",
+                    help="the pattern pieces in 2D beside the garment by panel and by strain (both from --eye)")
     ap.add_argument("--text", nargs="*", default=[],
                     help="text documents to show beside the 3D view (entity paths, e.g. /legend/partitions)")
     a = ap.parse_args()
@@ -163,6 +166,15 @@ def main() -> int:
         tgt = [float(x) for x in a.target.split(",")]
         view = rrb.Spatial3DView(name="close", origin="/", contents=a.contents,
                                  eye_controls=rrb.EyeControls3D(position=eye, look_target=tgt, eye_up=[0.0, 1.0, 0.0]))
+        if a.patterns:
+            def eye_view(name, contents):
+                return rrb.Spatial3DView(name=name, origin="/", contents=contents,
+                                         eye_controls=rrb.EyeControls3D(position=eye, look_target=tgt, eye_up=[0.0, 1.0, 0.0]))
+            view = rrb.Horizontal(
+                rrb.Spatial2DView(name="Patterns", origin="/patterns/pieces"),
+                rrb.Vertical(eye_view("Panels", ["+ /body/mesh", "+ /patterns/garment/panels"]),
+                             eye_view("Pattern strain", ["+ /patterns/garment/strain"])),
+                column_shares=[2, 1])
         if a.text:
             docs = [rrb.TextDocumentView(name=t.rsplit("/", 1)[-1], origin=t) for t in a.text]
             view = rrb.Horizontal(view, rrb.Vertical(*docs), column_shares=[3, 2])

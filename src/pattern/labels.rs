@@ -1,11 +1,12 @@
 //! Which feature curve each edge between two patches lies on.
 //!
 //! The patches' boundaries are samples of the feature curves, so an edge between two
-//! patches lies on a curve: both its ends and its middle are near that curve's polyline. For
-//! each such edge every curve is scored by the largest of the three distances, and the edge
-//! takes the nearest curve, with every other curve that runs along the same edge (the
-//! sleeve's armhole is fitted through the strap's samples, so both lie on those edges).
-//! A curve farther from an edge than the edge is long is never its curve.
+//! patches lies on a curve: both its ends are on that curve's polyline and its middle near
+//! it. For each such edge every curve is scored by the larger distance of the edge's two
+//! ends, and the edge takes the nearest curve whose polyline also passes near the edge's
+//! middle, with every other curve that runs along the same edge (the sleeve's armhole is
+//! fitted through the strap's samples, so both lie on those edges). A curve farther from an
+//! edge's ends than the edge is long is never its curve.
 
 use glam::DVec3;
 
@@ -30,9 +31,15 @@ impl EdgeCurves {
     }
 }
 
-/// A curve runs along an edge when its score is within this fraction of the edge's length
-/// of the nearest curve's.
-const ALONG: f64 = 0.25;
+/// A curve runs along an edge when its ends' distance is within this fraction of the
+/// edge's length of the nearest curve's (the patches' boundary samples lie on their curves,
+/// so the nearest is at about 0).
+const ALONG: f64 = 0.02;
+
+/// ... and the edge's middle is within this fraction of its length of the curve: a curve
+/// bows away from its chord between two samples (a fitted armhole by up to a few percent of
+/// the chord), but not by a quarter of it.
+const BOW: f64 = 0.25;
 
 /// Labels the edges between patches of a mesh (`face_patch` per triangle) with the curves
 /// (`(name, polyline)`) they lie on.
@@ -68,7 +75,8 @@ pub fn label_edges(
             let (a, b) = (positions[e[0] as usize], positions[e[1] as usize]);
             let reach = a.distance(b);
             let mid = 0.5 * (a + b);
-            let mut scored: Vec<(f64, u32)> = curves
+            // (ends, middle) distances of every curve near enough.
+            let mut scored: Vec<(f64, f64, u32)> = curves
                 .iter()
                 .zip(&boxes)
                 .enumerate()
@@ -77,20 +85,17 @@ pub fn label_edges(
                     [a, b].iter().all(|p| p.cmpge(lo).all() && p.cmple(hi).all())
                 })
                 .map(|(c, ((_, poly), _))| {
-                    let d = [a, b, mid]
-                        .iter()
-                        .map(|p| polyline_distance(poly, *p))
-                        .fold(0.0, f64::max);
-                    (d, c as u32)
+                    let ends = polyline_distance(poly, a).max(polyline_distance(poly, b));
+                    (ends, polyline_distance(poly, mid), c as u32)
                 })
-                .filter(|&(d, _)| d <= reach)
+                .filter(|&(ends, middle, _)| ends <= reach && middle <= BOW * reach)
                 .collect();
-            scored.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            scored.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.2.cmp(&y.2)));
             let best = scored.first().map_or(0.0, |s| s.0);
             let on = scored
                 .into_iter()
-                .filter(|&(d, _)| d <= best + ALONG * reach)
-                .map(|(_, c)| c)
+                .filter(|&(ends, _, _)| ends <= best + ALONG * reach)
+                .map(|(_, _, c)| c)
                 .collect();
             (e, on)
         })

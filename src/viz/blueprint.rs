@@ -2,8 +2,8 @@
 
 use rerun::blueprint::components::PanelState;
 use rerun::blueprint::{
-    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial3DView, Tabs, TextDocumentView, TextLogView,
-    TimePanel, TimeSeriesView, Vertical,
+    Blueprint, BlueprintPanel, Horizontal, SelectionPanel, Spatial2DView, Spatial3DView, Tabs, TextDocumentView,
+    TextLogView, TimePanel, TimeSeriesView, Vertical,
 };
 
 use super::recording::METRIC_UNITS;
@@ -74,6 +74,21 @@ pub fn default_blueprint() -> Blueprint {
                         .with_origin("/")
                         .with_contents(["+ /sculpt/levels/**", "+ /sculpt/pick", "+ /sculpt/radius"])
                         .into(),
+                    // The pattern pieces in 2D (edges coloured by strain, seams, notches,
+                    // grain), beside the garment coloured by panel and by strain.
+                    Horizontal::new([
+                        Spatial2DView::new("Patterns").with_origin("/patterns/pieces").into(),
+                        Spatial3DView::new("Panels")
+                            .with_origin("/")
+                            .with_contents(["+ /body/mesh", "+ /patterns/garment/panels"])
+                            .into(),
+                        Spatial3DView::new("Pattern strain")
+                            .with_origin("/")
+                            .with_contents(["+ /patterns/garment/strain"])
+                            .into(),
+                    ])
+                    .with_column_shares([2.0, 1.0, 1.0])
+                    .into(),
                     // NURBS parts on the body, with their contacts.
                     Spatial3DView::new("NURBS")
                         .with_origin("/")

@@ -245,6 +245,10 @@ impl StageSink for RerunLogger {
         self.log_m1(stage)
     }
 
+    fn patterns(&mut self, _info: &StageInfo, stage: crate::session::PatternStage<'_>) -> Result<(), SinkError> {
+        self.log_patterns(stage)
+    }
+
     fn sculpt(&mut self, _info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {
         self.log_sculpt(stage)
     }

@@ -33,6 +33,7 @@ pub mod logger;
 mod m1;
 mod mannequin;
 mod nurbs;
+mod patterns;
 pub mod recording;
 pub mod replay;
 mod sculpt;

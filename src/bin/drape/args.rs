@@ -92,6 +92,28 @@ pub(crate) enum Command {
     /// fewest steps and written (--out) so that `drape run FILE` replays it.
     #[command(after_help = STRESS_HELP, args_conflicts_with_subcommands = true)]
     Stress(StressArgs),
+    /// Flatten panel meshes (OBJ; for example the `_panel_` files of --patterns) with
+    /// drape's LSCM and ARAP, free boundary, and print per panel the time, the edge strain
+    /// (max and mean) and the flipped triangles: the same question libigl's LSCM and ARAP
+    /// answer (scripts/pattern_peers.py puts them side by side).
+    #[command(after_help = EXIT_CODES)]
+    Flatten(FlattenArgs),
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct FlattenArgs {
+    /// Panel meshes (OBJ, metres).
+    #[arg(required = true)]
+    pub(crate) panels: Vec<PathBuf>,
+    /// The method: LSCM alone, or ARAP started from it.
+    #[arg(long, default_value = "arap", value_parser = ["arap", "lscm"])]
+    pub(crate) method: String,
+    /// Runs per panel; the time printed is the fastest.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    pub(crate) runs: u64,
+    /// Print JSON lines instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 const STRESS_HELP: &str = "Sweeps over many machines: --shard I/N runs the sessions whose number is I modulo N \

@@ -5,6 +5,7 @@ mod args;
 mod edit;
 mod failure;
 mod files;
+mod flatten;
 mod interrupt;
 mod live;
 mod mannequin;
@@ -53,6 +54,7 @@ fn main() -> ExitCode {
         Some(Command::Replay(args)) => replay::replay(&args),
         Some(Command::Stress(args)) => stress::stress(&args),
         Some(Command::Edit(args)) => edit::edit(&args),
+        Some(Command::Flatten(args)) => flatten::flatten(&args),
     };
     match result {
         Ok(code) => code,

@@ -71,7 +71,7 @@ pub(crate) fn arap(
             }
         }
         energy = arap_energy(triangles, frames, &uv, &rotations) + spring_energy(&springs, &directions, &uv, w);
-        if previous - energy <= options.tolerance * energy {
+        if (previous - energy).abs() <= options.tolerance * energy {
             break;
         }
         previous = energy;

@@ -27,28 +27,26 @@ impl Parser<'_> {
         if let Some(t) = a.get("seams")
             && t.text != "default"
         {
-            {
-                let known = known_seams();
-                let mut list = Vec::new();
-                let mut column = t.column;
-                for name in t.text.split(',') {
-                    if !known.iter().any(|k| k == name) {
-                        return Err(line.error(
-                            column,
-                            format!(
-                                "unknown seam '{name}'{}: expected default or curves such as {}",
-                                did_you_mean(name, known.iter().map(String::as_str)),
-                                DEFAULT_SEAMS.join(", ")
-                            ),
-                        ));
-                    }
-                    if !list.iter().any(|s: &String| s == name) {
-                        list.push(name.to_string());
-                    }
-                    column += name.len() + 1;
+            let known = known_seams();
+            let mut list = Vec::new();
+            let mut column = t.column;
+            for name in t.text.split(',') {
+                if !known.iter().any(|k| k == name) {
+                    return Err(line.error(
+                        column,
+                        format!(
+                            "unknown seam '{name}'{}: expected default or curves such as {}",
+                            did_you_mean(name, known.iter().map(String::as_str)),
+                            DEFAULT_SEAMS.join(", ")
+                        ),
+                    ));
                 }
-                o.seams = Some(list);
+                if !list.iter().any(|s: &String| s == name) {
+                    list.push(name.to_string());
+                }
+                column += name.len() + 1;
             }
+            o.seams = Some(list);
         }
         if let Some(t) = a.get("from") {
             o.source = match t.text {
