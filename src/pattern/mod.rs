@@ -481,7 +481,8 @@ fn name_panels(input: &PatternInput<'_>, panel_of: &[u32], count: usize) -> Vec<
     names
 }
 
-/// The curves that cross a panel that is not a disc, as a hint of where to cut it.
+/// The curves that cross a panel that is not a disc (the template's default seams first), as
+/// a hint of where to cut it.
 fn hint(input: &PatternInput<'_>, labels: &EdgeCurves, panel_of: &[u32], panel: &Panel, chosen: &[bool]) -> String {
     let index = panel_of[panel.faces[0] as usize];
     let mut inside = std::collections::BTreeSet::new();
@@ -495,9 +496,13 @@ fn hint(input: &PatternInput<'_>, labels: &EdgeCurves, panel_of: &[u32], panel: 
         }
     }
     if inside.is_empty() {
-        String::new()
-    } else {
-        let list: Vec<String> = inside.into_iter().take(6).collect();
-        format!(" (curves across it: {})", list.join(", "))
+        return String::new();
     }
+    // The template's default seams first, then the rest by name.
+    let defaults = seams::default_seams(input.template, &labels.names);
+    let (mut list, rest): (Vec<String>, Vec<String>) = inside.into_iter().partition(|c| defaults.contains(c));
+    list.sort_by_key(|c| defaults.iter().position(|d| d == c));
+    list.extend(rest);
+    list.truncate(6);
+    format!(" (curves across it: {})", list.join(", "))
 }

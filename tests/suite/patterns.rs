@@ -118,6 +118,68 @@ fn a_cone_patch_unrolls_to_its_annular_sector() {
     }
 }
 
+/// libigl's ARAP on the spherical cap below (LSCM start pinned at two boundary vertices half
+/// the loop apart, scaled to the 3D area; `igl.arap_solve`, 50 to 1000 iterations give the
+/// same figures), computed with Python `igl` 2.x from the same formulas.
+const IGL_CAP_MAX_STRAIN: f64 = 0.101864;
+const IGL_CAP_MEAN_STRAIN: f64 = 0.035527;
+
+#[test]
+fn a_spherical_cap_flattens_unflipped_and_no_worse_than_libigl_arap() {
+    // Radius 0.2 m, 50 degrees from the pole, 8 rings of 24 points and the pole; outward up.
+    let (r, top, rings, around) = (0.2_f64, 50f64.to_radians(), 8, 24);
+    let mut positions = vec![DVec3::new(0.0, r, 0.0)];
+    for k in 1..=rings {
+        let t = top * k as f64 / rings as f64;
+        for j in 0..around {
+            let p = std::f64::consts::TAU * j as f64 / around as f64;
+            positions.push(DVec3::new(r * t.sin() * p.cos(), r * t.cos(), -r * t.sin() * p.sin()));
+        }
+    }
+    let id = |k: usize, j: usize| (1 + (k - 1) * around + j % around) as u32;
+    let mut triangles: Vec<[u32; 3]> = (0..around).map(|j| [0, id(1, j), id(1, j + 1)]).collect();
+    for k in 1..rings {
+        for j in 0..around {
+            triangles.push([id(k, j), id(k + 1, j), id(k + 1, j + 1)]);
+            triangles.push([id(k, j), id(k + 1, j + 1), id(k, j + 1)]);
+        }
+    }
+    let flat = pattern::flatten::flatten(&positions, &triangles, &[], &FlattenOptions::default()).expect("flattens");
+    let flipped = triangles
+        .iter()
+        .filter(|t| area2(flat.uv[t[0] as usize], flat.uv[t[1] as usize], flat.uv[t[2] as usize]) <= 0.0)
+        .count();
+    assert_eq!(flipped, 0);
+    let mut strains = Vec::new();
+    for t in &triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]));
+            strains.push((a, b));
+        }
+    }
+    strains.sort_unstable();
+    strains.dedup();
+    let s: Vec<f64> = strains
+        .iter()
+        .map(|&(a, b)| {
+            let l3 = positions[a as usize].distance(positions[b as usize]);
+            (flat.uv[a as usize].distance(flat.uv[b as usize]) - l3).abs() / l3
+        })
+        .collect();
+    let max = s.iter().copied().fold(0.0, f64::max);
+    let mean = s.iter().sum::<f64>() / s.len() as f64;
+    // A doubly curved cap cannot flatten without strain: both near libigl's, within 2%.
+    assert!(
+        max > 0.01 && max <= 1.02 * IGL_CAP_MAX_STRAIN,
+        "max strain {max} against libigl {IGL_CAP_MAX_STRAIN}"
+    );
+    assert!(
+        mean <= 1.02 * IGL_CAP_MEAN_STRAIN,
+        "mean strain {mean} against libigl {IGL_CAP_MEAN_STRAIN}"
+    );
+    eprintln!("cap: drape max {max:.6} mean {mean:.6}; libigl {IGL_CAP_MAX_STRAIN} {IGL_CAP_MEAN_STRAIN}");
+}
+
 /// What a session's steps made: per step the pattern, and the collided mesh with the
 /// framework it came from (to cut the same pattern again here).
 /// A step's collided mesh: step, positions, triangles, the patch of each triangle.
@@ -326,4 +388,84 @@ fn a_drag_reflattens_only_the_panels_it_changed_and_equals_a_full_flattening() {
             a.panel.name
         );
     }
+}
+
+#[test]
+fn the_dxf_and_svg_read_back_by_other_readers_give_the_pieces_outlines() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("pattern-readback");
+    let _ = std::fs::remove_dir_all(&dir);
+    let text = "drape 1\nbody builtin\nunits m\npatterns\ngarment shirt sleeves=long collar=stand resolution=6\n";
+    let session = parse_session(text, "readback.drape", Path::new(".")).expect("parses");
+    let mut collect = Collect::default();
+    let mut files = drape::session::export::PatternExporter::new(dir.clone());
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut collect, &mut files]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let (step, pattern) = collect.patterns.last().expect("a pattern");
+    let prefix = dir.join(format!("step{step:02}_shirt_patterns"));
+    let python = super::common::tools_venv().join("bin/python");
+    assert!(
+        python.exists(),
+        "{} is missing: run scripts/setup-browser",
+        python.display()
+    );
+    let out = std::process::Command::new(python)
+        .arg("scripts/read_patterns.py")
+        .arg(prefix.with_extension("dxf"))
+        .arg(prefix.with_extension("svg"))
+        .output()
+        .expect("python runs");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let read: serde_json::Value = serde_json::from_slice(&out.stdout).expect("json");
+    assert_eq!(read["dxf"]["units"], 4, "DXF units are millimetres ($INSUNITS 4)");
+    let height = read["svg"]["view_box"][3].as_f64().expect("viewBox");
+    let points = |v: &serde_json::Value| -> Vec<DVec2> {
+        v.as_array()
+            .expect("points")
+            .iter()
+            .map(|p| DVec2::new(p[0].as_f64().expect("x"), p[1].as_f64().expect("y")))
+            .collect()
+    };
+    for piece in &pattern.pieces {
+        let name = &piece.panel.name;
+        let truth: Vec<DVec2> = piece
+            .panel
+            .boundary
+            .iter()
+            .map(|&v| 1e3 * piece.uv[v as usize])
+            .collect();
+        let dxf = &read["dxf"]["pieces"][name.as_str()];
+        assert_eq!(dxf["name"], format!("Piece Name: {name}"));
+        assert_eq!(dxf["closed"], true, "{name}: the cut line is closed");
+        assert!(dxf["notches"].as_u64().expect("notches") >= 2, "{name}: notches");
+        let svg: Vec<DVec2> = points(&read["svg"]["pieces"][format!("piece:{name}").as_str()])
+            .into_iter()
+            .map(|p| DVec2::new(p.x, height - p.y))
+            .collect();
+        for (label, got) in [("DXF", points(&dxf["cut"])), ("SVG", svg)] {
+            assert_eq!(got.len(), truth.len(), "{name}: {label} outline points");
+            let worst = got.iter().zip(&truth).map(|(a, b)| a.distance(*b)).fold(0.0, f64::max);
+            assert!(worst < 1e-3, "{name}: {label} outline off by {worst} mm");
+        }
+    }
+    assert_eq!(
+        read["dxf"]["pieces"].as_object().map(|m| m.len()),
+        Some(pattern.pieces.len())
+    );
+}
+
+#[test]
+fn seams_that_leave_a_tube_name_the_panel_and_the_curves_that_would_cut_it() {
+    // Only the side seams: the legs stay tubes joined at the crotch, the torso a tube.
+    let text = "drape 1\nbody builtin\nunits m\npatterns seams=side_left\ngarment jumpsuit fit=tight resolution=6\n";
+    let c = run(text, None);
+    assert!(c.patterns.is_empty());
+    let message = c.failures.first().expect("the pattern is refused");
+    assert!(
+        message.contains("is not a disc") && message.contains("add a seam across it"),
+        "{message}"
+    );
+    assert!(
+        message.contains("curves across it:") && message.contains("side_right"),
+        "{message}"
+    );
 }

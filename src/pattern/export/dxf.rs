@@ -52,6 +52,16 @@ pub fn to_dxf(pattern: &Pattern) -> Result<Vec<u8>, String> {
             ..Default::default()
         };
         entities.push(on("1", EntityType::Text(text)));
+        // Handles for the block's entities (and their layers in the table): added to the
+        // drawing, which numbers them, then taken back out into the block.
+        let entities = entities
+            .into_iter()
+            .filter_map(|e| {
+                drawing.add_entity(e);
+                let last = drawing.entities().count().checked_sub(1)?;
+                drawing.remove_entity(last)
+            })
+            .collect();
         let block = Block {
             name: block_name(&piece.panel.name),
             layer: "0".into(),
@@ -67,9 +77,50 @@ pub fn to_dxf(pattern: &Pattern) -> Result<Vec<u8>, String> {
         };
         drawing.add_entity(Entity::new(EntityType::Insert(insert)));
     }
+    // The writer gives each ENDBLK its BLOCK's handle; handles must be unique, so each
+    // ENDBLK gets one of a range reserved here (and `$HANDSEED` moves past it).
+    let reserved = drawing.header.next_available_handle;
+    let spare = 2 * (pattern.pieces.len() + 8);
+    for _ in 0..spare {
+        drawing.header.next_available_handle = drawing.header.next_available_handle.next_handle_value();
+    }
     let mut bytes = Vec::new();
     drawing.save(&mut bytes).map_err(|e| e.to_string())?;
-    Ok(bytes)
+    let text = String::from_utf8(bytes).map_err(|e| e.to_string())?;
+    Ok(unique_endblk_handles(&text, reserved, spare)?.into_bytes())
+}
+
+/// `text` with the handle after every `ENDBLK` replaced by the next of `spare` handles from
+/// `first`.
+fn unique_endblk_handles(text: &str, first: ::dxf::Handle, spare: usize) -> Result<String, String> {
+    let mut out = String::with_capacity(text.len());
+    let mut next = first;
+    let mut used = 0;
+    let mut lines = text.split_inclusive('\n').peekable();
+    while let Some(line) = lines.next() {
+        out.push_str(line);
+        if line.trim() != "ENDBLK" {
+            continue;
+        }
+        // The group code 5 and its value follow.
+        let (Some(code), Some(value)) = (lines.next(), lines.next()) else {
+            break;
+        };
+        out.push_str(code);
+        if code.trim() == "5" {
+            if used == spare {
+                return Err("more blocks than handles reserved".into());
+            }
+            let eol = if value.ends_with("\r\n") { "\r\n" } else { "\n" };
+            out.push_str(&next.as_string());
+            out.push_str(eol);
+            next = next.next_handle_value();
+            used += 1;
+        } else {
+            out.push_str(value);
+        }
+    }
+    Ok(out)
 }
 
 /// A block name from a piece name (DXF names take no `<>/\":;?*|=` and no spaces).

@@ -20,7 +20,9 @@ pub fn to_svg(pattern: &Pattern) -> String {
         .flat_map(|p| p.uv.iter())
         .fold((DVec2::ZERO, DVec2::ZERO), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
     let margin = 0.02;
-    let (w, h) = (1e3 * (hi.x + margin), 1e3 * (hi.y + margin));
+    // The size as written (to the micrometre), so that `y` turned down reads back exactly.
+    let round = |v: f64| (v * 1e3).round() / 1e3;
+    let (w, h) = (round(1e3 * (hi.x + margin)), round(1e3 * (hi.y + margin)));
     let _ = lo;
     let at = |p: DVec2| (1e3 * p.x, h - 1e3 * p.y);
     let mut out = String::new();

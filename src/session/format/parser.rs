@@ -71,6 +71,16 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
             message: "empty session: expected 'drape 1' as the first statement".into(),
         });
     }
+    if let (Some((o, line)), None) = (&p.patterns, &p.m1)
+        && o.source == crate::pattern::Source::M1
+    {
+        return Err(ParseError {
+            file: name.into(),
+            line: *line,
+            column: 1,
+            message: "patterns from=m1 needs M1: add an 'm1' statement to the scene".into(),
+        });
+    }
     Ok(Session {
         name: name.to_string(),
         scene: Scene {
