@@ -17,7 +17,7 @@ start, the same work. Times are the fastest of 3 runs of each.
 Needs `igl` and `numpy` in the tools venv (`pip install libigl`); run it with that python:
     ~/.cache/drape-tools/venv/bin/python scripts/pattern_peers.py --write
 With --write the tables go into docs/patterns.md (`figures:pattern-bodies`,
-`figures:pattern-peers`).
+`figures:pattern-peers`, and per piece and seam on the built-in body `figures:pattern-detail`).
 """
 
 import argparse
@@ -97,6 +97,33 @@ def fastest(fn, runs=3):
     return best * 1e3, out
 
 
+def detail(binary, resolution):
+    """Per piece and per seam, the jumpsuit and the shirt on the built-in body."""
+    out = []
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        for short, garment in GARMENTS:
+            session = tmp / f"{short}.drape"
+            session.write_text(SESSION.format(garment=garment, resolution=resolution))
+            subprocess.run([binary, "run", session, "--patterns", tmp / short, "--save", tmp / "run.rrd"],
+                           cwd=ROOT, check=True, capture_output=True)
+            doc = json.loads(next((tmp / short).glob("step01_*_patterns.json")).read_text())
+            out.append(f"**{short}** (built-in body, resolution {resolution}): pieces\n")
+            out.append("| piece | vertices | strain max % | strain mean % | area ratio min..max | angle max deg | flipped | overlaps |")
+            out.append("|---|---|---|---|---|---|---|---|")
+            for p in doc["panels"]:
+                out.append(f"| {p['name']} | {p['vertices']} | {100 * p['max_strain']:.1f} | {100 * p['mean_strain']:.2f} | "
+                           f"{p['area_ratio_min']:.2f}..{p['area_ratio_max']:.2f} | {p['max_angle_deg']:.1f} | {p['flipped']} | {p['overlaps']} |")
+            out.append(f"\n**{short}**: seams (tolerance 0.5 mm or 0.1% of the length)\n")
+            out.append("| seam | curve | 3D length mm | side a mm | side b mm | mismatch mm | sews |")
+            out.append("|---|---|---|---|---|---|---|")
+            for q in doc["seams"]:
+                out.append(f"| {q['name']} | {q['curve']} | {1e3 * q['length_3d_m']:.2f} | {1e3 * q['length_a_m']:.3f} | "
+                           f"{1e3 * q['length_b_m']:.3f} | {1e3 * q['mismatch_m']:.4f} | {'yes' if q['sews'] else 'NO'} |")
+            out.append("")
+    return "\n".join(out)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--binary", default=str(ROOT / "target/release/drape"))
@@ -168,6 +195,7 @@ def main():
                      f"{a[4]:.1f} / {a[5] / n:.2f} | {a[6]:.1f} / {a[7] / n:.2f} | {a[8]:.1f} / {a[9] / n:.2f} | "
                      f"{a[10]:.1f} / {a[11] / n:.2f} | {a[12]} / {a[13]} |")
     peers_md = "\n".join(peers)
+    detail_md = detail(args.binary, args.resolution)
     print(bodies_md)
     print()
     print(peers_md)
@@ -175,6 +203,7 @@ def main():
         page = ROOT / "docs/patterns.md"
         splice(page, "pattern-bodies", bodies_md)
         splice(page, "pattern-peers", peers_md)
+        splice(page, "pattern-detail", detail_md)
 
 
 if __name__ == "__main__":
