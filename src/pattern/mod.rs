@@ -11,6 +11,7 @@
 //! and positions are the previous pattern's, bit for bit, keeps its flattening.
 //! [`export`] writes DXF, SVG, JSON and OBJ. Nothing here knows Rerun.
 
+pub mod cut_lines;
 pub mod distortion;
 pub mod export;
 pub mod flatten;
@@ -19,9 +20,12 @@ pub mod layout;
 pub mod panels;
 pub mod seams;
 
+use std::collections::BTreeMap;
+
 use glam::{DVec2, DVec3};
 use serde::Serialize;
 
+pub use cut_lines::{CutLine, CutShape};
 pub use distortion::Distortion;
 pub use flatten::{FlattenError, FlattenOptions, Flattening, Method};
 pub use labels::EdgeCurves;
@@ -94,6 +98,8 @@ pub struct PatternInput<'a> {
     pub patch_names: &'a [String],
     /// The feature curves as polylines, by name.
     pub curves: &'a [(String, Vec<DVec3>)],
+    /// The user's cut lines: seams too, the mesh split along them first.
+    pub cuts: &'a [CutLine],
 }
 
 /// Why a pattern cannot be made.
@@ -184,7 +190,20 @@ pub fn build(
     options: &PatternOptions,
     previous: Option<&Pattern>,
 ) -> Result<Pattern, PatternError> {
-    let names: Vec<String> = input.curves.iter().map(|(n, _)| n.clone()).collect();
+    // The mesh split along the cut lines, and each cut's seam edges.
+    let mut split = cut_lines::SplitMesh {
+        positions: input.positions.to_vec(),
+        triangles: input.triangles.to_vec(),
+        face_patch: input.face_patch.to_vec(),
+    };
+    let cut_edges: Vec<Vec<[u32; 2]>> = input.cuts.iter().map(|c| split.split(&c.shape)).collect();
+    let input = &PatternInput {
+        positions: &split.positions,
+        triangles: &split.triangles,
+        face_patch: &split.face_patch,
+        ..*input
+    };
+    let mut names: Vec<String> = input.curves.iter().map(|(n, _)| n.clone()).collect();
     let seam_curves = match &options.seams {
         Some(list) => {
             for s in list {
@@ -199,9 +218,24 @@ pub fn build(
         }
         None => seams::default_seams(input.template, &names),
     };
-    let chosen: Vec<bool> = names.iter().map(|n| seam_curves.contains(n)).collect();
+    let mut chosen: Vec<bool> = names.iter().map(|n| seam_curves.contains(n)).collect();
     let labels = labels::label_edges(input.positions, input.triangles, input.face_patch, input.curves);
-    let seam_of = |e: [u32; 2]| labels.of(e).iter().copied().find(|&c| chosen[c as usize]);
+    // Cut lines are seams, each under its own name after the curves'.
+    let mut cut_of: BTreeMap<[u32; 2], u32> = BTreeMap::new();
+    for (cut, edges) in input.cuts.iter().zip(&cut_edges) {
+        let index = names.len() as u32;
+        names.push(cut.name.clone());
+        chosen.push(true);
+        for &e in edges {
+            cut_of.entry(e).or_insert(index);
+        }
+    }
+    let seam_of = |e: [u32; 2]| {
+        cut_of
+            .get(&[e[0].min(e[1]), e[0].max(e[1])])
+            .copied()
+            .or_else(|| labels.of(e).iter().copied().find(|&c| chosen[c as usize]))
+    };
     let is_seam = |e: [u32; 2]| seam_of(e).is_some();
     let (panel_of, count) = panels::components(input.triangles, is_seam);
     let panel_names = name_panels(input, &panel_of, count);
@@ -342,11 +376,11 @@ pub fn build(
         });
     }
     // Names of seams between the same two panels on several curves get their curve.
-    let mut counts: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut counts: BTreeMap<String, usize> = Default::default();
     for s in &seam_list {
         *counts.entry(s.name.clone()).or_default() += 1;
     }
-    let mut seen: std::collections::BTreeMap<String, usize> = Default::default();
+    let mut seen: BTreeMap<String, usize> = Default::default();
     for s in &mut seam_list {
         if counts[&s.name] > 1 {
             let k = seen.entry(format!("{}#{}", s.name, s.curve)).or_default();
@@ -424,7 +458,7 @@ fn name_panels(input: &PatternInput<'_>, panel_of: &[u32], count: usize) -> Vec<
         });
     let centre_x = 0.5 * (lo.x + hi.x);
     let width = (hi.x - lo.x).max(f64::MIN_POSITIVE);
-    let mut faces_by_patch = vec![std::collections::BTreeMap::<u32, usize>::new(); count];
+    let mut faces_by_patch = vec![BTreeMap::<u32, usize>::new(); count];
     let mut normal = vec![DVec3::ZERO; count];
     let mut centroid = vec![DVec3::ZERO; count];
     let mut area = vec![0.0; count];
@@ -464,13 +498,11 @@ fn name_panels(input: &PatternInput<'_>, panel_of: &[u32], count: usize) -> Vec<
             }
         })
         .collect();
-    let mut seen: std::collections::BTreeMap<String, usize> = Default::default();
-    let totals = names
-        .iter()
-        .fold(std::collections::BTreeMap::<String, usize>::new(), |mut m, n| {
-            *m.entry(n.clone()).or_default() += 1;
-            m
-        });
+    let mut seen: BTreeMap<String, usize> = Default::default();
+    let totals = names.iter().fold(BTreeMap::<String, usize>::new(), |mut m, n| {
+        *m.entry(n.clone()).or_default() += 1;
+        m
+    });
     for n in &mut names {
         if totals[n] > 1 {
             let k = seen.entry(n.clone()).or_default();

@@ -75,6 +75,8 @@ pub(crate) struct GarmentState {
     pub(crate) patterns: Option<Result<crate::pattern::Pattern, crate::pattern::PatternError>>,
     /// The cut lines, stored on M0.
     pub(crate) cuts: Vec<StoredCut>,
+    /// The cut lines through picked points: their names and M0 vertices.
+    pub(crate) through_cuts: Vec<(String, Vec<u32>)>,
     /// The sculpts made, in order: made again on the new mesh after every rebuild.
     pub(crate) sculpts: Vec<(super::SculptAt, crate::sculpt::Drag, crate::sculpt::SculptOptions)>,
     /// The last sculpt's result (the garment's latest mesh), when there are sculpts.
@@ -97,6 +99,7 @@ impl GarmentState {
             m1: None,
             patterns: None,
             cuts: Vec::new(),
+            through_cuts: Vec::new(),
             sculpts: Vec::new(),
             sculpted: None,
         }
@@ -119,6 +122,7 @@ impl GarmentState {
             m1: None,
             patterns: self.patterns.clone(),
             cuts: self.cuts.clone(),
+            through_cuts: self.through_cuts.clone(),
             sculpts: self.sculpts.clone(),
             sculpted: None,
         }

@@ -269,7 +269,16 @@ fn loops_and_euler(vertices: usize, triangles: &[[u32; 3]]) -> (usize, i64) {
 
 /// Every piece a disc, no flipped triangle, every mesh face in exactly one piece, and
 /// every seam's two sides at the same 3D points with 2D lengths within the tolerance.
-fn check_pattern(label: &str, p: &Pattern, faces: usize) {
+fn check_pattern(label: &str, p: &Pattern, faces: Option<usize>) {
+    // Without the mesh's face count (a cut split faces), the faces the pieces name.
+    let faces = faces.unwrap_or_else(|| {
+        p.pieces
+            .iter()
+            .flat_map(|q| &q.panel.faces)
+            .map(|&f| f as usize + 1)
+            .max()
+            .unwrap_or(0)
+    });
     let mut covered = vec![0; faces];
     for piece in &p.pieces {
         let name = &piece.panel.name;
@@ -338,7 +347,7 @@ fn every_shipped_body_cuts_its_jumpsuit_and_shirt_into_discs_that_sew() {
             let (_, pattern) = c.patterns.last().expect("a pattern");
             let faces = c.meshes.last().expect("a mesh").2.len();
             let label = format!("{} {garment}", body.display());
-            check_pattern(&label, pattern, faces);
+            check_pattern(&label, pattern, Some(faces));
             let expected = if garment.starts_with("jumpsuit") { 10 } else { 9 };
             assert_eq!(
                 pattern.pieces.len(),
@@ -365,6 +374,7 @@ fn a_drag_reflattens_only_the_panels_it_changed_and_equals_a_full_flattening() {
         face_patch,
         patch_names: &fw.m0.patch_names,
         curves: &curves,
+        cuts: &[],
     };
     let full = pattern::build(&input, &PatternOptions::default(), None).expect("full");
     let kept = after.pieces.iter().filter(|p| p.reused).count();
@@ -468,4 +478,58 @@ fn seams_that_leave_a_tube_name_the_panel_and_the_curves_that_would_cut_it() {
         message.contains("curves across it:") && message.contains("side_right"),
         "{message}"
     );
+}
+
+#[test]
+fn a_cut_through_picked_points_splits_a_piece_along_the_straight_line_between_them() {
+    // A princess line on the front left bodice, from near the chest to near the waist.
+    let (a, b) = (DVec3::new(0.0703, 1.197, 0.1499), DVec3::new(0.0637, 1.026, 0.1527));
+    let text = format!(
+        "drape 1\nbody builtin\nunits m\npatterns\ngarment jumpsuit fit=tight resolution=6\n\
+         cut princess through={},{},{};{},{},{}\ndrag waist.front_left by=0,0,0.01\n",
+        a.x, a.y, a.z, b.x, b.y, b.z
+    );
+    let c = run(&text, None);
+    assert!(c.failures.is_empty(), "{:?}", c.failures);
+    let before = &c.patterns[0].1;
+    for (step, p) in &c.patterns[1..] {
+        assert_eq!(p.pieces.len(), before.pieces.len() + 1, "step {step}: one piece more");
+        let princess: Vec<&pattern::Seam> = p.seams.iter().filter(|s| s.curve == "princess").collect();
+        assert_eq!(princess.len(), 1, "step {step}");
+        let s = princess[0];
+        let piece = &p.pieces[s.panels[0]];
+        let path: Vec<DVec3> = s.sides[0].iter().map(|&v| piece.panel.positions[v as usize]).collect();
+        // The seam runs from one picked vertex to the other, every point on the plane through
+        // both that holds the surface's normal (its distance to the chord's line in that plane
+        // is free; off the plane, none), and its ends within an edge of the picked points.
+        let (first, last) = (path[0], path[path.len() - 1]);
+        let ends = [
+            first.distance(a).min(last.distance(a)),
+            first.distance(b).min(last.distance(b)),
+        ];
+        assert!(ends.iter().all(|&d| d < 0.03), "step {step}: ends {ends:?}");
+        // All on one plane: the one through both ends and the point farthest from their chord.
+        let chord = (last - first).normalize();
+        let off = |q: DVec3| (q - first - (q - first).dot(chord) * chord).length();
+        let far = path
+            .iter()
+            .copied()
+            .max_by(|x, y| off(*x).total_cmp(&off(*y)))
+            .expect("points");
+        if off(far) > 1e-6 {
+            let n = (last - first).cross(far - first).normalize();
+            for q in &path {
+                assert!(
+                    (*q - first).dot(n).abs() < 1e-9,
+                    "step {step}: the seam leaves its plane"
+                );
+            }
+        }
+        assert!(
+            path.len() > 3,
+            "step {step}: the seam crosses faces ({} points)",
+            path.len()
+        );
+        check_pattern(&format!("step {step}"), p, None);
+    }
 }

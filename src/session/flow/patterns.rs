@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use crate::pattern::{self, PatternInput, PatternOptions, Source};
+use crate::pattern::{self, CutLine, CutShape, PatternInput, PatternOptions, Source};
 use crate::session::emit::StepScope;
 use crate::session::stage::{PatternStage, Stage};
 use crate::session::state::GarmentState;
@@ -42,6 +42,7 @@ pub(in crate::session) fn build_patterns(
         return;
     };
     let curves = fw.curve_polylines();
+    let cuts = cut_lines(state);
     let input = match (options.source, &state.m1) {
         (Source::M1, Some(m1)) => PatternInput {
             template: fw.template.name(),
@@ -50,6 +51,7 @@ pub(in crate::session) fn build_patterns(
             face_patch: &m1.m1.face_patch,
             patch_names: &fw.m0.patch_names,
             curves: &curves,
+            cuts: &cuts,
         },
         _ => PatternInput {
             template: fw.template.name(),
@@ -58,6 +60,7 @@ pub(in crate::session) fn build_patterns(
             face_patch: &outcome.garment.face_patch,
             patch_names: &fw.m0.patch_names,
             curves: &curves,
+            cuts: &cuts,
         },
     };
     let previous = state.patterns.as_ref().and_then(|p| p.as_ref().ok());
@@ -88,6 +91,23 @@ pub(in crate::session) fn build_patterns(
         scope.note(format!("no pattern: {e}"));
     }
     state.patterns = Some(built);
+}
+
+/// The state's cut lines as pattern seams: the plane cuts, and the cuts through picked
+/// points (M0's vertex indices, which M1 keeps).
+fn cut_lines(state: &GarmentState) -> Vec<CutLine> {
+    let planes = state.cuts.iter().map(|c| CutLine {
+        name: c.name.clone(),
+        shape: CutShape::Plane {
+            point: c.plane.point,
+            normal: c.plane.normal,
+        },
+    });
+    let through = state.through_cuts.iter().map(|(name, vertices)| CutLine {
+        name: name.clone(),
+        shape: CutShape::Through(vertices.clone()),
+    });
+    planes.chain(through).collect()
 }
 
 /// Emits the state's pattern, if it has one.

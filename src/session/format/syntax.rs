@@ -155,6 +155,13 @@ pub enum Op {
         /// The plane.
         plane: CutPlane,
     },
+    /// A cut line through picked points of the garment (a seam of its pattern).
+    CutThrough {
+        /// Its name.
+        name: String,
+        /// The points, m (each taken to the garment's nearest vertex).
+        points: Vec<glam::DVec3>,
+    },
     /// Add a NURBS part from a `.nurbs` file, collided with the body and the other parts.
     Nurbs {
         /// Its name.
@@ -222,7 +229,7 @@ impl Op {
             Self::Set { .. } => Statement::Set,
             Self::Drag(_) => Statement::Drag,
             Self::Undo => Statement::Undo,
-            Self::Cut { .. } => Statement::Cut,
+            Self::Cut { .. } | Self::CutThrough { .. } => Statement::Cut,
             Self::Nurbs { .. } => Statement::Nurbs,
             Self::Move { .. } => Statement::Move,
             Self::Sculpt { .. } => Statement::Sculpt,

@@ -1,7 +1,9 @@
 //! `cut NAME at=x,y,z normal=nx,ny,nz`: a style line drawn on the current M1 as its section
 //! by a plane, stored on M0 (barycentric coordinates, \[collide\] figure 6) so that every
-//! later step rebuilds it on its new M1. Undoable. A plane that misses the garment is
-//! refused; the session goes on.
+//! later step rebuilds it on its new M1. `cut NAME through=P;Q;...`: a cut line through
+//! picked points of the garment. Both are seams of the pattern (when the scene has one).
+//! Undoable. A plane that misses the garment, or a point off it, is refused; the session
+//! goes on.
 
 use serde::Serialize;
 
@@ -25,6 +27,7 @@ struct CutFigures {
 pub(super) fn run(
     scope: &mut StepScope<'_, '_, '_>,
     state: &mut SessionState,
+    cx: &crate::session::options::StepContext<'_>,
     name: &str,
     plane: CutPlane,
 ) -> Result<(), StepError> {
@@ -82,6 +85,91 @@ pub(super) fn run(
     }
     if let (Some(outcome), Some(m0)) = (&next.m1, &next.collision) {
         scope.emit("garment.cut", Stage::M1(M1Stage { outcome, m0 }));
+    }
+    // The cut line is a seam of the pattern from now on.
+    if let Some(options) = &cx.session.scene.patterns {
+        crate::session::flow::patterns::build_patterns(scope, &mut next, options);
+        crate::session::flow::patterns::emit_patterns(scope, &next);
+    }
+    state.garment = Some(next);
+    Ok(())
+}
+
+/// `cut NAME through=P;Q;...`: a cut line through picked points, each taken to the
+/// garment's nearest vertex (so that it follows the garment through later edits), a seam of
+/// the pattern from now on. Undoable. A point farther from the garment than the longest edge
+/// at its nearest vertex, or two points on one vertex, refuse the cut; the session goes on.
+pub(super) fn through(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    cx: &crate::session::options::StepContext<'_>,
+    name: &str,
+    points: &[glam::DVec3],
+) -> Result<(), StepError> {
+    let Some(current) = &state.garment else {
+        return Err(StepError::NoGarment { verb: "cut" });
+    };
+    let Some(collided) = &current.collision else {
+        return Err(StepError::NoGarment { verb: "cut" });
+    };
+    let mesh = &collided.collision.mesh;
+    let mut longest = vec![0.0_f64; mesh.positions.len()];
+    for t in &mesh.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let l = mesh.positions[a].distance(mesh.positions[b]);
+            longest[a] = longest[a].max(l);
+            longest[b] = longest[b].max(l);
+        }
+    }
+    let mut vertices: Vec<u32> = Vec::with_capacity(points.len());
+    let mut problem = None;
+    for p in points {
+        let nearest = (0..mesh.positions.len()).min_by(|&a, &b| {
+            mesh.positions[a]
+                .distance_squared(*p)
+                .total_cmp(&mesh.positions[b].distance_squared(*p))
+                .then(a.cmp(&b))
+        });
+        let Some(v) = nearest else { break };
+        let d = mesh.positions[v].distance(*p);
+        if d > longest[v] {
+            problem = Some(format!(
+                "the point ({:.4}, {:.4}, {:.4}) m is {:.1} mm from the garment",
+                p.x,
+                p.y,
+                p.z,
+                1e3 * d
+            ));
+            break;
+        }
+        if vertices.last() == Some(&(v as u32)) {
+            problem = Some(format!(
+                "the points before and at ({:.4}, {:.4}, {:.4}) m fall on one vertex of the garment",
+                p.x, p.y, p.z
+            ));
+            break;
+        }
+        vertices.push(v as u32);
+    }
+    state.history.push(current.clone());
+    if let Some(why) = problem {
+        let message = format!("cut '{name}': {why}: edit refused");
+        scope.refuse(
+            &message,
+            "garment.refused",
+            Stage::Garment(GarmentStage::CutRefused {
+                name,
+                message: &message,
+            }),
+        );
+        return Ok(());
+    }
+    let mut next = current.clone();
+    next.through_cuts.push((name.to_string(), vertices));
+    if let Some(options) = &cx.session.scene.patterns {
+        crate::session::flow::patterns::build_patterns(scope, &mut next, options);
+        crate::session::flow::patterns::emit_patterns(scope, &next);
     }
     state.garment = Some(next);
     Ok(())
