@@ -167,11 +167,7 @@ impl SplitMesh {
         }
         let on = |v: u32| v as usize >= d.len() || d[v as usize] == 0.0;
         let mut seam = Vec::new();
-        let faces = self.triangles.len();
-        for f in 0..faces {
-            if !todo[f] {
-                continue;
-            }
+        for (f, _) in todo.iter().enumerate().filter(|(_, t)| **t) {
             let t = self.triangles[f];
             let patch = self.face_patch[f];
             // The face's corners with the new points between them, in order.
