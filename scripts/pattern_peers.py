@@ -2,11 +2,13 @@
 """The pattern pieces on every shipped body, and libigl's flattening beside drape's on
 exactly the same panels.
 
-For each body and garment (the jumpsuit; the shirt with long sleeves and a stand collar) it
-runs `drape run --patterns DIR` (resolution 6) and reads the step's patterns JSON: pieces,
-edge strain max and mean, area ratio, flipped triangles, seams and their worst mismatch.
+For each body it runs the jumpsuit demo (assets/sessions/demo.drape: dimension edits,
+drags, a yoke cut) and the shirt session (assets/sessions/shirt.drape: long sleeves, a
+stand collar, a cut across the sleeve) with `drape run --patterns DIR` and reads the last
+step's patterns JSON: pieces, edge strain max and mean, area ratio, flipped triangles,
+seams and their worst mismatch.
 Then, on one core (`taskset -c 0` for drape, this process pinned to core 0 for libigl),
-every panel OBJ is flattened by `drape flatten --json` (LSCM, then ARAP with a free
+every panel OBJ of the first garment step is flattened by `drape flatten --json` (LSCM, then ARAP with a free
 boundary, to its own convergence) and by libigl (Python `igl`: `lscm` with two boundary
 pins, scaled to the 3D area, then `arap_precomputation` + `arap_solve` with as many
 iterations as drape took on that panel, one vertex pinned): the same question, the same
@@ -33,6 +35,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from harness import ONE_CORE, ROOT, splice  # noqa: E402
 
 GARMENTS = [("jumpsuit", "jumpsuit fit=tight"), ("shirt", "shirt sleeves=long collar=stand")]
+SESSIONS = [("jumpsuit", "assets/sessions/demo.drape"), ("shirt", "assets/sessions/shirt.drape")]
 SESSION = "drape 1\nbody builtin\nunits m\npatterns\ngarment {garment} resolution={resolution}\n"
 
 
@@ -136,14 +139,14 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         for body in bodies:
-            for short, garment in GARMENTS:
+            for short, session in SESSIONS:
                 out = tmp / f"{body.stem}-{short}"
-                session = tmp / f"{short}.drape"
-                session.write_text(SESSION.format(garment=garment, resolution=args.resolution))
-                subprocess.run([*ONE_CORE, args.binary, "--threads", "1", "run", session, "--body", body,
+                subprocess.run([*ONE_CORE, args.binary, "--threads", "1", "run", ROOT / session, "--body", body,
                                 "--patterns", out, "--save", tmp / "run.rrd"], cwd=ROOT, check=True,
                                capture_output=True)
-                doc = json.loads(next(out.glob("step01_*_patterns.json")).read_text())
+                steps = sorted(out.glob("step*_patterns.json"))
+                first_step = steps[0].name.split("_", 1)[0]
+                doc = json.loads(steps[-1].read_text())
                 panels, seams = doc["panels"], doc["seams"]
                 body_rows.append((body.stem, short, len(panels),
                                   100 * max(p["max_strain"] for p in panels),
@@ -151,11 +154,13 @@ def main():
                                   min(p["area_ratio_min"] for p in panels), max(p["area_ratio_max"] for p in panels),
                                   sum(p["flipped"] for p in panels), len(seams),
                                   1e3 * max(s["mismatch_m"] for s in seams), sum(not s["sews"] for s in seams)))
-                objs = sorted(out.glob("step01_*_panel_*.obj"))
+                body_rows[-1] = (*body_rows[-1], steps[-1].name.split("_", 1)[0])
+                first = json.loads(steps[0].read_text())
+                objs = sorted(out.glob(f"{first_step}_*_panel_*.obj"))
                 lines = subprocess.run([*ONE_CORE, args.binary, "flatten", "--json", "--runs", "3", *objs],
                                        cwd=ROOT, check=True, capture_output=True, text=True).stdout.splitlines()
                 drape = {Path(r["panel"]).name: r for r in map(json.loads, lines)}
-                sewn = {p["name"]: p for p in panels}
+                sewn = {p["name"]: p for p in first["panels"]}
                 for obj in objs:
                     v, f = load_obj(obj)
                     d = drape[obj.name]
@@ -169,10 +174,10 @@ def main():
                                       100 * sewn[name]["max_strain"], 100 * sewn[name]["mean_strain"],
                                       d["flipped"], flipped(f, uv)))
                 print(f"{body.stem} {short}: {len(objs)} panels", file=sys.stderr)
-    table = ["| body | garment | pieces | strain max % | strain mean % | area ratio min..max | flipped | seams | worst mismatch mm | over tolerance |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+    table = ["| body | session | last step | pieces | strain max % | strain mean % | area ratio min..max | flipped | seams | worst mismatch mm | over tolerance |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in body_rows:
-        table.append(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]:.1f} | {r[4]:.2f} | {r[5]:.2f}..{r[6]:.2f} | {r[7]} | {r[8]} | {r[9]:.4f} | {r[10]} |")
+        table.append(f"| {r[0]} | {r[1]} | {r[11]} | {r[2]} | {r[3]:.1f} | {r[4]:.2f} | {r[5]:.2f}..{r[6]:.2f} | {r[7]} | {r[8]} | {r[9]:.4f} | {r[10]} |")
     bodies_md = "\n".join(table)
     # Peers: per body and garment, the panels' sums of time and the strain over them.
     agg = {}

@@ -8,6 +8,25 @@ use rerun::blueprint::{
 
 use super::recording::METRIC_UNITS;
 
+/// The pattern pieces in 2D (edges coloured by strain, seams, notches, grain), beside the
+/// garment coloured by piece and by strain.
+fn patterns_tab() -> rerun::blueprint::ContainerLike {
+    Horizontal::new([
+        Spatial2DView::new("Patterns").with_origin("/patterns/pieces").into(),
+        Spatial3DView::new("Panels")
+            .with_origin("/")
+            .with_contents(["+ /body/mesh", "+ /patterns/garment/panels"])
+            .into(),
+        Spatial3DView::new("Pattern strain")
+            .with_origin("/")
+            .with_contents(["+ /patterns/garment/strain"])
+            .into(),
+    ])
+    .with_column_shares([2.0, 1.0, 1.0])
+    .with_name("Patterns")
+    .into()
+}
+
 /// The figures the Collision plot shows: what detection found and the response moved, and
 /// what was left in the body after M0's collision and after M1's.
 const GUARANTEE_FIGURES: [&str; 8] = [
@@ -20,10 +39,11 @@ const GUARANTEE_FIGURES: [&str; 8] = [
     "m1_crossing_edges",
     "m1_pierced_faces",
 ];
-/// Top left, two tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
+/// Top left, tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
 /// the collision marks and the framework) and the Body (partition tint, landmarks, rings,
 /// partition bounds, dress forms, sections; labels on hover, the partition legend a table
-/// in its own tab); below them a view of M1 on the body (patches coloured by the rule that refined them, its cut
+/// in its own tab), the Patterns (the pieces in 2D beside the garment by piece and by
+/// strain), the sculpt and NURBS views; below them a view of M1 on the body (patches coloured by the rule that refined them, its cut
 /// lines, its crossing edges before and after its collision), a close view of the collision
 /// (hits, response arrows, what is left; it frames itself on them) and one of the constraint
 /// network with the feature curves (solver iterations on the `iter` timeline); on the right
@@ -74,21 +94,7 @@ pub fn default_blueprint() -> Blueprint {
                         .with_origin("/")
                         .with_contents(["+ /sculpt/levels/**", "+ /sculpt/pick", "+ /sculpt/radius"])
                         .into(),
-                    // The pattern pieces in 2D (edges coloured by strain, seams, notches,
-                    // grain), beside the garment coloured by panel and by strain.
-                    Horizontal::new([
-                        Spatial2DView::new("Patterns").with_origin("/patterns/pieces").into(),
-                        Spatial3DView::new("Panels")
-                            .with_origin("/")
-                            .with_contents(["+ /body/mesh", "+ /patterns/garment/panels"])
-                            .into(),
-                        Spatial3DView::new("Pattern strain")
-                            .with_origin("/")
-                            .with_contents(["+ /patterns/garment/strain"])
-                            .into(),
-                    ])
-                    .with_column_shares([2.0, 1.0, 1.0])
-                    .into(),
+                    patterns_tab(),
                     // NURBS parts on the body, with their contacts.
                     Spatial3DView::new("NURBS")
                         .with_origin("/")
@@ -130,40 +136,45 @@ pub fn default_blueprint() -> Blueprint {
             ])
             .with_row_shares([3.0, 2.0])
             .into(),
-            Vertical::new([
-                // The guarantee's figures first (what the collision left, per step), then every
-                // figure of the steps by unit.
-                Tabs::new(
-                    std::iter::once(
-                        TimeSeriesView::new("Collision")
-                            .with_origin("/metrics/count/step")
-                            .with_contents(GUARANTEE_FIGURES.map(|f| format!("+ /metrics/count/step/{f}")))
-                            .into(),
-                    )
-                    .chain(METRIC_UNITS.iter().map(|(unit, title)| {
-                        TimeSeriesView::new(*title)
-                            .with_origin(format!("/metrics/{unit}"))
-                            .into()
-                    })),
-                )
-                .into(),
-                Tabs::new([
-                    TextLogView::new("Log").with_origin("/log").into(),
-                    TextDocumentView::new("Clearance scale")
-                        .with_origin("/legend/clearance")
-                        .into(),
-                    TextDocumentView::new("Partitions")
-                        .with_origin("/legend/partitions")
-                        .into(),
-                ])
-                .into(),
-            ])
-            .with_row_shares([1.0, 1.0])
-            .into(),
+            figures_and_log(),
         ])
         .with_column_shares([3.0, 1.0]),
     )
     .with_panels_collapsed("stage")
+}
+
+/// The right column: the guarantee's figures first (what the collision left, per step),
+/// then every figure of the steps by unit; below, the log with the clearance scale and the
+/// partition table.
+fn figures_and_log() -> rerun::blueprint::ContainerLike {
+    Vertical::new([
+        Tabs::new(
+            std::iter::once(
+                TimeSeriesView::new("Collision")
+                    .with_origin("/metrics/count/step")
+                    .with_contents(GUARANTEE_FIGURES.map(|f| format!("+ /metrics/count/step/{f}")))
+                    .into(),
+            )
+            .chain(METRIC_UNITS.iter().map(|(unit, title)| {
+                TimeSeriesView::new(*title)
+                    .with_origin(format!("/metrics/{unit}"))
+                    .into()
+            })),
+        )
+        .into(),
+        Tabs::new([
+            TextLogView::new("Log").with_origin("/log").into(),
+            TextDocumentView::new("Clearance scale")
+                .with_origin("/legend/clearance")
+                .into(),
+            TextDocumentView::new("Partitions")
+                .with_origin("/legend/partitions")
+                .into(),
+        ])
+        .into(),
+    ])
+    .with_row_shares([1.0, 1.0])
+    .into()
 }
 
 /// The [nurbs] experiment's layout: the near pose (the whole scene) above the crossing pose

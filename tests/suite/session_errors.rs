@@ -41,7 +41,7 @@ fn unsupported_version() {
 fn unknown_statement() {
     assert_eq!(
         error_of("drape 1\n  frobnicate y=1\n"),
-        "s.drape:2:3: unknown statement 'frobnicate': expected a scene statement (drape, body, units, landmark, solver, m1, log) or a step (mannequin, section, garment, set, drag, undo, cut, nurbs, move, sculpt)"
+        "s.drape:2:3: unknown statement 'frobnicate': expected a scene statement (drape, body, units, landmark, solver, m1, patterns, log) or a step (mannequin, section, garment, set, drag, undo, cut, nurbs, move, sculpt)"
     );
 }
 

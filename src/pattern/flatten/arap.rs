@@ -13,7 +13,7 @@
 use glam::{DMat2, DVec2, DVec3};
 
 use super::sparse::PinnedSystem;
-use super::{FlattenError, FlattenOptions, Flattening, Frames, boundary_half_edges};
+use super::types::{FlattenError, FlattenOptions, Flattening, Frames, boundary_half_edges};
 
 /// Runs ARAP from `start`.
 pub(crate) fn arap(

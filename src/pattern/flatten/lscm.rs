@@ -8,7 +8,7 @@
 use glam::{DVec2, DVec3};
 
 use super::sparse::PinnedSystem;
-use super::{FlattenError, Frames, boundary_half_edges, signed_area};
+use super::types::{FlattenError, Frames, boundary_half_edges, signed_area};
 
 /// The conformal start of a panel, scaled so that its 2D area equals its 3D area.
 pub(crate) fn lscm(positions: &[DVec3], triangles: &[[u32; 3]], frames: &Frames) -> Result<Vec<DVec2>, FlattenError> {

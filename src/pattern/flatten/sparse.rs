@@ -7,7 +7,7 @@ use nalgebra::DVector;
 use nalgebra_sparse::factorization::CscCholesky;
 use nalgebra_sparse::{CooMatrix, CscMatrix};
 
-use super::FlattenError;
+use super::types::FlattenError;
 
 /// A factored system `K x = b` over the free unknowns, `K` the free block of a symmetric
 /// matrix; the pinned unknowns' columns kept to move their values to the right-hand side.

@@ -45,17 +45,13 @@ pub(super) fn run(
     let mut next = current.clone();
     state.history.push(current.clone());
     if points == 0 {
-        let message = format!(
-            "cut '{name}': the plane through ({:.4}, {:.4}, {:.4}) m misses the garment: edit refused",
-            plane.point.x, plane.point.y, plane.point.z
-        );
-        scope.refuse(
-            &message,
-            "garment.refused",
-            Stage::Garment(GarmentStage::CutRefused {
-                name,
-                message: &message,
-            }),
+        refuse(
+            scope,
+            name,
+            &format!(
+                "the plane through ({:.4}, {:.4}, {:.4}) m misses the garment",
+                plane.point.x, plane.point.y, plane.point.z
+            ),
         );
         return Ok(());
     }
@@ -87,10 +83,7 @@ pub(super) fn run(
         scope.emit("garment.cut", Stage::M1(M1Stage { outcome, m0 }));
     }
     // The cut line is a seam of the pattern from now on.
-    if let Some(options) = &cx.session.scene.patterns {
-        crate::session::flow::patterns::build_patterns(scope, &mut next, options);
-        crate::session::flow::patterns::emit_patterns(scope, &next);
-    }
+    patterns_again(scope, cx, &mut next);
     state.garment = Some(next);
     Ok(())
 }
@@ -154,23 +147,37 @@ pub(super) fn through(
     }
     state.history.push(current.clone());
     if let Some(why) = problem {
-        let message = format!("cut '{name}': {why}: edit refused");
-        scope.refuse(
-            &message,
-            "garment.refused",
-            Stage::Garment(GarmentStage::CutRefused {
-                name,
-                message: &message,
-            }),
-        );
+        refuse(scope, name, &why);
         return Ok(());
     }
     let mut next = current.clone();
     next.through_cuts.push((name.to_string(), vertices));
-    if let Some(options) = &cx.session.scene.patterns {
-        crate::session::flow::patterns::build_patterns(scope, &mut next, options);
-        crate::session::flow::patterns::emit_patterns(scope, &next);
-    }
+    patterns_again(scope, cx, &mut next);
     state.garment = Some(next);
     Ok(())
+}
+
+/// Refuses a cut named `name` because of `why`: logged and counted, the garment kept.
+fn refuse(scope: &mut StepScope<'_, '_, '_>, name: &str, why: &str) {
+    let message = format!("cut '{name}': {why}: edit refused");
+    scope.refuse(
+        &message,
+        "garment.refused",
+        Stage::Garment(GarmentStage::CutRefused {
+            name,
+            message: &message,
+        }),
+    );
+}
+
+/// The garment's pattern made again with its new cut line, when the scene has one.
+fn patterns_again(
+    scope: &mut StepScope<'_, '_, '_>,
+    cx: &crate::session::options::StepContext<'_>,
+    next: &mut crate::session::state::GarmentState,
+) {
+    if let Some(options) = &cx.session.scene.patterns {
+        crate::session::flow::patterns::build_patterns(scope, next, options);
+        crate::session::flow::patterns::emit_patterns(scope, next);
+    }
 }
