@@ -130,22 +130,62 @@ fn seam_chains(
     let mut chains = Vec::new();
     let mut runs: Vec<Vec<Vec<u32>>> = vec![Vec::new(); panels.len()];
     for (curve, pair, vertices, faces) in seams::chains(&edges, panel_of) {
-        let side = |s: usize| -> Vec<u32> {
-            let piece = &panels[pair[s] as usize];
-            vertices
-                .iter()
-                .enumerate()
-                .map(|(k, &v)| {
-                    let f = faces[k.min(faces.len() - 1)][s];
-                    seams::local_vertex(piece, input.triangles, f, v)
-                })
-                .collect()
+        // Each edge's ends on each side, taken in the face on that side; the chain broken
+        // where a side does not go on from the vertex it reached (another seam opened the
+        // panel there, so that one mesh vertex is two of the panel's).
+        let at = |k: usize, f: [u32; 2]| -> [[u32; 2]; 2] {
+            [0, 1].map(|s| {
+                let piece = &panels[pair[s] as usize];
+                [vertices[k], vertices[k + 1]].map(|v| seams::local_vertex(piece, input.triangles, f[s], v))
+            })
         };
-        let sides = [side(0), side(1)];
-        for s in 0..2 {
-            runs[pair[s] as usize].push(sides[s].clone());
+        let mut ends: Vec<[[u32; 2]; 2]> = Vec::with_capacity(faces.len());
+        for (k, f) in faces.iter().enumerate() {
+            let mut e = at(k, *f);
+            // Both sides in one panel (a slit): which face is which side follows the side
+            // the chain is on, not the faces' order.
+            if pair[0] == pair[1]
+                && let Some(last) = ends.last()
+                && (0..2).any(|s| e[s][0] != last[s][1])
+            {
+                let swapped = at(k, [f[1], f[0]]);
+                if (0..2).all(|s| swapped[s][0] == last[s][1]) {
+                    e = swapped;
+                }
+            }
+            ends.push(e);
         }
-        chains.push((curve, pair, vertices, sides));
+        // An edge whose two sides are the same edge of one panel did not open it.
+        let closed = |k: usize| pair[0] == pair[1] && ends[k][0] == ends[k][1];
+        let mut start = 0;
+        for k in 1..=ends.len() {
+            let breaks =
+                k == ends.len() || (0..2).any(|s| ends[k][s][0] != ends[k - 1][s][1]) || closed(k) != closed(k - 1);
+            if !breaks {
+                continue;
+            }
+            let part = &ends[start..k];
+            let sides = [0, 1].map(|s| {
+                let mut side: Vec<u32> = part.iter().map(|e| e[s][0]).collect();
+                side.push(part[part.len() - 1][s][1]);
+                side
+            });
+            let mesh_vertices = vertices[start..=k].to_vec();
+            let start_of = start;
+            start = k;
+            // A stretch of seam that runs into a panel without opening it (its two sides the
+            // same edges: a stray stretch of a curve inside) cuts nothing.
+            if closed(start_of) {
+                continue;
+            }
+            for s in 0..2 {
+                let run = &mut runs[pair[s] as usize];
+                if !run.contains(&sides[s]) {
+                    run.push(sides[s].clone());
+                }
+            }
+            chains.push((curve, pair, mesh_vertices, sides));
+        }
     }
     (chains, runs)
 }

@@ -50,6 +50,10 @@ pub struct SplitMesh {
 /// Distances below this (m) count as on the plane.
 const ON_PLANE: f64 = 1e-9;
 
+/// A vertex of a face to split nearer the plane than this fraction of its shortest edge is
+/// moved onto the plane.
+const SNAP: f64 = 0.1;
+
 impl SplitMesh {
     /// Splits the mesh along `cut`; returns the seam's edges (vertex pairs, smaller first,
     /// sorted).
@@ -115,14 +119,28 @@ impl SplitMesh {
     /// Splits faces `chosen` (and any face left with a split edge) by the plane through
     /// `point` with unit normal `n`; returns the edges left on the plane inside them.
     fn split_faces(&mut self, point: DVec3, n: DVec3, chosen: &[usize]) -> Vec<[u32; 2]> {
-        let d: Vec<f64> = self
-            .positions
-            .iter()
-            .map(|p| {
-                let x = (*p - point).dot(n);
-                if x.abs() < ON_PLANE { 0.0 } else { x }
-            })
-            .collect();
+        // A vertex nearer the plane than a tenth of its shortest edge is moved onto it, so
+        // that no split leaves a sliver (a triangle with an edge a hair long).
+        let mut shortest = vec![f64::INFINITY; self.positions.len()];
+        for t in &self.triangles {
+            for k in 0..3 {
+                let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+                let l = self.positions[a].distance(self.positions[b]);
+                shortest[a] = shortest[a].min(l);
+                shortest[b] = shortest[b].min(l);
+            }
+        }
+        let touched: std::collections::BTreeSet<u32> = chosen.iter().flat_map(|&f| self.triangles[f]).collect();
+        let mut d = Vec::with_capacity(self.positions.len());
+        for (v, p) in self.positions.iter_mut().enumerate() {
+            let x = (*p - point).dot(n);
+            if x.abs() < ON_PLANE || (touched.contains(&(v as u32)) && x.abs() < SNAP * shortest[v]) {
+                *p -= x * n;
+                d.push(0.0);
+            } else {
+                d.push(x);
+            }
+        }
         let crosses = |a: u32, b: u32| {
             (d[a as usize] < 0.0 && d[b as usize] > 0.0) || (d[a as usize] > 0.0 && d[b as usize] < 0.0)
         };

@@ -533,3 +533,22 @@ fn a_cut_through_picked_points_splits_a_piece_along_the_straight_line_between_th
         check_pattern(&format!("step {step}"), p, None);
     }
 }
+
+#[test]
+fn the_shirt_session_on_the_heavy_older_body_keeps_its_pieces_sewn_through_every_edit() {
+    // A cut across the left sleeve crosses its underarm seam (one mesh vertex, two of the
+    // piece's), then the sleeve is lifted: the sides of every seam must stay apart and sew.
+    let text = std::fs::read_to_string("assets/sessions/shirt.drape")
+        .expect("the shirt session")
+        .replace("\nm1\n", "\nm1\npatterns\n");
+    let c = run(&text, Some(Path::new("assets/bodies/female-old-heavy.obj")));
+    assert!(c.failures.is_empty(), "{:?}", c.failures);
+    assert!(
+        c.patterns
+            .iter()
+            .any(|(_, p)| p.seams.iter().any(|s| s.curve == "sleeve_line"))
+    );
+    for (step, p) in &c.patterns {
+        check_pattern(&format!("shirt session step {step}"), p, None);
+    }
+}

@@ -103,11 +103,48 @@ pub(crate) fn arap(
         }
         system.solve(&bu, &mut u);
         system.solve(&bv, &mut v);
-        if !runs.is_empty() {
+        if runs.is_empty() {
+            for (k, p) in uv.iter_mut().enumerate() {
+                *p = DVec2::new(u[k], v[k]);
+            }
+        } else {
             hold_lengths(&system, runs, &targets, &uv, &mut u, &mut v);
-        }
-        for (k, p) in uv.iter_mut().enumerate() {
-            *p = DVec2::new(u[k], v[k]);
+            // The held lengths are linearised about the current directions, so a whole step
+            // can overshoot and the iteration cycle: step back along it until the merit
+            // (the ARAP energy at its best rotations plus the squared length errors) does
+            // not rise; stop where no step lowers it.
+            let candidate: Vec<DVec2> = (0..n).map(|k| DVec2::new(u[k], v[k])).collect();
+            let merit = |at: &[DVec2]| -> f64 {
+                let mut turns = vec![DMat2::IDENTITY; triangles.len()];
+                local_step(triangles, frames, at, &mut turns);
+                let held: f64 = runs
+                    .iter()
+                    .zip(&targets)
+                    .map(|(r, l)| {
+                        let got: f64 = r
+                            .windows(2)
+                            .map(|w| at[w[0] as usize].distance(at[w[1] as usize]))
+                            .sum();
+                        (got - l).powi(2)
+                    })
+                    .sum();
+                arap_energy(triangles, frames, at, &turns) + HELD * held
+            };
+            let here = merit(&uv);
+            let mut step = 1.0;
+            let mut moved = false;
+            for _ in 0..8 {
+                let trial: Vec<DVec2> = uv.iter().zip(&candidate).map(|(a, b)| *a + step * (*b - *a)).collect();
+                if merit(&trial) <= here {
+                    uv = trial;
+                    moved = true;
+                    break;
+                }
+                step *= 0.5;
+            }
+            if !moved {
+                break;
+            }
         }
         iterations += 1;
     }
@@ -149,6 +186,10 @@ fn spring_energy(springs: &[(usize, usize, f64)], directions: &[DVec2], uv: &[DV
         .map(|(&(i, j, l), d)| 0.5 * w * ((uv[i] - uv[j]) - l * *d).length_squared())
         .sum()
 }
+
+/// Weight of the squared length errors of the held runs in the merit the constrained steps
+/// must not raise (against the ARAP energy, whose weights are about 1).
+const HELD: f64 = 1e3;
 
 /// Moves the global step's solution `(u, v)` to the nearest point (in the system's own
 /// norm) where every run's length measured along its edges' current directions is its 3D
