@@ -148,3 +148,19 @@ impl Adjacency {
         self.neighbours[t].iter().position(|&n| n == other)
     }
 }
+
+/// Per vertex, the shortest and the longest of its edges (`[INFINITY, 0]` for a vertex of no
+/// triangle).
+pub fn incident_edge_extremes(positions: &[glam::DVec3], triangles: &[[u32; 3]]) -> Vec<[f64; 2]> {
+    let mut out = vec![[f64::INFINITY, 0.0]; positions.len()];
+    for t in triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let l = positions[a].distance(positions[b]);
+            for v in [a, b] {
+                out[v] = [out[v][0].min(l), out[v][1].max(l)];
+            }
+        }
+    }
+    out
+}

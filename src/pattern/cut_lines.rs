@@ -121,20 +121,12 @@ impl SplitMesh {
     fn split_faces(&mut self, point: DVec3, n: DVec3, chosen: &[usize]) -> Vec<[u32; 2]> {
         // A vertex nearer the plane than a tenth of its shortest edge is moved onto it, so
         // that no split leaves a sliver (a triangle with an edge a hair long).
-        let mut shortest = vec![f64::INFINITY; self.positions.len()];
-        for t in &self.triangles {
-            for k in 0..3 {
-                let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-                let l = self.positions[a].distance(self.positions[b]);
-                shortest[a] = shortest[a].min(l);
-                shortest[b] = shortest[b].min(l);
-            }
-        }
+        let edges = crate::mesh::topology::incident_edge_extremes(&self.positions, &self.triangles);
         let touched: std::collections::BTreeSet<u32> = chosen.iter().flat_map(|&f| self.triangles[f]).collect();
         let mut d = Vec::with_capacity(self.positions.len());
         for (v, p) in self.positions.iter_mut().enumerate() {
             let x = (*p - point).dot(n);
-            if x.abs() < ON_PLANE || (touched.contains(&(v as u32)) && x.abs() < SNAP * shortest[v]) {
+            if x.abs() < ON_PLANE || (touched.contains(&(v as u32)) && x.abs() < SNAP * edges[v][0]) {
                 *p -= x * n;
                 d.push(0.0);
             } else {

@@ -106,15 +106,7 @@ pub(super) fn through(
         return Err(StepError::NoGarment { verb: "cut" });
     };
     let mesh = &collided.collision.mesh;
-    let mut longest = vec![0.0_f64; mesh.positions.len()];
-    for t in &mesh.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-            let l = mesh.positions[a].distance(mesh.positions[b]);
-            longest[a] = longest[a].max(l);
-            longest[b] = longest[b].max(l);
-        }
-    }
+    let edges = crate::mesh::topology::incident_edge_extremes(&mesh.positions, &mesh.triangles);
     let mut vertices: Vec<u32> = Vec::with_capacity(points.len());
     let mut problem = None;
     for p in points {
@@ -126,7 +118,7 @@ pub(super) fn through(
         });
         let Some(v) = nearest else { break };
         let d = mesh.positions[v].distance(*p);
-        if d > longest[v] {
+        if d > edges[v][1] {
             problem = Some(format!(
                 "the point ({:.4}, {:.4}, {:.4}) m is {:.1} mm from the garment",
                 p.x,
