@@ -10,6 +10,8 @@
 
 use glam::DVec3;
 
+use crate::geom::closest::closest_on_segment;
+
 /// The curves of the edges between patches.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct EdgeCurves {
@@ -113,15 +115,7 @@ fn polyline_distance(poly: &[DVec3], p: DVec3) -> f64 {
         [q] => q.distance(p),
         _ => poly
             .windows(2)
-            .map(|w| {
-                let d = w[1] - w[0];
-                let t = if d.length_squared() > 0.0 {
-                    ((p - w[0]).dot(d) / d.length_squared()).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                (w[0] + t * d).distance(p)
-            })
+            .map(|w| closest_on_segment(p, w[0], w[1]).0.distance(p))
             .fold(f64::INFINITY, f64::min),
     }
 }

@@ -192,10 +192,11 @@ pub(crate) fn point_at(xyz: &[DVec3], uv: &[DVec2], points: &[u32], t: f64) -> (
     let total = length_3d(xyz, points);
     let target = t * total;
     let mut run = 0.0;
-    for w in points.windows(2) {
+    let last = points.len().saturating_sub(2);
+    for (k, w) in points.windows(2).enumerate() {
         let (a, b) = (w[0] as usize, w[1] as usize);
         let l = xyz[a].distance(xyz[b]);
-        if run + l >= target || std::ptr::eq(w.as_ptr(), points[points.len() - 2..].as_ptr()) {
+        if run + l >= target || k == last {
             let s = if l > 0.0 {
                 ((target - run) / l).clamp(0.0, 1.0)
             } else {
