@@ -30,6 +30,10 @@ pub fn build(
     // The mesh split along the cut lines, and each cut's seam edges.
     let mut split = cut_lines::SplitMesh {
         positions: input.positions.to_vec(),
+        surfaced: match input.surfaced {
+            Some(s) if s.len() == input.positions.len() => s.to_vec(),
+            _ => input.positions.to_vec(),
+        },
         triangles: input.triangles.to_vec(),
         face_patch: input.face_patch.to_vec(),
     };
@@ -38,10 +42,11 @@ pub fn build(
         positions: &split.positions,
         triangles: &split.triangles,
         face_patch: &split.face_patch,
+        surfaced: Some(&split.surfaced),
         ..*input
     };
     let (names, seam_curves, chosen) = seam_choice(input, options)?;
-    let labels = labels::label_edges(input.positions, input.triangles, input.face_patch, input.curves);
+    let labels = labels::label_edges(&split.surfaced, input.triangles, input.face_patch, input.curves);
     // Cut lines are seams, each under its own name after the curves'.
     let mut cut_of: BTreeMap<[u32; 2], u32> = BTreeMap::new();
     for (k, edges) in cut_edges.iter().enumerate() {

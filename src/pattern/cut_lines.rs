@@ -41,6 +41,9 @@ pub struct CutLine {
 pub struct SplitMesh {
     /// Positions, m.
     pub positions: Vec<DVec3>,
+    /// A second position per vertex carried along (the surfaced mesh's): a new vertex gets
+    /// the point at its edge's same fraction.
+    pub surfaced: Vec<DVec3>,
     /// Triangles.
     pub triangles: Vec<[u32; 3]>,
     /// The patch of each triangle.
@@ -172,8 +175,10 @@ impl SplitMesh {
             let (da, db) = (d[a as usize], d[b as usize]);
             let s = da / (da - db);
             let p = self.positions[a as usize].lerp(self.positions[b as usize], s);
+            let q = self.surfaced[a as usize].lerp(self.surfaced[b as usize], s);
             new_vertex.insert([a, b], self.positions.len() as u32);
             self.positions.push(p);
+            self.surfaced.push(q);
         }
         let on = |v: u32| v as usize >= d.len() || d[v as usize] == 0.0;
         let mut seam = Vec::new();
@@ -262,6 +267,7 @@ mod tests {
                 m.face_patch.extend([0, 0]);
             }
         }
+        m.surfaced = m.positions.clone();
         m
     }
 

@@ -44,7 +44,8 @@ const ALONG: f64 = 0.02;
 const BOW: f64 = 0.25;
 
 /// Labels the edges between patches of a mesh (`face_patch` per triangle) with the curves
-/// (`(name, polyline)`) they lie on.
+/// (`(name, polyline)`) they lie on, its vertices at `positions`: where the patches were
+/// surfaced (their boundary samples on the curves), not where a collision moved them.
 pub fn label_edges(
     positions: &[DVec3],
     triangles: &[[u32; 3]],

@@ -73,6 +73,12 @@ pub struct PatternInput<'a> {
     pub face_patch: &'a [u32],
     /// Patch names, by index.
     pub patch_names: &'a [String],
+    /// Where each vertex stood before the collision moved it (the surfaced mesh, whose
+    /// patch boundaries are the curves' own samples), index for index with `positions`:
+    /// the edges between patches are matched with their curves there, as a response can
+    /// move a boundary vertex farther off its curve than an edge is long. `None`: the
+    /// positions themselves.
+    pub surfaced: Option<&'a [DVec3]>,
     /// The feature curves as polylines, by name.
     pub curves: &'a [(String, Vec<DVec3>)],
     /// The user's cut lines: seams too, the mesh split along them first.

@@ -42,7 +42,7 @@ pub struct FlattenOptions {
     /// cotangent weights are about 1 (default 0: the seams' lengths are held exactly
     /// instead, see [`flatten`]'s `runs`).
     pub boundary_weight: f64,
-    /// ARAP iterations at most (default 300).
+    /// ARAP iterations at most, free and then with the seams held, each (default 300).
     pub max_iterations: usize,
     /// ARAP stops when an iteration lowers the energy by less than this fraction of it
     /// (default 1e-6).

@@ -43,12 +43,22 @@ pub(in crate::session) fn build_patterns(
     };
     let curves = fw.curve_polylines();
     let cuts = cut_lines(state);
+    // M1 before its collision stands on the collided M0: M0's own vertices (M1's first)
+    // taken back to where they were surfaced.
+    let m0_surfaced = &outcome.garment.mesh.positions;
+    let m1_surfaced: Option<Vec<_>> = state.m1.as_ref().map(|m1| {
+        let mut p = m1.m1.mesh.positions.clone();
+        let n = m0_surfaced.len().min(p.len());
+        p[..n].copy_from_slice(&m0_surfaced[..n]);
+        p
+    });
     let input = match (options.source, &state.m1) {
         (Source::M1, Some(m1)) => PatternInput {
             template: fw.template.name(),
             positions: &m1.collision.positions,
             triangles: &m1.m1.mesh.triangles,
             face_patch: &m1.m1.face_patch,
+            surfaced: m1_surfaced.as_deref(),
             patch_names: &fw.m0.patch_names,
             curves: &curves,
             cuts: &cuts,
@@ -58,6 +68,7 @@ pub(in crate::session) fn build_patterns(
             positions: &outcome.collision.mesh.positions,
             triangles: &outcome.garment.mesh.triangles,
             face_patch: &outcome.garment.face_patch,
+            surfaced: Some(m0_surfaced),
             patch_names: &fw.m0.patch_names,
             curves: &curves,
             cuts: &cuts,
