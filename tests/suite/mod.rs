@@ -1,4 +1,5 @@
 mod bodies;
+mod capture;
 mod collision;
 mod common;
 mod constraints;

@@ -14,7 +14,7 @@ use crate::failure::{Classify, Result};
 pub(crate) fn flatten(args: &FlattenArgs) -> Result<ExitCode> {
     let options = FlattenOptions {
         method: Method::from_name(&args.method).unwrap_or_default(),
-        ..FlattenOptions::default()
+        ..FlattenOptions::free()
     };
     if !args.json {
         println!(

@@ -180,7 +180,8 @@ impl<'a> Solver<'a> {
 
     /// The held lengths are linearised about the current directions, so a whole step can
     /// overshoot and the iteration cycle: the step from `uv` to `candidate` is halved until
-    /// the merit (the ARAP energy at its best rotations plus the squared length errors)
+    /// the merit (the ARAP and spring energies at their best rotations and directions, plus
+    /// the squared length errors)
     /// does not rise and no triangle upright at `uv` is turned over; `None` when no such
     /// step is found.
     fn step_back(&self, uv: &[DVec2], candidate: &[DVec2], held: &Held<'_>) -> Option<Vec<DVec2>> {
@@ -201,7 +202,13 @@ impl<'a> Solver<'a> {
                     (got - l).powi(2)
                 })
                 .sum();
-            arap_energy(triangles, self.frames, at, &turns) + HELD * errors
+            // The springs at their best directions (each edge's own).
+            let springs: f64 = self
+                .springs
+                .iter()
+                .map(|&(i, j, l)| 0.5 * self.options.boundary_weight * (at[i].distance(at[j]) - l).powi(2))
+                .sum();
+            arap_energy(triangles, self.frames, at, &turns) + springs + HELD * errors
         };
         let here = merit(uv);
         let upright: Vec<bool> = triangles.iter().map(|t| area(uv, t) > 0.0).collect();

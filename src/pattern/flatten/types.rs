@@ -39,13 +39,17 @@ pub struct FlattenOptions {
     /// The method (default [`Method::Arap`]).
     pub method: Method,
     /// Weight of a length spring on every boundary edge against the ARAP terms, whose
-    /// cotangent weights are about 1 (default 0: the seams' lengths are held exactly
-    /// instead, see [`flatten`]'s `runs`).
+    /// cotangent weights are about 1 (default 1). The seams' lengths are held exactly
+    /// besides (see [`flatten`](super::flatten)'s `runs`); the springs keep each boundary
+    /// edge near its own length, so that the held lengths do not bunch at a corner:
+    /// measured on the demo's jumpsuit on five bodies (`cargo bench --bench patterns`),
+    /// weight 1 lowers the largest strain by up to 7 points at the same mean strain.
     pub boundary_weight: f64,
     /// ARAP iterations at most, free and then with the seams held, each (default 300).
     pub max_iterations: usize,
     /// ARAP stops when an iteration lowers the energy by less than this fraction of it
-    /// (default 1e-6).
+    /// (default 1e-4: on the demo's jumpsuit on five bodies, the same mean strain to 0.01
+    /// points and seams within 0.0001 mm as at 1e-6, in half the time).
     pub tolerance: f64,
 }
 
@@ -53,9 +57,21 @@ impl Default for FlattenOptions {
     fn default() -> Self {
         Self {
             method: Method::Arap,
-            boundary_weight: 0.0,
+            boundary_weight: 1.0,
             max_iterations: 300,
+            tolerance: 1e-4,
+        }
+    }
+}
+
+impl FlattenOptions {
+    /// LSCM then ARAP with a free boundary (no springs) to a relative energy change of
+    /// 1e-6: the question libigl's `arap_solve` answers, for comparing with it.
+    pub fn free() -> Self {
+        Self {
+            boundary_weight: 0.0,
             tolerance: 1e-6,
+            ..Self::default()
         }
     }
 }
