@@ -51,28 +51,6 @@ fn jumpsuit(body: &Body, probe: &BodyProbe, resolution: usize) -> (GarmentMesh, 
     (GarmentMesh::from_framework(&fw, probe.index().height), fw.ease())
 }
 
-/// The mesh with every triangle split into four at its edge midpoints (the same surface).
-fn split_flat(mesh: &TriMesh) -> TriMesh {
-    let mut positions = mesh.positions.clone();
-    let mut mid = std::collections::BTreeMap::new();
-    let mut at = |a: u32, b: u32, positions: &mut Vec<DVec3>| {
-        *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
-            positions.push(0.5 * (positions[a as usize] + positions[b as usize]));
-            (positions.len() - 1) as u32
-        })
-    };
-    let mut triangles = Vec::with_capacity(4 * mesh.triangles.len());
-    for &[a, b, c] in &mesh.triangles {
-        let (ab, bc, ca) = (
-            at(a, b, &mut positions),
-            at(b, c, &mut positions),
-            at(c, a, &mut positions),
-        );
-        triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
-    }
-    TriMesh { positions, triangles }
-}
-
 /// Exact signed distance of every point over the whole body (on the worker threads).
 fn signed(index: &BodyIndex, points: &[DVec3]) -> Vec<f64> {
     let reach = f64::INFINITY;
@@ -282,7 +260,7 @@ fn main() {
     let mut scaling = Vec::new();
     for factor in [1, 4, 16] {
         if factor > 1 {
-            scaled = split_flat(&scaled);
+            scaled = scaled.split_in_four();
         }
         let start = Instant::now();
         let flat = BodyIndex::from_mesh(&scaled).expect("the split body is manifold");

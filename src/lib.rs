@@ -34,6 +34,7 @@ pub mod constraint;
 pub mod convergence;
 pub mod garment;
 pub mod geom;
+pub mod import;
 pub mod input;
 pub mod m1;
 pub mod mannequin;

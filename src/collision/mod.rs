@@ -90,17 +90,7 @@ impl GarmentMesh {
         let m0 = &fw.m0;
         let n = m0.mesh.positions.len();
         // Openings: the ends of edges with a face on one side only.
-        let mut boundary = vec![false; n];
-        if let Ok(adjacency) = crate::mesh::Adjacency::try_new(&m0.mesh) {
-            for (tri, across) in m0.mesh.triangles.iter().zip(&adjacency.neighbours) {
-                for k in 0..3 {
-                    if across[k] == crate::mesh::topology::NO_NEIGHBOUR {
-                        boundary[tri[k] as usize] = true;
-                        boundary[tri[(k + 1) % 3] as usize] = true;
-                    }
-                }
-            }
-        }
+        let boundary = crate::mesh::topology::boundary_vertices(&m0.mesh);
         let tol = 1e-9 * height;
         let ring_normal = m0
             .mesh

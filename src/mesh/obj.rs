@@ -142,7 +142,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
 }
 
 /// The coordinates of a `v` line (after its keyword), scaled to metres.
-fn vertex<'t>(
+pub(super) fn vertex<'t>(
     mut tokens: impl Iterator<Item = (usize, &'t str)>,
     line: usize,
     scale: f64,
@@ -214,7 +214,7 @@ fn face<'t>(
 }
 
 /// Whitespace-separated tokens with their 1-based byte columns.
-fn tokens_with_columns(line: &str) -> impl Iterator<Item = (usize, &str)> {
+pub(super) fn tokens_with_columns(line: &str) -> impl Iterator<Item = (usize, &str)> {
     line.split_ascii_whitespace()
         .map(move |token| (token.as_ptr() as usize - line.as_ptr() as usize + 1, token))
 }

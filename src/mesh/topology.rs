@@ -164,3 +164,20 @@ pub fn incident_edge_extremes(positions: &[glam::DVec3], triangles: &[[u32; 3]])
     }
     out
 }
+
+/// Whether each vertex of `mesh` is on its boundary (an end of an edge with one triangle);
+/// all `false` for a mesh with an edge of three or more triangles.
+pub fn boundary_vertices(mesh: &TriMesh) -> Vec<bool> {
+    let mut boundary = vec![false; mesh.positions.len()];
+    if let Ok(adjacency) = Adjacency::try_new(mesh) {
+        for (tri, across) in mesh.triangles.iter().zip(&adjacency.neighbours) {
+            for k in 0..3 {
+                if across[k] == NO_NEIGHBOUR {
+                    boundary[tri[k] as usize] = true;
+                    boundary[tri[(k + 1) % 3] as usize] = true;
+                }
+            }
+        }
+    }
+    boundary
+}

@@ -68,6 +68,45 @@ impl TriMesh {
         normals.iter().map(|n| n.normalize_or_zero()).collect()
     }
 
+    /// Every triangle split into four at its edges' midpoints (the same surface, each
+    /// shared midpoint once): the new vertices after the old, in first-met order.
+    pub fn split_in_four(&self) -> Self {
+        let mut positions = self.positions.clone();
+        let mut mid = std::collections::BTreeMap::new();
+        let mut at = |a: u32, b: u32, positions: &mut Vec<DVec3>| {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                positions.push(0.5 * (positions[a as usize] + positions[b as usize]));
+                (positions.len() - 1) as u32
+            })
+        };
+        let mut triangles = Vec::with_capacity(4 * self.triangles.len());
+        for &[a, b, c] in &self.triangles {
+            let (ab, bc, ca) = (
+                at(a, b, &mut positions),
+                at(b, c, &mut positions),
+                at(c, a, &mut positions),
+            );
+            triangles.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        Self { positions, triangles }
+    }
+
+    /// `false` for a mesh with an edge of three or more triangles.
+    pub fn boundary_vertices(&self) -> Vec<bool> {
+        let mut boundary = vec![false; self.positions.len()];
+        if let Ok(adjacency) = super::Adjacency::try_new(self) {
+            for (tri, across) in self.triangles.iter().zip(&adjacency.neighbours) {
+                for k in 0..3 {
+                    if across[k] == super::topology::NO_NEIGHBOUR {
+                        boundary[tri[k] as usize] = true;
+                        boundary[tri[(k + 1) % 3] as usize] = true;
+                    }
+                }
+            }
+        }
+        boundary
+    }
+
     /// Positions as `f32` triples (for display and export).
     pub fn positions_f32(&self) -> Vec<[f32; 3]> {
         self.positions.iter().map(|p| p.as_vec3().to_array()).collect()

@@ -236,6 +236,48 @@ fn orient(
     lines: &[usize],
     place: &str,
 ) -> Result<(usize, usize), MeshError> {
+    let (mut flipped, parts) = consistent_parts(mesh, adjacency, lines, place)?;
+    for (tri, &flip) in mesh.triangles.iter_mut().zip(&flipped) {
+        if flip {
+            tri.swap(1, 2);
+        }
+    }
+    // Each part faces outward when its enclosed volume is positive.
+    for members in &parts {
+        let volume: f64 = members
+            .iter()
+            .map(|&t| {
+                let [a, b, c] = mesh.corners(t);
+                a.dot(b.cross(c))
+            })
+            .sum();
+        if volume < 0.0 {
+            for &t in members {
+                mesh.triangles[t].swap(1, 2);
+                flipped[t] = !flipped[t];
+            }
+        }
+    }
+    // A flip swaps corners 1 and 2, so edges 0 (v0 v1) and 2 (v2 v0) trade places and
+    // edge 1 is reversed: the neighbour across each edge moves with it.
+    for (neighbours, &flip) in adjacency.neighbours.iter_mut().zip(&flipped) {
+        if flip {
+            neighbours.swap(0, 2);
+        }
+    }
+    Ok((flipped.iter().filter(|f| **f).count(), parts.len()))
+}
+
+/// The edge-connected parts of `mesh` and, per triangle, whether it must be flipped to
+/// agree with the first triangle of its part (breadth-first: a neighbour must run the
+/// shared edge the other way). `lines` (the source line of each triangle) and `place` name
+/// a part that cannot be oriented.
+pub(crate) fn consistent_parts(
+    mesh: &TriMesh,
+    adjacency: &Adjacency,
+    lines: &[usize],
+    place: &str,
+) -> Result<(Vec<bool>, Vec<Vec<usize>>), MeshError> {
     let n = mesh.triangles.len();
     let mut component = vec![u32::MAX; n];
     let mut flipped = vec![false; n];
@@ -277,35 +319,7 @@ fn orient(
         }
         parts.push(members);
     }
-    for (tri, &flip) in mesh.triangles.iter_mut().zip(&flipped) {
-        if flip {
-            tri.swap(1, 2);
-        }
-    }
-    // Each part faces outward when its enclosed volume is positive.
-    for members in &parts {
-        let volume: f64 = members
-            .iter()
-            .map(|&t| {
-                let [a, b, c] = mesh.corners(t);
-                a.dot(b.cross(c))
-            })
-            .sum();
-        if volume < 0.0 {
-            for &t in members {
-                mesh.triangles[t].swap(1, 2);
-                flipped[t] = !flipped[t];
-            }
-        }
-    }
-    // A flip swaps corners 1 and 2, so edges 0 (v0 v1) and 2 (v2 v0) trade places and
-    // edge 1 is reversed: the neighbour across each edge moves with it.
-    for (neighbours, &flip) in adjacency.neighbours.iter_mut().zip(&flipped) {
-        if flip {
-            neighbours.swap(0, 2);
-        }
-    }
-    Ok((flipped.iter().filter(|f| **f).count(), parts.len()))
+    Ok((flipped, parts))
 }
 
 /// Closes every boundary loop of the consistently oriented `mesh` with a fan about a new

@@ -2,6 +2,7 @@
 //! the mannequin refinements.
 
 mod args;
+mod check_garment;
 mod edit;
 mod failure;
 mod files;
@@ -55,6 +56,7 @@ fn main() -> ExitCode {
         Some(Command::Stress(args)) => stress::stress(&args),
         Some(Command::Edit(args)) => edit::edit(&args),
         Some(Command::Flatten(args)) => flatten::flatten(&args),
+        Some(Command::CheckGarment(args)) => check_garment::check_garment(&args),
     };
     match result {
         Ok(code) => code,
