@@ -91,22 +91,6 @@ impl TriMesh {
         Self { positions, triangles }
     }
 
-    /// `false` for a mesh with an edge of three or more triangles.
-    pub fn boundary_vertices(&self) -> Vec<bool> {
-        let mut boundary = vec![false; self.positions.len()];
-        if let Ok(adjacency) = super::Adjacency::try_new(self) {
-            for (tri, across) in self.triangles.iter().zip(&adjacency.neighbours) {
-                for k in 0..3 {
-                    if across[k] == super::topology::NO_NEIGHBOUR {
-                        boundary[tri[k] as usize] = true;
-                        boundary[tri[(k + 1) % 3] as usize] = true;
-                    }
-                }
-            }
-        }
-        boundary
-    }
-
     /// Positions as `f32` triples (for display and export).
     pub fn positions_f32(&self) -> Vec<[f32; 3]> {
         self.positions.iter().map(|p| p.as_vec3().to_array()).collect()
