@@ -18,6 +18,9 @@ use glam::DVec3;
 
 #[path = "../tests/suite/capture.rs"]
 mod capture;
+#[path = "write_figures.rs"]
+mod write_figures;
+use write_figures::write_block;
 #[path = "timing.rs"]
 mod timing;
 use capture::{Collect, run};
@@ -168,18 +171,4 @@ fn main() {
     if std::env::args().any(|a| a == "--write") {
         write_block("docs/patterns.md", "pattern-settings", &out);
     }
-}
-
-/// Replaces the text between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->` in `path`.
-fn write_block(path: &str, name: &str, body: &str) {
-    let text = std::fs::read_to_string(path).expect("the docs page");
-    let (open, close) = (
-        format!("<!-- figures:{name} -->\n"),
-        format!("<!-- /figures:{name} -->"),
-    );
-    let start = text.find(&open).expect("the opening marker") + open.len();
-    let end = text.find(&close).expect("the closing marker");
-    let updated = format!("{}{body}{}", &text[..start], &text[end..]);
-    std::fs::write(path, updated).expect("the docs page written");
-    println!("{path}: figures:{name} rewritten");
 }

@@ -1,0 +1,102 @@
+//! check-garment benchmark: garments drape did not build, on every shipped body, counted,
+//! repaired and counted again, timed on one worker thread.
+//!
+//! `taskset -c 0 cargo bench --bench check_garment` makes, per body, the band of its own
+//! surface from 62% to 80% of its height (above the hands of a body in an A pose), offset
+//! 6 mm outward, with 12 bumps pushing it up to 2 cm into the body (tests/suite/offset_garment.rs), at the body's resolution and
+//! split finer until it has at least 50,000 vertices; writes it as an OBJ as a garment tool
+//! would, and times what `drape check-garment` does with it once the body is loaded (read
+//! and parse the file, weld and orient, count, repair, certify, write the repaired file):
+//! the median of 3. Columns: the exact counts before and after (vertices inside, edges
+//! crossing, faces pierced), the deepest point before, the vertices moved, the time.
+//! `-- --write` puts the table into docs/import.md; `-- --keep` keeps the garments (and
+//! their repairs) and prints where.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
+use drape::collision::{BodyIndex, SliceOptions};
+use drape::import::{CheckOptions, Checked, ImportedGarment, check};
+use drape::mesh::ObjDocument;
+
+#[path = "write_figures.rs"]
+mod write_figures;
+use write_figures::write_block;
+#[path = "../tests/suite/offset_garment.rs"]
+mod offset_garment;
+use offset_garment::{offset_band, to_obj};
+
+fn main() {
+    drape::par::set_threads(1);
+    let mut bodies: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
+        .expect("assets/bodies")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
+        .collect();
+    bodies.sort();
+    let dir = std::env::temp_dir().join(format!("drape-bench-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("a scratch folder");
+    let mut out = String::from(
+        "| body | garment vertices | faces | before: inside / crossing / pierced | deepest mm | after: inside / crossing / pierced | moved | status | ms |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    for path in &bodies {
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("?").to_string();
+        let mesh = BodyMesh::load(&BodySource::File(path.clone()), 1.0).expect("the body loads");
+        let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("analysed");
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let h = body.mesh.height();
+        let base = body.mesh.mesh.bounds().map_or(0.0, |(lo, _)| lo.y);
+        let band = (base + 0.62 * h, base + 0.80 * h);
+        for splits in [0, 1, 2, 3] {
+            let (garment, _) = offset_band(&body.mesh.mesh, band, splits, 0.006, (12, 0.02, 7));
+            let file = dir.join(format!("{name}-{splits}.obj"));
+            std::fs::write(&file, to_obj(&garment)).expect("written");
+            let repaired = dir.join(format!("{name}-{splits}.repaired.obj"));
+            let mut last: Option<Checked> = None;
+            let mut times = Vec::new();
+            for _ in 0..3 {
+                let start = Instant::now();
+                let doc = ObjDocument::read(&file, 1.0, u64::MAX).expect("the garment reads");
+                let imported = ImportedGarment::new(doc, &body.mesh.mesh, &index).expect("the garment imports");
+                let checked = check(&imported, &index, &CheckOptions::default());
+                let text = imported.doc.write(&checked.positions, &checked.moved);
+                std::fs::write(&repaired, text).expect("written");
+                times.push(start.elapsed().as_secs_f64() * 1e3);
+                last = Some(checked);
+            }
+            times.sort_by(f64::total_cmp);
+            let r = last.expect("checked").report;
+            let (b, a) = (&r.before, &r.after);
+            let row = format!(
+                "| {name} | {} | {} | {} / {} / {} | {:.1} | {} / {} / {} | {} | {:?} | {:.0} |\n",
+                garment.positions.len(),
+                garment.triangles.len(),
+                b.inside_vertices,
+                b.crossing_edges,
+                b.pierced_faces,
+                b.deepest_m * 1e3,
+                a.inside_vertices,
+                a.crossing_edges,
+                a.pierced_faces,
+                r.moved_vertices,
+                r.status,
+                times[1]
+            );
+            print!("{row}");
+            out += &row;
+            if garment.positions.len() >= 50_000 {
+                break;
+            }
+        }
+    }
+    if std::env::args().any(|a| a == "--keep") {
+        println!("the garments and their repairs: {}", dir.display());
+    } else {
+        std::fs::remove_dir_all(&dir).ok();
+    }
+    println!("\n{out}");
+    if std::env::args().any(|a| a == "--write") {
+        write_block("docs/import.md", "check-garment", &out);
+    }
+}
