@@ -12,7 +12,6 @@
 //! `-- --write` puts the table into docs/import.md; `-- --keep` keeps the garments (and
 //! their repairs) and prints where.
 
-use std::path::PathBuf;
 use std::time::Instant;
 
 use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
@@ -20,6 +19,9 @@ use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, Checked, ImportedGarment, check};
 use drape::mesh::ObjDocument;
 
+#[path = "bodies.rs"]
+mod bodies;
+use bodies::shipped_bodies;
 #[path = "write_figures.rs"]
 mod write_figures;
 use write_figures::write_block;
@@ -29,12 +31,7 @@ use offset_garment::{offset_band, to_obj};
 
 fn main() {
     drape::par::set_threads(1);
-    let mut bodies: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
-        .expect("assets/bodies")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    bodies.sort();
+    let bodies = shipped_bodies();
     let dir = std::env::temp_dir().join(format!("drape-bench-check-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch folder");
     let mut out = String::from(

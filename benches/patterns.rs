@@ -11,13 +11,16 @@
 //! thread (`taskset -c 0 cargo bench --bench patterns` for one core); `-- --write` puts the
 //! tables into docs/patterns.md.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use drape::pattern::{self, CutLine, CutShape, FlattenOptions, Method, Pattern, PatternOptions};
 use glam::DVec3;
 
+#[path = "bodies.rs"]
+mod bodies;
 #[path = "../tests/suite/capture.rs"]
 mod capture;
+use bodies::shipped_bodies;
 #[path = "write_figures.rs"]
 mod write_figures;
 use write_figures::write_block;
@@ -87,12 +90,7 @@ fn row(body: &str, setting: &str, r: &Row) -> String {
 
 fn main() {
     drape::par::set_threads(1);
-    let mut bodies: Vec<PathBuf> = std::fs::read_dir("assets/bodies")
-        .expect("assets/bodies")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "obj"))
-        .collect();
-    bodies.sort();
+    let bodies = shipped_bodies();
     let defaults = FlattenOptions::default();
     let settings: Vec<(String, FlattenOptions)> = [
         (

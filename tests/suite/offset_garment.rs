@@ -78,24 +78,23 @@ pub fn offset_band(
 /// `vn` per vertex, then the faces in two groups (front `z >= 0` and back) with a material
 /// each, corners `v/vt/vn`.
 pub fn to_obj(mesh: &TriMesh) -> String {
-    use std::fmt::Write as _;
     let mut s = String::from("# a garment made by another tool\nmtllib garment.mtl\n");
     for p in &mesh.positions {
-        writeln!(s, "v {} {} {}", p.x, p.y, p.z).unwrap();
+        s += &format!("v {} {} {}\n", p.x, p.y, p.z);
     }
     for p in &mesh.positions {
-        writeln!(s, "vt {} {}", p.x.atan2(p.z), p.y).unwrap();
+        s += &format!("vt {} {}\n", p.x.atan2(p.z), p.y);
     }
     for n in mesh.vertex_normals() {
-        writeln!(s, "vn {} {} {}", n.x, n.y, n.z).unwrap();
+        s += &format!("vn {} {} {}\n", n.x, n.y, n.z);
     }
     for (name, front) in [("front", true), ("back", false)] {
-        writeln!(s, "g {name}\nusemtl {name}_fabric\ns 1").unwrap();
+        s += &format!("g {name}\nusemtl {name}_fabric\ns 1\n");
         for t in &mesh.triangles {
             let z = t.iter().map(|&v| mesh.positions[v as usize].z).sum::<f64>();
             if (z >= 0.0) == front {
                 let [a, b, c] = t.map(|v| v + 1);
-                writeln!(s, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}").unwrap();
+                s += &format!("f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}\n");
             }
         }
     }
