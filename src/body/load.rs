@@ -29,6 +29,14 @@ pub enum BodyError {
         /// Cause.
         source: LandmarkError,
     },
+    /// The body does not stand in drape's frame (y up, facing +z).
+    #[error("{body}: {cause}")]
+    Pose {
+        /// Body name.
+        body: String,
+        /// How it stands.
+        cause: super::orient::PoseError,
+    },
     /// A ring could not be cut.
     #[error("{body}: {source}")]
     Ring {
@@ -118,8 +126,12 @@ impl Body {
     }
 }
 
-/// Landmark detection on a body mesh (errors carry the body name).
+/// Landmark detection on a body mesh, once it stands in drape's frame ([`check_pose`](super::orient::check_pose)); errors carry the body name.
 pub fn find_landmarks(mesh: &BodyMesh, options: &LandmarkOptions) -> Result<Landmarks, BodyError> {
+    super::orient::check_pose(&mesh.mesh).map_err(|cause| BodyError::Pose {
+        body: mesh.name.clone(),
+        cause,
+    })?;
     landmarks::detect_landmarks(mesh, options).map_err(|source| BodyError::Landmarks {
         body: mesh.name.clone(),
         source,

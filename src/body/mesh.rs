@@ -61,6 +61,19 @@ impl BodyMesh {
         section_mesh_banded(&self.mesh, &self.adjacency, &self.bands, plane)
     }
 
+    /// The body turned from its file's `frame` into drape's (y up, facing +z): a rotation,
+    /// so the triangles keep their orientation and adjacency.
+    pub fn reoriented(mut self, frame: super::orient::Frame) -> Self {
+        if !frame.is_identity() {
+            let m = frame.to_drape();
+            for p in &mut self.mesh.positions {
+                *p = m * *p;
+            }
+            self.reindex();
+        }
+        self
+    }
+
     /// Height (top minus floor), m.
     pub fn height(&self) -> f64 {
         self.mesh.bounds().map_or(0.0, |(lo, hi)| hi.y - lo.y)

@@ -8,6 +8,7 @@ pub mod load;
 pub mod mesh;
 pub mod near_tree;
 pub mod nearby;
+pub mod orient;
 pub mod partition;
 pub mod profile;
 pub mod rings;
@@ -19,5 +20,6 @@ pub use landmarks::{
 };
 pub use load::{Body, BodyError, build_partitions, cut_rings, find_landmarks};
 pub use mesh::{BUILTIN_BODY_NAME, BUILTIN_BODY_OBJ, BodyMesh, BodySource};
+pub use orient::{Axis, Frame, PoseError, check_pose};
 pub use partition::{DetectionMethod, Partition, PartitionId, PartitionOptions, ResponseRule};
 pub use rings::{BodyRing, RingError};

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-use glam::DVec3;
+use glam::{DMat3, DVec3};
 
 use super::obj::{ObjError, tokens_with_columns, vertex};
 
@@ -50,6 +50,9 @@ pub struct ObjDocument {
     pub ends_with_newline: bool,
     /// Metres per file unit.
     pub scale: f64,
+    /// The rotation from the file's axes to the frame [`Self::positions`] are in
+    /// (identity unless [`Self::reorient`]ed).
+    pub frame: DMat3,
     /// Vertex positions, m.
     pub positions: Vec<DVec3>,
     /// The line (0-based) of each `v`.
@@ -94,6 +97,7 @@ impl ObjDocument {
             },
             ends_with_newline: text.ends_with('\n'),
             scale,
+            frame: DMat3::IDENTITY,
             positions: Vec::new(),
             vertex_lines: Vec::new(),
             normal_lines: Vec::new(),
@@ -163,6 +167,15 @@ impl ObjDocument {
         Ok(doc)
     }
 
+    /// Turns the positions by `rotation` (from the file's axes into drape's); [`Self::write`]
+    /// turns them back.
+    pub fn reorient(&mut self, rotation: DMat3) {
+        for p in &mut self.positions {
+            *p = rotation * *p;
+        }
+        self.frame = rotation * self.frame;
+    }
+
     /// The faces fanned into triangles (file vertex indices), with the face of each.
     pub fn triangles(&self) -> (Vec<[u32; 3]>, Vec<u32>) {
         let mut triangles = Vec::new();
@@ -194,7 +207,7 @@ impl ObjDocument {
                 .split_ascii_whitespace()
                 .skip(4)
                 .collect();
-            let q = *p / self.scale;
+            let q = self.frame.transpose() * *p / self.scale;
             let mut text = format!("v {} {} {}", q.x, q.y, q.z);
             for r in rest {
                 text.push(' ');
@@ -203,6 +216,7 @@ impl ObjDocument {
             replaced.insert(line, text);
         }
         for (n, normal) in self.normals_of_moved(positions, moved) {
+            let normal = self.frame.transpose() * normal;
             replaced.insert(
                 self.normal_lines[n as usize],
                 format!("vn {} {} {}", normal.x, normal.y, normal.z),

@@ -12,6 +12,9 @@ use crate::collision::CollisionOptions;
 pub struct RunOptions {
     /// Replaces the session's body (`--body`).
     pub body_override: Option<PathBuf>,
+    /// The axes of the body's file (`--up`, `--front`; default drape's own: y up, facing
+    /// +z): the body is turned into drape's frame on load.
+    pub body_frame: crate::body::Frame,
     /// Landmark detection settings (overrides come from the session).
     pub landmarks: LandmarkOptions,
     /// Partition settings.

@@ -301,3 +301,79 @@ fn a_strip_through_the_whole_body_cannot_be_cleared_and_exits_4_naming_the_regio
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A way of turning a body: its name, where drape's (x, y, z) goes in the file, `--up`,
+/// `--front`, and what the refusal says.
+type Turn = (&'static str, fn(DVec3) -> DVec3, &'static str, &'static str, &'static str);
+
+#[test]
+fn a_body_and_garment_in_other_axes_are_refused_by_name_and_checked_alike_once_the_axes_are_given() {
+    let body = &real_body().mesh.mesh;
+    let (band, _) = offset_band(body, (0.95, 1.25), 0, 0.006, (12, 0.02, 7));
+    let dir = scratch("axes");
+    let write = |name: &str, mesh: &TriMesh| {
+        let path = dir.join(name);
+        let mut s = String::new();
+        for p in &mesh.positions {
+            s += &format!("v {} {} {}\n", p.x, p.y, p.z);
+        }
+        for t in &mesh.triangles {
+            s += &format!("f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+        }
+        std::fs::write(&path, s).expect("written");
+        path
+    };
+    let counts = |o: &Output| -> Vec<serde_json::Value> {
+        let r: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+        ["inside_vertices", "crossing_edges", "pierced_faces"]
+            .iter()
+            .flat_map(|k| [r["before"][k].clone(), r["after"][k].clone()])
+            .collect()
+    };
+    let plain = check_garment(
+        &write("band.obj", &band),
+        &["--body", write("body.obj", body).to_str().expect("utf-8"), "--json"],
+    );
+    assert_eq!(plain.status.code(), Some(1), "{}", text(&plain));
+    // Each: where drape's (x, y, z) goes in the file, the flags that say so, the hint.
+    let turns: [Turn; 4] = [
+        ("z_up", |p| DVec3::new(p.x, -p.z, p.y), "z", "-y", "--up z"),
+        ("on_its_head", |p| DVec3::new(-p.x, -p.y, p.z), "-y", "z", "--up -y"),
+        ("facing_back", |p| DVec3::new(-p.x, p.y, -p.z), "y", "-z", "--front -z"),
+        ("facing_x", |p| DVec3::new(p.z, p.y, -p.x), "y", "x", "--front +x"),
+    ];
+    for (name, turn, up, front, hint) in turns {
+        let moved = |m: &TriMesh| TriMesh {
+            positions: m.positions.iter().map(|p| turn(*p)).collect(),
+            triangles: m.triangles.clone(),
+        };
+        let (b, g) = (moved(body), moved(&band));
+        let body_path = write(&format!("body_{name}.obj"), &b);
+        let garment_path = write(&format!("band_{name}.obj"), &g);
+        let refused = check_garment(&garment_path, &["--body", body_path.to_str().expect("utf-8")]);
+        assert_eq!(refused.status.code(), Some(2), "{name}: {}", text(&refused));
+        assert!(
+            text(&refused).contains(hint),
+            "{name}: expected '{hint}' in {}",
+            text(&refused)
+        );
+        let out = dir.join(format!("out_{name}.obj"));
+        let o = check_garment(
+            &garment_path,
+            &[
+                "--body",
+                body_path.to_str().expect("utf-8"),
+                &format!("--up={up}"),
+                &format!("--front={front}"),
+                "--json",
+                "--repair",
+                out.to_str().expect("utf-8"),
+            ],
+        );
+        assert_eq!(o.status.code(), Some(1), "{name}: {}", text(&o));
+        assert_eq!(counts(&o), counts(&plain), "{name}");
+        let repaired = read_back(&std::fs::read_to_string(&out).expect("out"));
+        assert_eq!(brute(&b, &repaired), [0, 0, 0], "{name}: the file's own frame");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -124,6 +124,12 @@ pub(crate) struct CheckGarmentArgs {
     /// The garment file's units.
     #[arg(long, default_value = "m", value_parser = ["m", "cm", "mm", "in"])]
     pub(crate) units: String,
+    /// The axis that is up in the body's and the garment's files (x, y, z, -x, ...).
+    #[arg(long, default_value = "y", value_parser = parse_axis)]
+    pub(crate) up: drape::body::Axis,
+    /// The axis the body faces in the files.
+    #[arg(long, default_value = "z", value_parser = parse_axis)]
+    pub(crate) front: drape::body::Axis,
     /// Write the repaired garment here (the input as read when it was already clear).
     #[arg(long, value_name = "OUT.obj")]
     pub(crate) repair: Option<PathBuf>,
@@ -134,6 +140,10 @@ pub(crate) struct CheckGarmentArgs {
     /// repair, the responses, the garment after and its clearance.
     #[arg(long, value_name = "REC.rrd")]
     pub(crate) save: Option<PathBuf>,
+}
+
+fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {
+    drape::body::Axis::parse(text).ok_or_else(|| format!("'{text}' is not an axis: give x, y, z, -x, -y or -z"))
 }
 
 fn non_negative_metres(text: &str) -> Result<f64, String> {
@@ -331,6 +341,12 @@ pub(crate) struct RunArgs {
     /// Use this body OBJ (metres, y up, facing +z) instead of the session's.
     #[arg(long, value_name = "OBJ")]
     pub(crate) body: Option<PathBuf>,
+    /// The axis that is up in the body's file (x, y, z, -x, ...) [default: y].
+    #[arg(long, value_parser = parse_axis)]
+    pub(crate) up: Option<drape::body::Axis>,
+    /// The axis the body faces in its file [default: z].
+    #[arg(long, value_parser = parse_axis)]
+    pub(crate) front: Option<drape::body::Axis>,
     /// Write the recording here [default: recordings/<session name>.rrd] (also with a viewer
     /// or a server: it keeps everything if the viewer goes away).
     #[arg(long, value_name = "PATH")]

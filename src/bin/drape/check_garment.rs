@@ -5,7 +5,7 @@
 use std::process::ExitCode;
 
 use anyhow::Context as _;
-use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
+use drape::body::{Body, BodyMesh, BodySource, Frame, LandmarkOptions, PartitionOptions};
 use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, CheckReport, Checked, Counts, ImportedGarment, check};
 use drape::mesh::ObjDocument;
@@ -24,9 +24,13 @@ pub(crate) fn check_garment(args: &CheckGarmentArgs) -> Result<ExitCode> {
         _ => 1.0,
     };
     let source = args.body.clone().map_or(BodySource::Builtin, BodySource::File);
+    let frame = Frame::new(args.up, args.front)
+        .map_err(anyhow::Error::msg)
+        .bad_input()?;
     let mesh = BodyMesh::load_bounded(&source, 1.0, crate::max_input_bytes())
         .context("cannot load the body")
-        .bad_input()?;
+        .bad_input()?
+        .reoriented(frame);
     let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default())
         .context("cannot analyse the body")
         .bad_input()?;
@@ -35,9 +39,12 @@ pub(crate) fn check_garment(args: &CheckGarmentArgs) -> Result<ExitCode> {
         Some(cache) => cache.load_or_build(&body, &slices).0,
         None => BodyIndex::new(&body, &slices),
     };
-    let doc = ObjDocument::read(&args.garment, scale, crate::max_input_bytes())
+    let mut doc = ObjDocument::read(&args.garment, scale, crate::max_input_bytes())
         .context("cannot read the garment")
         .bad_input()?;
+    if !frame.is_identity() {
+        doc.reorient(frame.to_drape());
+    }
     let garment = ImportedGarment::new(doc, &body.mesh.mesh, &index).bad_input()?;
     let options = CheckOptions {
         ease: args.ease,

@@ -54,8 +54,15 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
     let mut pattern_exporter = args.patterns.clone().map(PatternExporter::new);
     let mut progress = Progress;
+    let frame = drape::body::Frame::new(
+        args.up.unwrap_or(drape::body::Axis(glam::DVec3::Y)),
+        args.front.unwrap_or(drape::body::Axis(glam::DVec3::Z)),
+    )
+    .map_err(anyhow::Error::msg)
+    .bad_input()?;
     let mut options = RunOptions {
         body_override: args.body.clone(),
+        body_frame: frame,
         verify: args.verify,
         max_input_bytes: crate::max_input_bytes(),
         stop: Some(stop.clone()),

@@ -108,7 +108,7 @@ pub(in crate::session) fn run(
         n => n,
     };
     let mesh = scope.timed("body.load", || {
-        BodyMesh::load_bounded(&source, session.scene.units.scale(), limit)
+        BodyMesh::load_bounded(&source, session.scene.units.scale(), limit).map(|m| m.reoriented(options.body_frame))
     })?;
     scope.record(&MeshFigures {
         body: &mesh.name,
