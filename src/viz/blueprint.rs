@@ -143,6 +143,61 @@ pub fn default_blueprint() -> Blueprint {
     .with_panels_collapsed("stage")
 }
 
+/// `drape check-garment --save`'s layout: the garment after its repair on the body, with
+/// what detection found (by partition) and the response arrows; beside it the close view
+/// of the collision and the garment's clearance map; the body's partitions; the log with
+/// the clearance scale and the partition table.
+pub fn check_garment_blueprint() -> Blueprint {
+    Blueprint::new(
+        Horizontal::new([
+            Vertical::new([
+                Tabs::new([
+                    Spatial3DView::new("Garment")
+                        .with_origin("/")
+                        .with_contents([
+                            "+ /body/mesh",
+                            "+ /garment/**",
+                            "+ /collision/**",
+                            "- /garment/clearance",
+                            "- /collision/m1/**",
+                        ])
+                        .into(),
+                    Spatial3DView::new("Body")
+                        .with_origin("/")
+                        .with_contents(["+ /body/**", "- /body/mesh"])
+                        .into(),
+                ])
+                .into(),
+                Horizontal::new([
+                    Spatial3DView::new("Collision")
+                        .with_origin("/")
+                        .with_contents(["+ /collision/**", "- /collision/m1/**"])
+                        .into(),
+                    Spatial3DView::new("Clearance")
+                        .with_origin("/")
+                        .with_contents(["+ /garment/clearance"])
+                        .into(),
+                ])
+                .into(),
+            ])
+            .with_row_shares([3.0, 2.0])
+            .into(),
+            Tabs::new([
+                TextLogView::new("Log").with_origin("/log").into(),
+                TextDocumentView::new("Clearance scale")
+                    .with_origin("/legend/clearance")
+                    .into(),
+                TextDocumentView::new("Partitions")
+                    .with_origin("/legend/partitions")
+                    .into(),
+            ])
+            .into(),
+        ])
+        .with_column_shares([3.0, 1.0]),
+    )
+    .with_panels_collapsed("stage")
+}
+
 /// The right column: the guarantee's figures first (what the collision left, per step),
 /// then every figure of the steps by unit; below, the log with the clearance scale and the
 /// partition table.

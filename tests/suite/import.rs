@@ -304,7 +304,13 @@ fn a_strip_through_the_whole_body_cannot_be_cleared_and_exits_4_naming_the_regio
 
 /// A way of turning a body: its name, where drape's (x, y, z) goes in the file, `--up`,
 /// `--front`, and what the refusal says.
-type Turn = (&'static str, fn(DVec3) -> DVec3, &'static str, &'static str, &'static str);
+type Turn = (
+    &'static str,
+    fn(DVec3) -> DVec3,
+    &'static str,
+    &'static str,
+    &'static str,
+);
 
 #[test]
 fn a_body_and_garment_in_other_axes_are_refused_by_name_and_checked_alike_once_the_axes_are_given() {

@@ -10,7 +10,7 @@ use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, CheckReport, Checked, Counts, ImportedGarment, check};
 use drape::mesh::ObjDocument;
 use drape::session::{BodyStage, CollisionOutcome, CollisionPart, CollisionStage, Stage, StageInfo, StageSink};
-use drape::viz::{LogOptions, RecordingTarget, RerunLogger, open_recording};
+use drape::viz::{LogOptions, RerunLogger, check_garment_blueprint, open_file_recording};
 
 use crate::args::CheckGarmentArgs;
 use crate::failure::{Classify, Result};
@@ -140,7 +140,7 @@ fn record(
     checked: &Checked,
 ) -> anyhow::Result<()> {
     crate::files::create_parent(path)?;
-    let rec = open_recording(&RecordingTarget::File(path.to_path_buf()), "check-garment")?;
+    let rec = open_file_recording(path, "check-garment", check_garment_blueprint())?;
     let mut logger = RerunLogger::new(rec.clone(), LogOptions::default())?;
     let outcome = CollisionOutcome {
         garment: garment.mesh.clone(),
