@@ -18,6 +18,7 @@ use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions}
 use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, Checked, ImportedGarment, check};
 use drape::mesh::ObjDocument;
+use drape::session::{RunOptions, parse_session, run_session};
 
 #[path = "bodies.rs"]
 mod bodies;
@@ -34,6 +35,9 @@ fn main() {
     let bodies = shipped_bodies();
     let dir = std::env::temp_dir().join(format!("drape-bench-check-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch folder");
+    let mut sessions = String::from(
+        "| body | garment vertices | regions | M0 after: inside / crossing / pierced | moves | M1 vertices | regions refined | M1 after: inside / crossing / pierced | step ms |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
     let mut out = String::from(
         "| body | garment vertices | faces | before: inside / crossing / pierced | deepest mm | after: inside / crossing / pierced | moved | status | ms |\n|---|---|---|---|---|---|---|---|---|\n",
     );
@@ -82,6 +86,9 @@ fn main() {
             );
             print!("{row}");
             out += &row;
+            if splits <= 1 {
+                sessions += &session_row(&name, path, &file, garment.positions.len());
+            }
             if garment.positions.len() >= 50_000 {
                 break;
             }
@@ -92,8 +99,52 @@ fn main() {
     } else {
         std::fs::remove_dir_all(&dir).ok();
     }
-    println!("\n{out}");
+    println!("\n{out}\n{sessions}");
     if std::env::args().any(|a| a == "--write") {
         write_block("docs/import.md", "check-garment", &out);
+        write_block("docs/import.md", "garment-mesh-session", &sessions);
     }
+}
+
+/// The garment `file` as a session's garment (`garment mesh`, with M1) on the body at
+/// `body`: the step's figures and its compute time (the median of 3), one table row.
+fn session_row(name: &str, body: &std::path::Path, file: &std::path::Path, vertices: usize) -> String {
+    let text = format!(
+        "drape 1\nbody \"{}\"\nm1\ngarment mesh \"{}\" name=band\n",
+        body.display(),
+        file.display()
+    );
+    let session = parse_session(&text, "bench.drape", std::path::Path::new(".")).expect("the session parses");
+    let mut times = Vec::new();
+    let mut figures = None;
+    for _ in 0..3 {
+        let report = run_session(&session, &RunOptions::default(), &mut []);
+        assert!(report.error.is_none(), "{:?}", report.error);
+        let step = report.steps.last().expect("the garment step").clone();
+        times.push(step.timings_ms.iter().filter(|(k, _)| !k.starts_with("log.")).map(|(_, v)| v).sum::<f64>());
+        figures = Some(step.figures);
+    }
+    times.sort_by(f64::total_cmp);
+    let f = figures.expect("figures");
+    let n = |key: &str| f.get(key).and_then(serde_json::Value::as_u64).unwrap_or(0);
+    let regions = f.get("regions").and_then(serde_json::Value::as_array).map_or(0, Vec::len);
+    let refined = f
+        .get("m1_patches_refined")
+        .and_then(|r| r.get("total"))
+        .and_then(serde_json::Value::as_u64)
+        .unwrap_or(0);
+    let row = format!(
+        "| {name} | {vertices} | {regions} | {} / {} / {} | {} | {} | {refined} | {} / {} / {} | {:.0} |\n",
+        n("penetrating_vertices"),
+        n("crossing_edges"),
+        n("pierced_faces"),
+        n("responses") + n("edge_responses") + n("face_responses"),
+        n("m1_vertices"),
+        n("m1_penetrating_vertices"),
+        n("m1_crossing_edges"),
+        n("m1_pierced_faces"),
+        times[1]
+    );
+    print!("session: {row}");
+    row
 }

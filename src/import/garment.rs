@@ -230,6 +230,15 @@ impl ImportedGarment {
         })
     }
 
+    /// The same garment with its faces in other patches (`face_patch`, one per triangle,
+    /// below `patches`): the collision's roles (each vertex's patches) made again.
+    pub fn with_face_patches(&self, face_patch: &[u32], patches: usize) -> Self {
+        Self {
+            mesh: garment_mesh(self.mesh.mesh.clone(), face_patch, patches),
+            ..self.clone()
+        }
+    }
+
     /// The file's vertices at the collision mesh's `positions`, and which of them moved
     /// (bit for bit): what [`ObjDocument::write`] takes.
     pub fn file_positions(&self, positions: &[DVec3]) -> (Vec<DVec3>, Vec<bool>) {

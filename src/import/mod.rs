@@ -7,6 +7,8 @@
 
 pub mod check;
 pub mod garment;
+pub mod regions;
 
 pub use check::{CheckOptions, CheckReport, CheckTimings, Checked, Counts, RegionCounts, Status, check};
 pub use garment::{ImportError, ImportNotes, ImportedGarment};
+pub use regions::face_regions;

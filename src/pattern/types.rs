@@ -96,6 +96,9 @@ pub enum PatternError {
         /// The garment's curves, comma-separated.
         known: String,
     },
+    /// The garment has no seam curves to cut along (a garment mesh from a file).
+    #[error("garment '{0}' is a mesh from a file: it has no seam curves to cut a pattern along")]
+    NoSeams(String),
     /// A panel is not a disc.
     #[error(transparent)]
     NotADisc(#[from] NotADisc),

@@ -104,6 +104,17 @@ pub enum StepError {
         /// What the step wanted to do (`change`, `drag`).
         verb: &'static str,
     },
+    /// `drag` or `set` on a garment from a file (the parser refuses it; a step made by hand
+    /// may not).
+    #[error("the garment '{name}' is a mesh from a file: it has no {what} ('{verb}' needs a garment built from a template; sculpt pushes or pulls its surface)")]
+    FileGarment {
+        /// The garment's name.
+        name: String,
+        /// The step (`drag`, `set`).
+        verb: &'static str,
+        /// What it lacks.
+        what: &'static str,
+    },
     /// `undo` with nothing to take back.
     #[error("nothing to undo: no drag, set, cut or sculpt step of the current garment ran")]
     NothingToUndo,
@@ -119,6 +130,17 @@ pub enum StepError {
         /// Its file.
         path: PathBuf,
         /// What is wrong.
+        message: String,
+    },
+    /// A garment file (`garment mesh`) cannot be read, or cannot be collided as it is (a
+    /// non-manifold edge, other units, apart from the body).
+    #[error("garment '{name}' from {}: {message}", path.display())]
+    GarmentFile {
+        /// The garment's name.
+        name: String,
+        /// Its file.
+        path: PathBuf,
+        /// What is wrong (naming the line and column, or the element).
         message: String,
     },
     /// A sculpt names a control point the garment does not have.
@@ -141,7 +163,9 @@ impl StepError {
     /// Bad input, a failed step, or drape's own failure.
     pub fn kind(&self) -> FailureKind {
         match self {
-            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) | Self::NurbsFile { .. } => FailureKind::BadInput,
+            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) | Self::NurbsFile { .. } | Self::GarmentFile { .. } => {
+                FailureKind::BadInput
+            }
             Self::Sinks(_) => FailureKind::Internal,
             _ => FailureKind::StepFailed,
         }

@@ -1,12 +1,15 @@
 //! `--export DIR`: the body and every mesh a step produced, as OBJ files named by step
 //! and mesh (`step00_body.obj`, `step01_mannequin_polar.obj`, `step03_jumpsuit_m0.obj`, ...).
 //! A garment's M0 is written after the collision response, and its M1 (when the scene has
-//! one) beside it after M1's (`step03_jumpsuit_m1.obj`).
+//! one) beside it after M1's (`step03_jumpsuit_m1.obj`). A garment read from a file
+//! (`garment mesh`) is written as that file: its structure, groups, UVs and materials kept,
+//! only the moved vertices changed.
 
 use std::path::PathBuf;
 
 use super::error::SinkError;
 use super::stage::{BodyStage, CollisionPart, CollisionStage, M1Stage, StageInfo, StageSink};
+use crate::import::ImportedGarment;
 use crate::mannequin::MannequinResult;
 use crate::mesh::{TriMesh, write_obj};
 
@@ -32,14 +35,32 @@ impl ObjExporter {
     }
 
     fn write(&mut self, info: &StageInfo, mesh_name: &str, mesh: &TriMesh) -> Result<(), SinkError> {
-        let path = self.dir.join(format!("step{:02}_{mesh_name}.obj", info.step));
         let header = format!(
             "drape export: step {} ({}), mesh {mesh_name}; metres, y up",
             info.step, info.op
         );
+        self.write_text(info, mesh_name, &write_obj(mesh, &header))
+    }
+
+    /// A garment read from a file, written back as that file with its collided positions:
+    /// the vertices the collision moved get new `v` lines (and their normals are made
+    /// again), every other line is the input's, byte for byte, in the file's own axes.
+    fn write_file_garment(
+        &mut self,
+        info: &StageInfo,
+        name: &str,
+        file: &ImportedGarment,
+        positions: &[glam::DVec3],
+    ) -> Result<(), SinkError> {
+        let (at, moved) = file.file_positions(positions);
+        self.write_text(info, &format!("{name}_m0"), &file.doc.write(&at, &moved))
+    }
+
+    fn write_text(&mut self, info: &StageInfo, mesh_name: &str, text: &str) -> Result<(), SinkError> {
+        let path = self.dir.join(format!("step{:02}_{mesh_name}.obj", info.step));
         // Write then rename, so a failure never leaves half a file under the final name.
         let tmp = path.with_extension("obj.partial");
-        std::fs::write(&tmp, write_obj(mesh, &header))
+        std::fs::write(&tmp, text)
             .and_then(|()| std::fs::rename(&tmp, &path))
             .map_err(|source| SinkError::Io {
                 path: path.clone(),
@@ -74,7 +95,10 @@ impl StageSink for ObjExporter {
         match stage.part {
             CollisionPart::Respond => {
                 let outcome = stage.outcome;
-                self.write(info, &format!("{}_m0", outcome.template), &outcome.collision.mesh)
+                match &outcome.source {
+                    Some(file) => self.write_file_garment(info, &outcome.name, file, &outcome.collision.mesh.positions),
+                    None => self.write(info, &format!("{}_m0", outcome.name), &outcome.collision.mesh),
+                }
             }
             CollisionPart::Detect => Ok(()),
         }
@@ -85,7 +109,7 @@ impl StageSink for ObjExporter {
             positions: stage.outcome.collision.positions.clone(),
             triangles: stage.outcome.m1.mesh.triangles.clone(),
         };
-        self.write(info, &format!("{}_m1", stage.m0.template), &mesh)
+        self.write(info, &format!("{}_m1", stage.m0.name), &mesh)
     }
 
     fn sculpt(&mut self, info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {

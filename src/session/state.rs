@@ -8,6 +8,22 @@ use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, Templat
 
 use super::stage::{CollisionOutcome, M1Outcome, SculptOutcome};
 use crate::m1::StoredCut;
+use crate::collision::GarmentMesh;
+use crate::import::ImportedGarment;
+use std::sync::Arc;
+
+/// A garment from a file (`garment mesh`): the file as read and prepared for the
+/// collision, its face regions (the patches M1's selection rules judge), its name and ease.
+pub(crate) struct FileGarment {
+    /// The name files and the log give it.
+    pub(crate) name: String,
+    /// The file, welded and oriented, its faces' patches the regions below.
+    pub(crate) imported: Arc<ImportedGarment>,
+    /// The face regions' names (`GROUP/LETTER`: the file's group and the body partition).
+    pub(crate) regions: Vec<String>,
+    /// The gap a moved vertex stands off the skin, m.
+    pub(crate) ease: f64,
+}
 
 /// The state between steps.
 pub(crate) struct SessionState {
@@ -50,8 +66,10 @@ impl SessionState {
 /// drags made since, its constraint network, and what collision remembers between steps.
 #[derive(Clone)]
 pub(crate) struct GarmentState {
-    /// Template.
-    pub(crate) template: TemplateKind,
+    /// Template (`None`: a garment from a file, [`Self::file`]).
+    pub(crate) template: Option<TemplateKind>,
+    /// The garment read from a file by `garment mesh` (`None`: built from its template).
+    pub(crate) file: Option<Arc<FileGarment>>,
     /// Framework settings (fit, resolution).
     pub(crate) options: FrameworkOptions,
     /// Dimensions the session set.
@@ -84,10 +102,58 @@ pub(crate) struct GarmentState {
 }
 
 impl GarmentState {
+    /// A garment from a file: its M0 is the file's mesh, never solved again.
+    pub(crate) fn from_file(file: FileGarment) -> Self {
+        Self {
+            template: None,
+            file: Some(Arc::new(file)),
+            ..Self::new(TemplateKind::Jumpsuit, FrameworkOptions::default())
+        }
+    }
+
+    /// The garment's name: its template's, or the file garment's.
+    pub(crate) fn name(&self) -> String {
+        match (&self.file, self.template) {
+            (Some(f), _) => f.name.clone(),
+            (None, Some(t)) => t.name().to_string(),
+            (None, None) => "garment".into(),
+        }
+    }
+
+    /// The gap the collision stands M0 off the skin, m: the framework's, or the file
+    /// garment's (`None` before a template garment is solved).
+    pub(crate) fn ease(&self) -> Option<f64> {
+        match (&self.framework, &self.file) {
+            (Some(fw), _) => Some(fw.ease()),
+            (None, Some(f)) => Some(f.ease),
+            (None, None) => None,
+        }
+    }
+
+    /// M0 as the collision layers see it, with its roles (`None` before a template garment
+    /// is solved).
+    pub(crate) fn collision_mesh(&self, body_height: f64) -> Option<GarmentMesh> {
+        match (&self.framework, &self.file) {
+            (Some(fw), _) => Some(GarmentMesh::from_framework(fw, body_height)),
+            (None, Some(f)) => Some(f.imported.mesh.clone()),
+            (None, None) => None,
+        }
+    }
+
+    /// How many patches M0 has (a file garment's face regions).
+    pub(crate) fn patch_count(&self) -> usize {
+        match (&self.framework, &self.file) {
+            (Some(fw), _) => fw.m0.patch_names.len(),
+            (None, Some(f)) => f.regions.len(),
+            (None, None) => 0,
+        }
+    }
+
     /// A new garment, not yet solved.
     pub(crate) fn new(template: TemplateKind, options: FrameworkOptions) -> Self {
         Self {
-            template,
+            template: Some(template),
+            file: None,
             options,
             dims: Dimensions::default(),
             framework: None,
@@ -111,6 +177,7 @@ impl GarmentState {
     pub(crate) fn unsolved(&self) -> Self {
         Self {
             template: self.template,
+            file: self.file.clone(),
             options: self.options,
             dims: self.dims.clone(),
             framework: None,

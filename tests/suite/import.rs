@@ -15,7 +15,7 @@ use super::common::{brute_distance, drape_cli, faces_pierced_by, inside_by_parit
 use super::offset_garment::{offset_band, to_obj};
 
 /// A scratch folder for this test.
-fn scratch(name: &str) -> PathBuf {
+pub(super) fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("drape-import-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a scratch folder");
     dir
@@ -30,7 +30,7 @@ fn check_garment(garment: &Path, extra: &[&str]) -> Output {
         .expect("drape runs")
 }
 
-fn text(o: &Output) -> String {
+pub(super) fn text(o: &Output) -> String {
     format!(
         "{}{}",
         String::from_utf8_lossy(&o.stdout),
@@ -39,7 +39,7 @@ fn text(o: &Output) -> String {
 }
 
 /// The `v` lines' positions and the faces' vertex triangles (fanned), read here.
-fn read_back(obj: &str) -> TriMesh {
+pub(super) fn read_back(obj: &str) -> TriMesh {
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     for line in obj.lines() {
@@ -65,7 +65,7 @@ fn read_back(obj: &str) -> TriMesh {
 
 /// Brute-force counts: vertices inside (ray parity), body faces a garment edge passes
 /// through, garment faces a body edge passes through.
-fn brute(body: &TriMesh, garment: &TriMesh) -> [usize; 3] {
+pub(super) fn brute(body: &TriMesh, garment: &TriMesh) -> [usize; 3] {
     let inside = garment.positions.iter().filter(|p| inside_by_parity(body, **p)).count();
     let crossing = faces_pierced_by(garment, &body.positions, &body.triangles).len();
     let pierced = faces_pierced_by(body, &garment.positions, &garment.triangles).len();

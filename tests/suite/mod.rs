@@ -10,6 +10,7 @@ mod ease;
 mod faces;
 mod fuzz;
 mod garment;
+mod garment_mesh;
 mod import;
 mod index_cache;
 mod interrupt;

@@ -283,7 +283,7 @@ fn unknown_dimension_names_the_template_and_the_column() {
     assert!(e.contains("waist_girth") && e.contains("inseam"), "{e}");
     assert_eq!(
         error_of("drape 1\ngarment gown\n"),
-        "s.drape:2:9: unknown template 'gown': expected one of jumpsuit, dress, shirt"
+        "s.drape:2:9: unknown template 'gown': expected one of jumpsuit, dress, shirt, or mesh \"FILE\" for a garment from a file"
     );
     assert_eq!(
         error_of("drape 1\ngarment dress fit=baggy\n"),

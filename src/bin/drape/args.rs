@@ -104,56 +104,14 @@ pub(crate) enum Command {
     /// body regions A-G they are in), repaired by drape's collision layers; `--repair`
     /// writes the file back with only the moved vertices (and the normals they use)
     /// changed, every other line as it was.
-    #[command(after_help = CHECK_GARMENT_EXIT_CODES)]
-    CheckGarment(CheckGarmentArgs),
+    #[command(after_help = crate::check_garment::EXIT_CODES)]
+    CheckGarment(crate::check_garment::CheckGarmentArgs),
 }
 
-const CHECK_GARMENT_EXIT_CODES: &str = "Exit codes: 0 the garment was clear as read; 1 it was not, and the repair cleared it (--repair wrote the clear mesh); 4 the repair could not clear it (the regions left are printed); 2 bad input (an unreadable or malformed file, a non-manifold edge, a garment in other units or apart from the body, a body that cannot be analysed); 3 an internal or I/O failure.";
-
-#[derive(Args, Debug)]
-pub(crate) struct CheckGarmentArgs {
-    /// The garment mesh (OBJ: triangles, quads or polygons; texture coordinates, normals,
-    /// groups and materials are kept).
-    pub(crate) garment: PathBuf,
-    /// The body (OBJ, metres, y up, facing +z) [default: the built-in body].
-    #[arg(long, value_name = "OBJ")]
-    pub(crate) body: Option<PathBuf>,
-    /// The gap a moved vertex stands off the skin, m.
-    #[arg(long, default_value_t = 0.002, value_parser = non_negative_metres)]
-    pub(crate) ease: f64,
-    /// The garment file's units.
-    #[arg(long, default_value = "m", value_parser = ["m", "cm", "mm", "in"])]
-    pub(crate) units: String,
-    /// The axis that is up in the body's and the garment's files (x, y, z, -x, ...).
-    #[arg(long, default_value = "y", value_parser = parse_axis)]
-    pub(crate) up: drape::body::Axis,
-    /// The axis the body faces in the files.
-    #[arg(long, default_value = "z", value_parser = parse_axis)]
-    pub(crate) front: drape::body::Axis,
-    /// Write the repaired garment here (the input as read when it was already clear).
-    #[arg(long, value_name = "OUT.obj")]
-    pub(crate) repair: Option<PathBuf>,
-    /// Print the report as JSON instead of a table.
-    #[arg(long)]
-    pub(crate) json: bool,
-    /// Write a recording: the body with its partitions, the garment's problems before the
-    /// repair, the responses, the garment after and its clearance.
-    #[arg(long, value_name = "REC.rrd")]
-    pub(crate) save: Option<PathBuf>,
-}
-
-fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {
+pub(crate) fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {
     drape::body::Axis::parse(text).ok_or_else(|| format!("'{text}' is not an axis: give x, y, z, -x, -y or -z"))
 }
 
-fn non_negative_metres(text: &str) -> Result<f64, String> {
-    let v: f64 = text.parse().map_err(|_| format!("'{text}' is not a number"))?;
-    if v.is_finite() && (0.0..=0.1).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!("{text} m is not an ease between 0 and 0.1 m"))
-    }
-}
 
 #[derive(Args, Debug)]
 pub(crate) struct FlattenArgs {

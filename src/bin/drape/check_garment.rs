@@ -2,6 +2,7 @@
 //! against the body, repaired by drape's collision layers, counted again; the repaired file
 //! written with only the moved vertices changed; the exit code tells the outcome.
 
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 use anyhow::Context as _;
@@ -12,9 +13,52 @@ use drape::mesh::ObjDocument;
 use drape::session::{BodyStage, CollisionOutcome, CollisionPart, CollisionStage, Stage, StageInfo, StageSink};
 use drape::viz::{LogOptions, RerunLogger, check_garment_blueprint, open_file_recording};
 
-use crate::args::CheckGarmentArgs;
+use clap::Args;
 use crate::failure::{Classify, Result};
 use crate::files::write_atomic;
+
+pub(crate) const EXIT_CODES: &str = "Exit codes: 0 the garment was clear as read; 1 it was not, and the repair cleared it (--repair wrote the clear mesh); 4 the repair could not clear it (the regions left are printed); 2 bad input (an unreadable or malformed file, a non-manifold edge, a garment in other units or apart from the body, a body that cannot be analysed); 3 an internal or I/O failure.";
+
+#[derive(Args, Debug)]
+pub(crate) struct CheckGarmentArgs {
+    /// The garment mesh (OBJ: triangles, quads or polygons; texture coordinates, normals,
+    /// groups and materials are kept).
+    pub(crate) garment: PathBuf,
+    /// The body (OBJ, metres, y up, facing +z) [default: the built-in body].
+    #[arg(long, value_name = "OBJ")]
+    pub(crate) body: Option<PathBuf>,
+    /// The gap a moved vertex stands off the skin, m.
+    #[arg(long, default_value_t = 0.002, value_parser = non_negative_metres)]
+    pub(crate) ease: f64,
+    /// The garment file's units.
+    #[arg(long, default_value = "m", value_parser = ["m", "cm", "mm", "in"])]
+    pub(crate) units: String,
+    /// The axis that is up in the body's and the garment's files (x, y, z, -x, ...).
+    #[arg(long, default_value = "y", value_parser = crate::args::parse_axis)]
+    pub(crate) up: drape::body::Axis,
+    /// The axis the body faces in the files.
+    #[arg(long, default_value = "z", value_parser = crate::args::parse_axis)]
+    pub(crate) front: drape::body::Axis,
+    /// Write the repaired garment here (the input as read when it was already clear).
+    #[arg(long, value_name = "OUT.obj")]
+    pub(crate) repair: Option<PathBuf>,
+    /// Print the report as JSON instead of a table.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Write a recording: the body with its partitions, the garment's problems before the
+    /// repair, the responses, the garment after and its clearance.
+    #[arg(long, value_name = "REC.rrd")]
+    pub(crate) save: Option<PathBuf>,
+}
+
+fn non_negative_metres(text: &str) -> std::result::Result<f64, String> {
+    let v: f64 = text.parse().map_err(|_| format!("'{text}' is not a number"))?;
+    if v.is_finite() && (0.0..=0.1).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{text} m is not an ease between 0 and 0.1 m"))
+    }
+}
 
 pub(crate) fn check_garment(args: &CheckGarmentArgs) -> Result<ExitCode> {
     let scale = match args.units.as_str() {
@@ -146,7 +190,8 @@ fn record(
         garment: garment.mesh.clone(),
         collision: checked.collision.clone(),
         verify: None,
-        template: "garment",
+        name: "garment".into(),
+        source: None,
     };
     let stages = [
         ("body.load", Stage::Body(BodyStage::Mesh(&body.mesh))),

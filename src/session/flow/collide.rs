@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 
 use crate::body::Body;
-use crate::collision::{self, AppliedRule, BodyIndex, Collision, GarmentMesh, VerifyReport};
+use crate::collision::{self, AppliedRule, BodyIndex, Collision, VerifyReport};
 use crate::m1::M1Options;
 use crate::session::emit::StepScope;
 use crate::session::options::RunOptions;
@@ -202,11 +202,10 @@ fn collide_garment(
     options: &RunOptions,
     m1: Option<&M1Options>,
 ) {
-    let Some(fw) = &state.framework else {
+    let (Some(garment), Some(ease)) = (state.collision_mesh(index.height), state.ease()) else {
         return;
     };
-    let garment = GarmentMesh::from_framework(fw, index.height);
-    let collision = collision::collide(index, &garment, fw.ease(), &options.collision, &mut state.detect);
+    let collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect);
     let t = collision.timings;
     for (name, ms) in [
         ("collision.detect", t.detect),
@@ -271,7 +270,8 @@ fn collide_garment(
         garment,
         collision,
         verify,
-        template: state.template.name(),
+        name: state.name(),
+        source: state.file.as_ref().map(|f| f.imported.clone()),
     });
     state.m1 = None;
     if let Some(m1_options) = m1 {

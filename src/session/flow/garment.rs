@@ -61,14 +61,18 @@ pub(in crate::session) fn solve_garment(
     mut garment: GarmentState,
 ) -> Result<GarmentState, StepError> {
     let probe = body_probe(scope, body, probe, cx);
+    let Some(template) = garment.template else {
+        // A garment from a file is never solved: nothing to do.
+        return Ok(garment);
+    };
     let fw = scope.timed("garment.solve", || {
-        build_framework(body, probe, garment.template, &garment.dims, &garment.options)
+        build_framework(body, probe, template, &garment.dims, &garment.options)
     })?;
     let net = scope.timed("constraints.network", || {
         ConstraintNet::for_framework(&fw, probe, &NetworkOptions::default())
     });
     scope.record(&FrameworkFigures {
-        template: garment.template.name(),
+        template: template.name(),
         fit: fw.fit.name(),
         contours: garment.options.contours.name(),
         resolution: garment.options.resolution,

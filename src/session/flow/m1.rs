@@ -66,12 +66,12 @@ pub(in crate::session) fn build_m1(
     options: &RunOptions,
     m1_options: &M1Options,
 ) {
-    let (Some(fw), Some(outcome)) = (&state.framework, &state.collision) else {
+    let (Some(ease), Some(outcome)) = (state.ease(), &state.collision) else {
         return;
     };
     let m0 = &outcome.collision.mesh;
     let face_patch = &outcome.garment.face_patch;
-    let patches = fw.m0.patch_names.len();
+    let patches = state.patch_count();
     // M0's distances as its quality check measured them: the selection and M1's check read them.
     let measured = outcome.collision.quality.measured(&m0.positions);
     let selection = scope.timed("m1.select", || {
@@ -106,7 +106,7 @@ pub(in crate::session) fn build_m1(
         ring_normal: &outcome.garment.ring_normal,
     };
     let collision = scope.timed("m1.collide", || {
-        m1::collide_m1(index, &built, &collided, fw.ease(), &options.collision)
+        m1::collide_m1(index, &built, &collided, ease, &options.collision)
     });
     let cuts = state
         .cuts

@@ -6,7 +6,7 @@
 
 use serde::Serialize;
 
-use crate::pattern::{self, CutLine, CutShape, PatternInput, PatternOptions, Source};
+use crate::pattern::{self, CutLine, CutShape, PatternError, PatternInput, PatternOptions, Source};
 use crate::session::emit::StepScope;
 use crate::session::stage::{PatternStage, Stage};
 use crate::session::state::GarmentState;
@@ -38,6 +38,10 @@ pub(in crate::session) fn build_patterns(
     state: &mut GarmentState,
     options: &PatternOptions,
 ) {
+    if state.file.is_some() && state.collision.is_some() {
+        state.patterns = Some(Err(PatternError::NoSeams(state.name())));
+        return;
+    }
     let (Some(fw), Some(outcome)) = (&state.framework, &state.collision) else {
         return;
     };
@@ -128,7 +132,7 @@ pub(in crate::session) fn emit_patterns(scope: &mut StepScope<'_, '_, '_>, state
             "garment.patterns",
             Stage::Patterns(PatternStage {
                 result,
-                garment: outcome.template,
+                garment: &outcome.name,
             }),
         );
     }

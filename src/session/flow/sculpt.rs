@@ -251,7 +251,7 @@ pub(in crate::session) fn remake(
     if state.sculpts.is_empty() {
         return;
     }
-    let Some(ease) = state.framework.as_ref().map(|fw| fw.ease()) else {
+    let Some(ease) = state.ease() else {
         return;
     };
     let mut left_out = Vec::new();

@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use super::lexer::{Line, tokenize};
+use super::lexer::{Line, Token, tokenize};
 use super::statements::{Place, Statement};
 use super::suggest::did_you_mean;
 use super::syntax::{LogDetail, ParseError, Scene, Session, Step, Units};
@@ -20,6 +20,7 @@ mod cut;
 mod drag;
 mod drape;
 mod garment;
+mod garment_mesh;
 mod landmark;
 mod log;
 mod m1;
@@ -56,6 +57,7 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         log: None,
         steps: Vec::new(),
         garment: None,
+        mesh_garment: None,
         undoable: 0,
         nurbs: Vec::new(),
     };
@@ -110,8 +112,10 @@ struct Parser<'p> {
     patterns: Option<(crate::pattern::PatternOptions, usize)>,
     log: Option<(LogDetail, usize)>,
     steps: Vec<Step>,
-    /// The template of the last `garment` step.
+    /// The template of the last `garment` step (`None` after a `garment mesh`).
     garment: Option<(TemplateKind, Style)>,
+    /// The line of the last `garment mesh` step, while it is the current garment.
+    mesh_garment: Option<usize>,
     /// Garment steps that `undo` can take back.
     undoable: usize,
     /// NURBS parts added so far, with their lines.
@@ -119,6 +123,27 @@ struct Parser<'p> {
 }
 
 impl Parser<'_> {
+    /// A garment step (from a template or a file) came before.
+    fn has_garment(&self) -> bool {
+        self.garment.is_some() || self.mesh_garment.is_some()
+    }
+
+    /// The refusal of `verb` (`drag`, `set`) on a garment from a file, when the current
+    /// garment is one: it has no control points or dimensions.
+    fn refuse_on_mesh(&self, line: &Line<'_>, head: &Token<'_>, what: &str) -> Result<(), ParseError> {
+        match self.mesh_garment {
+            Some(at) => Err(line.error(
+                head.column,
+                format!(
+                    "'{}' needs a garment built from a template: the garment of line {at} is a mesh from a file, \
+                     which has no {what} (sculpt pushes or pulls its surface)",
+                    head.text
+                ),
+            )),
+            None => Ok(()),
+        }
+    }
+
     fn statement(&mut self, line: &Line<'_>) -> Result<(), ParseError> {
         let Some((head, rest)) = line.tokens.split_first() else {
             return Ok(());

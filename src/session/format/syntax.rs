@@ -137,6 +137,20 @@ pub enum Op {
         /// Segments per anchor arc in M0.
         resolution: usize,
     },
+    /// A garment mesh from a file (made by another tool) as the garment: its M0 as read,
+    /// collided with the body, certified, refined into M1, sculpted and cut like a
+    /// template's; it has no control points or dimensions (no `drag`, no `set`).
+    GarmentMesh {
+        /// The OBJ file.
+        path: std::path::PathBuf,
+        /// The garment's name (files, the log; default the file's stem).
+        name: String,
+        /// The gap a moved vertex stands off the skin, m (default
+        /// [`crate::import::CheckOptions`]' 0.002).
+        ease: f64,
+        /// The file's units, as a factor to metres.
+        scale: f64,
+    },
     /// Change a dimension of the current garment and solve again.
     Set {
         /// Dimension name.
@@ -225,7 +239,7 @@ impl Op {
         match self {
             Self::Mannequin(_) => Statement::Mannequin,
             Self::Section { .. } => Statement::Section,
-            Self::Garment { .. } => Statement::Garment,
+            Self::Garment { .. } | Self::GarmentMesh { .. } => Statement::Garment,
             Self::Set { .. } => Statement::Set,
             Self::Drag(_) => Statement::Drag,
             Self::Undo => Statement::Undo,

@@ -206,8 +206,12 @@ pub struct CollisionOutcome {
     pub collision: Collision,
     /// With `--verify`: the brute-force check.
     pub verify: Option<VerifyReport>,
-    /// Template name (for file names).
-    pub template: &'static str,
+    /// The garment's name: its template's, or the one `garment mesh` gave (file names,
+    /// the log).
+    pub name: String,
+    /// The file the garment was read from (`garment mesh`): what `--export` writes back
+    /// with the file's own structure. `None` for a garment built from a template.
+    pub source: Option<std::sync::Arc<crate::import::ImportedGarment>>,
 }
 
 /// M1 of a step: built over the step's collided M0, collided where it differs from M0, with
@@ -225,8 +229,8 @@ pub struct M1Stage<'a> {
 pub struct PatternStage<'a> {
     /// The pattern, or why it could not be made.
     pub result: &'a Result<crate::pattern::Pattern, crate::pattern::PatternError>,
-    /// The garment's template name.
-    pub garment: &'static str,
+    /// The garment's name.
+    pub garment: &'a str,
 }
 
 /// M1 and what became of it.

@@ -21,6 +21,13 @@ pub(super) fn run(
     let (Some(current), Some(probe)) = (state.garment.as_ref(), state.probe.as_ref()) else {
         return Err(StepError::NoGarment { verb: "drag" });
     };
+    if current.file.is_some() {
+        return Err(StepError::FileGarment {
+            name: current.name(),
+            verb: "drag",
+            what: "control points",
+        });
+    }
     let (Some(before), Some(net)) = (&current.framework, &current.net) else {
         return Err(StepError::NoGarment { verb: "drag" });
     };

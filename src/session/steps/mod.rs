@@ -7,6 +7,7 @@
 mod cut;
 mod drag;
 mod garment;
+mod garment_mesh;
 mod mannequin;
 mod move_part;
 mod nurbs;
@@ -47,6 +48,12 @@ pub(super) fn run_step(
                 .with_resolution(*resolution);
             garment::run(scope, state, cx, *template, options)
         }
+        Op::GarmentMesh {
+            path,
+            name,
+            ease,
+            scale,
+        } => garment_mesh::run(scope, state, cx, (path, name), *ease, *scale),
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
         Op::Undo => undo::run(scope, state),

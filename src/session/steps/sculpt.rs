@@ -34,7 +34,7 @@ pub(super) fn run(
         at: resolve(current, at)?,
         ..*drag
     };
-    let (Some(fw), Some(base)) = (current.framework.as_ref(), base(current)) else {
+    let (Some(ease), Some(base)) = (current.ease(), base(current)) else {
         return Err(StepError::NoGarment { verb: "sculpt" });
     };
     let index = probe.index();
@@ -44,7 +44,7 @@ pub(super) fn run(
         base,
         (drag, options),
         index,
-        fw.ease(),
+        ease,
         &cx.options.collision,
         current.sculpts.len() + 1,
     )

@@ -48,6 +48,13 @@ pub(super) fn run(
     name: &str,
     change: Change,
 ) -> Result<(), StepError> {
+    if let Some(g) = state.garment.as_ref().filter(|g| g.file.is_some()) {
+        return Err(StepError::FileGarment {
+            name: g.name(),
+            verb: "set",
+            what: "dimensions",
+        });
+    }
     let Some((current_state, before)) = state
         .garment
         .as_ref()

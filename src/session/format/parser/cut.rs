@@ -12,12 +12,21 @@ impl Parser<'_> {
     /// through `at` with that normal; `cut NAME through=x,y,z;x,y,z;...`: a cut line through
     /// picked points of the garment (at least two), a seam of its pattern.
     pub(super) fn cut(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
-        if self.garment.is_none() {
+        if !self.has_garment() {
             return Err(line.error(head.column, "'cut' needs a garment: put a 'garment' step before it"));
         }
         if let Some((which, args)) = rest.split_first()
             && let Some(through) = args.iter().find(|t| t.text.starts_with("through="))
         {
+            if let Some(at) = self.mesh_garment {
+                return Err(line.error(
+                    through.column,
+                    format!(
+                        "a cut through points is a seam of the pattern, and the garment of line {at} (a mesh from a \
+                         file) has no seam curves to cut a pattern along: cut it with a plane (at=x,y,z normal=x,y,z)"
+                    ),
+                ));
+            }
             if self.patterns.is_none() {
                 return Err(line.error(
                     through.column,

@@ -10,6 +10,7 @@ use crate::session::format::syntax::{Op, ParseError};
 impl Parser<'_> {
     /// `drag POINT by=dx,dy,dz | to=x,y,z` or `drag CURVE by=dx,dy,dz`.
     pub(super) fn drag(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        self.refuse_on_mesh(line, head, "control points to drag")?;
         if self.garment.is_none() {
             return Err(line.error(head.column, "'drag' needs a garment: put a 'garment' step before it"));
         }

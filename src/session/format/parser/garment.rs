@@ -17,14 +17,17 @@ impl Parser<'_> {
                 "expected a template after 'garment' (jumpsuit, dress or shirt)",
             ));
         };
+        if which.text == "mesh" && !which.quoted {
+            return self.garment_mesh(line, which, args);
+        }
         let names: Vec<&str> = TemplateKind::ALL.iter().map(|t| t.name()).collect();
         let template = TemplateKind::from_name(which.text).ok_or_else(|| {
             line.error(
                 which.column,
                 format!(
-                    "unknown template '{}'{}: expected one of {}",
+                    "unknown template '{}'{}: expected one of {}, or mesh \"FILE\" for a garment from a file",
                     which.text,
-                    did_you_mean(which.text, names.iter().copied()),
+                    did_you_mean(which.text, names.iter().copied().chain(["mesh"])),
                     names.join(", ")
                 ),
             )
@@ -76,6 +79,7 @@ impl Parser<'_> {
             Some(t) => integer_in(line, t, "resolution", 2..=24)?,
         };
         self.garment = Some((template, style));
+        self.mesh_garment = None;
         self.undoable = 0;
         Ok(Op::Garment {
             template,

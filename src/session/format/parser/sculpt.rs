@@ -13,7 +13,7 @@ impl Parser<'_> {
     /// [weight=W]`: lengths in m.
     pub(super) fn sculpt(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
         use crate::sculpt::{AdaptiveOptions, Drag, Falloff, SculptOptions};
-        if self.garment.is_none() {
+        if !self.has_garment() {
             return Err(line.error(head.column, "'sculpt' needs a garment: put a 'garment' step before it"));
         }
         let a = Args::parse(
@@ -31,6 +31,16 @@ impl Parser<'_> {
             "a control point such as waist.front, or the pick point x,y,z in m",
         )?;
         let at = if at_token.text.chars().any(|c| c.is_ascii_alphabetic()) {
+            if let Some(at) = self.mesh_garment {
+                return Err(line.error(
+                    at_token.column,
+                    format!(
+                        "the garment of line {at} is a mesh from a file and has no control point '{}': give the \
+                         pick point, at=x,y,z in m",
+                        at_token.text
+                    ),
+                ));
+            }
             let names = self
                 .garment
                 .map(|(t, style)| crate::garment::template::styled(t, style).point_names())

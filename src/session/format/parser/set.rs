@@ -9,6 +9,7 @@ use crate::session::format::syntax::{Change, Op, ParseError};
 impl Parser<'_> {
     /// `set NAME +d | -d | value`.
     pub(super) fn set(&mut self, line: &Line<'_>, head: &Token<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
+        self.refuse_on_mesh(line, head, "dimensions to set")?;
         let Some((template, style)) = self.garment else {
             return Err(line.error(head.column, "'set' needs a garment: put a 'garment' step before it"));
         };
