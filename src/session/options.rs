@@ -34,6 +34,16 @@ pub struct RunOptions {
     pub index_cache: Option<crate::body::index_cache::IndexCache>,
 }
 
+impl RunOptions {
+    /// The largest file a step reads, bytes ([`Self::max_input_bytes`], its default for 0).
+    pub fn input_limit(&self) -> u64 {
+        match self.max_input_bytes {
+            0 => crate::input::DEFAULT_MAX_INPUT_BYTES,
+            n => n,
+        }
+    }
+}
+
 /// What every step may read: the session and the run's settings.
 pub(in crate::session) struct StepContext<'a> {
     /// The session (its scene settings: the solver).

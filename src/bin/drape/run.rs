@@ -54,30 +54,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
     let mut exporter = args.export.clone().map(ObjExporter::new).transpose().internal()?;
     let mut pattern_exporter = args.patterns.clone().map(PatternExporter::new);
     let mut progress = Progress;
-    let frame = drape::body::Frame::new(
-        args.up.unwrap_or(drape::body::Axis(glam::DVec3::Y)),
-        args.front.unwrap_or(drape::body::Axis(glam::DVec3::Z)),
-    )
-    .map_err(anyhow::Error::msg)
-    .bad_input()?;
-    let mut options = RunOptions {
-        body_override: args.body.clone(),
-        body_frame: frame,
-        verify: args.verify,
-        max_input_bytes: crate::max_input_bytes(),
-        stop: Some(stop.clone()),
-        index_cache: crate::index_cache(),
-        ..RunOptions::default()
-    };
-    if args.brute_force {
-        options.collision.detect.acceleration = drape::collision::Acceleration::BruteForce;
-        options.collision.detect.method_override = Some(drape::body::DetectionMethod::PointFace);
-    }
-    options.collision.full_quality = args.quality == "full";
-    if args.no_skipping {
-        options.collision.detect.inert = false;
-        options.collision.detect.patch_skipping = false;
-    }
+    let options = run_options(&args, &stop)?;
     let report = {
         let mut sinks: Vec<&mut dyn StageSink> = vec![&mut progress, &mut logger];
         if let Some(e) = exporter.as_mut() {
@@ -140,4 +117,34 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         None if args.strict && !report.shortfalls.is_empty() => Ok(ExitCode::from(FailureKind::StepFailed.exit_code())),
         None => Ok(ExitCode::SUCCESS),
     }
+}
+
+/// The run's settings from the command line: the body and its axes, `--verify`, the input
+/// limit, the stop flag, the index cache and the collision's switches.
+fn run_options(args: &RunArgs, stop: &std::sync::Arc<std::sync::atomic::AtomicBool>) -> Result<RunOptions> {
+    let frame = drape::body::Frame::new(
+        args.up.unwrap_or(drape::body::Axis(glam::DVec3::Y)),
+        args.front.unwrap_or(drape::body::Axis(glam::DVec3::Z)),
+    )
+    .map_err(anyhow::Error::msg)
+    .bad_input()?;
+    let mut options = RunOptions {
+        body_override: args.body.clone(),
+        body_frame: frame,
+        verify: args.verify,
+        max_input_bytes: crate::max_input_bytes(),
+        stop: Some(stop.clone()),
+        index_cache: crate::index_cache(),
+        ..RunOptions::default()
+    };
+    if args.brute_force {
+        options.collision.detect.acceleration = drape::collision::Acceleration::BruteForce;
+        options.collision.detect.method_override = Some(drape::body::DetectionMethod::PointFace);
+    }
+    options.collision.full_quality = args.quality == "full";
+    if args.no_skipping {
+        options.collision.detect.inert = false;
+        options.collision.detect.patch_skipping = false;
+    }
+    Ok(options)
 }

@@ -165,6 +165,24 @@ pub(in crate::session) fn collide_and_emit(
     (!q.is_clear()).then_some([q.penetrating_vertices, q.crossing_edges, q.pierced_faces])
 }
 
+/// Collides a new garment's first M0 (`garment`, `garment mesh`): a shortfall has nothing to
+/// fall back on, so the garment is kept and the shortfall reported loudly.
+pub(in crate::session) fn collide_new(
+    scope: &mut StepScope<'_, '_, '_>,
+    body: &Body,
+    index: &BodyIndex,
+    next: &mut GarmentState,
+    cx: &StepContext<'_>,
+) {
+    if let Some([inside, crossing, pierced]) = collide_and_emit(scope, body, index, next, cx) {
+        scope.shortfalls.push(crate::session::emit::Shortfall::Guarantee {
+            inside,
+            crossing,
+            pierced,
+        });
+    }
+}
+
 /// The refusal of an edit whose M0 the response could not clear of the body (`unmet`:
 /// vertices inside, edges crossing, faces pierced): the kept garment is emitted again after the attempt
 /// ([`emit_kept`]), so that the last thing logged is what the session holds; returns the

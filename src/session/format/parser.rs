@@ -144,6 +144,33 @@ impl Parser<'_> {
         }
     }
 
+    /// A step's quoted file (resolved against the session's folder) and the name of what it
+    /// holds (`name=`, else the file's stem, else `fallback`), checked to hold letters,
+    /// digits, '_' and '-' only; `what` names it in the message (`part`, `garment`).
+    fn file_and_name(
+        &self,
+        line: &Line<'_>,
+        (file, name): (&Token<'_>, Option<Token<'_>>),
+        column: usize,
+        (what, fallback): (&str, &str),
+    ) -> Result<(std::path::PathBuf, String), ParseError> {
+        let p = std::path::PathBuf::from(file.text);
+        let path = if p.is_absolute() { p } else { self.base_dir.join(p) };
+        let name = match name {
+            Some(t) => t.text.to_string(),
+            None => path
+                .file_stem()
+                .map_or(fallback.into(), |s| s.to_string_lossy().into_owned()),
+        };
+        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
+            return Err(line.error(
+                column,
+                format!("a {what} name may hold letters, digits, '_' and '-' only, found '{name}' (give name=...)"),
+            ));
+        }
+        Ok((path, name))
+    }
+
     fn statement(&mut self, line: &Line<'_>) -> Result<(), ParseError> {
         let Some((head, rest)) = line.tokens.split_first() else {
             return Ok(());

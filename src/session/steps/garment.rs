@@ -3,9 +3,9 @@
 //! constraint network, and the collision of M0.
 
 use crate::garment::{FrameworkOptions, TemplateKind};
-use crate::session::emit::{Shortfall, StepScope};
+use crate::session::emit::StepScope;
 use crate::session::error::StepError;
-use crate::session::flow::collide::collide_and_emit;
+use crate::session::flow::collide::collide_new;
 use crate::session::flow::garment::solve_garment;
 use crate::session::options::StepContext;
 use crate::session::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
@@ -36,15 +36,8 @@ pub(super) fn run(
         );
     }
     next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
-    if let Some(probe) = &state.probe
-        && let Some([inside, crossing, pierced]) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
-    {
-        // A new garment has nothing to fall back on: kept, and reported loudly.
-        scope.shortfalls.push(Shortfall::Guarantee {
-            inside,
-            crossing,
-            pierced,
-        });
+    if let Some(probe) = &state.probe {
+        collide_new(scope, &state.body, probe.index(), &mut next, cx);
     }
     state.garment = Some(next);
     Ok(())

@@ -12,9 +12,9 @@ use serde::Serialize;
 
 use crate::import::{ImportNotes, ImportedGarment, face_regions};
 use crate::mesh::ObjDocument;
-use crate::session::emit::{Shortfall, StepScope};
+use crate::session::emit::StepScope;
 use crate::session::error::StepError;
-use crate::session::flow::collide::collide_and_emit;
+use crate::session::flow::collide::collide_new;
 use crate::session::flow::garment::body_probe;
 use crate::session::options::StepContext;
 use crate::session::state::{FileGarment, GarmentState, SessionState};
@@ -48,10 +48,7 @@ pub(super) fn run(
         path: path.to_path_buf(),
         message,
     };
-    let limit = match cx.options.max_input_bytes {
-        0 => crate::input::DEFAULT_MAX_INPUT_BYTES,
-        n => n,
-    };
+    let limit = cx.options.input_limit();
     let mut doc = scope
         .timed("garment.read", || ObjDocument::read(path, scale, limit))
         .map_err(|e| fail(e.to_string()))?;
@@ -87,15 +84,8 @@ pub(super) fn run(
     });
     // M1's stretch rule compares with the garment as read.
     next.standard = Some(standard);
-    if let Some(probe) = &state.probe
-        && let Some([inside, crossing, pierced]) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx)
-    {
-        // As a template garment's first M0: kept, and reported loudly.
-        scope.shortfalls.push(Shortfall::Guarantee {
-            inside,
-            crossing,
-            pierced,
-        });
+    if let Some(probe) = &state.probe {
+        collide_new(scope, &state.body, probe.index(), &mut next, cx);
     }
     state.garment = Some(next);
     Ok(())

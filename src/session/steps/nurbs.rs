@@ -26,10 +26,7 @@ pub(super) fn run(
         path: path.to_path_buf(),
         message,
     };
-    let limit = match cx.options.max_input_bytes {
-        0 => crate::input::DEFAULT_MAX_INPUT_BYTES,
-        n => n,
-    };
+    let limit = cx.options.input_limit();
     let text = crate::input::read_text(path, limit).map_err(|e| fail(e.to_string()))?;
     let surface = file::parse(&text).map_err(|e| fail(e.to_string()))?.surface;
     let options = NurbsOptions::default();

@@ -1,7 +1,5 @@
 //! The `garment mesh` step: a garment mesh from a file as the garment.
 
-use std::path::PathBuf;
-
 use super::Parser;
 use crate::session::format::args::{Args, number};
 use crate::session::format::lexer::{Line, Token};
@@ -28,20 +26,8 @@ impl Parser<'_> {
             return Err(line.error(column, "expected a quoted OBJ path after 'garment mesh'"));
         };
         let a = Args::parse(line, args, &["name", "ease", "units"], "garment mesh")?;
-        let p = PathBuf::from(file.text);
-        let path = if p.is_absolute() { p } else { self.base_dir.join(p) };
-        let name = match a.get("name") {
-            Some(t) => t.text.to_string(),
-            None => path
-                .file_stem()
-                .map_or("garment".into(), |s| s.to_string_lossy().into_owned()),
-        };
-        if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-') {
-            return Err(line.error(
-                a.get("name").map_or(mesh.column, |t| t.column),
-                format!("a garment name may hold letters, digits, '_' and '-' only, found '{name}' (give name=...)"),
-            ));
-        }
+        let column = a.get("name").map_or(mesh.column, |t| t.column);
+        let (path, name) = self.file_and_name(line, (file, a.get("name")), column, ("garment", "garment"))?;
         let ease = match a.get("ease") {
             None => crate::import::CheckOptions::default().ease,
             Some(t) => {
