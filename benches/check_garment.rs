@@ -121,13 +121,22 @@ fn session_row(name: &str, body: &std::path::Path, file: &std::path::Path, verti
         let report = run_session(&session, &RunOptions::default(), &mut []);
         assert!(report.error.is_none(), "{:?}", report.error);
         let step = report.steps.last().expect("the garment step").clone();
-        times.push(step.timings_ms.iter().filter(|(k, _)| !k.starts_with("log.")).map(|(_, v)| v).sum::<f64>());
+        times.push(
+            step.timings_ms
+                .iter()
+                .filter(|(k, _)| !k.starts_with("log."))
+                .map(|(_, v)| v)
+                .sum::<f64>(),
+        );
         figures = Some(step.figures);
     }
     times.sort_by(f64::total_cmp);
     let f = figures.expect("figures");
     let n = |key: &str| f.get(key).and_then(serde_json::Value::as_u64).unwrap_or(0);
-    let regions = f.get("regions").and_then(serde_json::Value::as_array).map_or(0, Vec::len);
+    let regions = f
+        .get("regions")
+        .and_then(serde_json::Value::as_array)
+        .map_or(0, Vec::len);
     let refined = f
         .get("m1_patches_refined")
         .and_then(|r| r.get("total"))

@@ -232,10 +232,12 @@ impl ImportedGarment {
 
     /// The same garment with its faces in other patches (`face_patch`, one per triangle,
     /// below `patches`): the collision's roles (each vertex's patches) made again.
-    pub fn with_face_patches(&self, face_patch: &[u32], patches: usize) -> Self {
+    pub fn with_face_patches(self, face_patch: &[u32], patches: usize) -> Self {
         Self {
-            mesh: garment_mesh(self.mesh.mesh.clone(), face_patch, patches),
-            ..self.clone()
+            mesh: garment_mesh(self.mesh.mesh, face_patch, patches),
+            doc: self.doc,
+            to_mesh: self.to_mesh,
+            notes: self.notes,
         }
     }
 

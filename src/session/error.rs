@@ -106,7 +106,9 @@ pub enum StepError {
     },
     /// `drag` or `set` on a garment from a file (the parser refuses it; a step made by hand
     /// may not).
-    #[error("the garment '{name}' is a mesh from a file: it has no {what} ('{verb}' needs a garment built from a template; sculpt pushes or pulls its surface)")]
+    #[error(
+        "the garment '{name}' is a mesh from a file: it has no {what} ('{verb}' needs a garment built from a template; sculpt pushes or pulls its surface)"
+    )]
     FileGarment {
         /// The garment's name.
         name: String,

@@ -7,9 +7,9 @@ use crate::constraint::{ConstraintNet, Edit};
 use crate::garment::{BodyProbe, Dimensions, Framework, FrameworkOptions, TemplateKind};
 
 use super::stage::{CollisionOutcome, M1Outcome, SculptOutcome};
-use crate::m1::StoredCut;
 use crate::collision::GarmentMesh;
 use crate::import::ImportedGarment;
+use crate::m1::StoredCut;
 use std::sync::Arc;
 
 /// A garment from a file (`garment mesh`): the file as read and prepared for the

@@ -20,7 +20,9 @@ fn last_export(dir: &Path, suffix: &str) -> PathBuf {
         .filter(|p| p.to_str().is_some_and(|s| s.ends_with(suffix)))
         .collect();
     found.sort();
-    found.pop().unwrap_or_else(|| panic!("no *{suffix} in {}", dir.display()))
+    found
+        .pop()
+        .unwrap_or_else(|| panic!("no *{suffix} in {}", dir.display()))
 }
 
 #[test]
@@ -126,7 +128,10 @@ fn a_garment_mesh_refuses_drags_and_sets_and_names_a_bad_file() {
         ),
         ("garment mesh \"missing.obj\"\n", "garment 'missing' from"),
         ("garment mesh \"band.obj\" units=ft\n", "unknown units 'ft'"),
-        ("garment mesh \"band.obj\" ease=0.5\n", "ease must be between 0 and 0.1 m"),
+        (
+            "garment mesh \"band.obj\" ease=0.5\n",
+            "ease must be between 0 and 0.1 m",
+        ),
         ("garment mesh \"band.obj\" units=mm\n", "likely in m"),
     ];
     let body = &real_body().mesh.mesh;

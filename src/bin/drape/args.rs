@@ -112,7 +112,6 @@ pub(crate) fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {
     drape::body::Axis::parse(text).ok_or_else(|| format!("'{text}' is not an axis: give x, y, z, -x, -y or -z"))
 }
 
-
 #[derive(Args, Debug)]
 pub(crate) struct FlattenArgs {
     /// Panel meshes (OBJ, metres).

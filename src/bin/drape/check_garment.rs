@@ -13,9 +13,9 @@ use drape::mesh::ObjDocument;
 use drape::session::{BodyStage, CollisionOutcome, CollisionPart, CollisionStage, Stage, StageInfo, StageSink};
 use drape::viz::{LogOptions, RerunLogger, check_garment_blueprint, open_file_recording};
 
-use clap::Args;
 use crate::failure::{Classify, Result};
 use crate::files::write_atomic;
+use clap::Args;
 
 pub(crate) const EXIT_CODES: &str = "Exit codes: 0 the garment was clear as read; 1 it was not, and the repair cleared it (--repair wrote the clear mesh); 4 the repair could not clear it (the regions left are printed); 2 bad input (an unreadable or malformed file, a non-manifold edge, a garment in other units or apart from the body, a body that cannot be analysed); 3 an internal or I/O failure.";
 

@@ -58,7 +58,9 @@ pub(super) fn run(
     }
     let index = body_probe(scope, &state.body, &mut state.probe, cx).index();
     let imported = scope
-        .timed("garment.import", || ImportedGarment::new(doc, &state.body.mesh.mesh, index))
+        .timed("garment.import", || {
+            ImportedGarment::new(doc, &state.body.mesh.mesh, index)
+        })
         .map_err(|e| fail(e.to_string()))?;
     let (face_region, regions) = face_regions(&imported, index);
     let imported = imported.with_face_patches(&face_region, regions.len());

@@ -43,12 +43,16 @@ impl Parser<'_> {
         };
         let scale = match a.get("units") {
             None => 1.0,
-            Some(t) => UNITS.iter().find(|(u, _)| *u == t.text).map(|(_, s)| *s).ok_or_else(|| {
-                line.error(
-                    t.column,
-                    format!("unknown units '{}': expected m, cm, mm or in", t.text),
-                )
-            })?,
+            Some(t) => UNITS
+                .iter()
+                .find(|(u, _)| *u == t.text)
+                .map(|(_, s)| *s)
+                .ok_or_else(|| {
+                    line.error(
+                        t.column,
+                        format!("unknown units '{}': expected m, cm, mm or in", t.text),
+                    )
+                })?,
         };
         self.garment = None;
         self.mesh_garment = Some(line.number);
