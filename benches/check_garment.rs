@@ -17,7 +17,7 @@ use std::time::Instant;
 use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
 use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, Checked, ImportedGarment, check};
-use drape::mesh::ObjDocument;
+use drape::mesh::MeshDocument;
 use drape::session::{RunOptions, parse_session, run_session};
 
 #[path = "bodies.rs"]
@@ -58,10 +58,13 @@ fn main() {
             let mut times = Vec::new();
             for _ in 0..3 {
                 let start = Instant::now();
-                let doc = ObjDocument::read(&file, 1.0, u64::MAX).expect("the garment reads");
+                let doc = MeshDocument::read(&file, 1.0, u64::MAX).expect("the garment reads");
                 let imported = ImportedGarment::new(doc, &body.mesh.mesh, &index).expect("the garment imports");
                 let checked = check(&imported, &index, &CheckOptions::default());
-                let text = imported.doc.write(&checked.positions, &checked.moved);
+                let text = imported
+                    .doc
+                    .write(&checked.positions, &checked.moved)
+                    .expect("written back");
                 std::fs::write(&repaired, text).expect("written");
                 times.push(start.elapsed().as_secs_f64() * 1e3);
                 last = Some(checked);

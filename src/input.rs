@@ -79,6 +79,19 @@ fn kind_of(meta: &std::fs::Metadata) -> &'static str {
 /// # Failures
 /// [`InputError`]: unreadable, not a regular file, too large, not UTF-8.
 pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, InputError> {
+    let bytes = read_bytes(path, max_bytes)?;
+    String::from_utf8(bytes).map_err(|e| InputError::NotText {
+        path: path.display().to_string(),
+        at: e.utf8_error().valid_up_to(),
+    })
+}
+
+/// Reads the bytes of the regular file `path`, at most `max_bytes` long, checked as
+/// [`read_text`] checks them.
+///
+/// # Failures
+/// [`InputError`]: unreadable, not a regular file, too large.
+pub fn read_bytes(path: &Path, max_bytes: u64) -> Result<Vec<u8>, InputError> {
     let name = path.display().to_string();
     let io = |e: std::io::Error| InputError::Io {
         path: name.clone(),
@@ -106,8 +119,5 @@ pub fn read_text(path: &Path, max_bytes: u64) -> Result<String, InputError> {
     if bytes.len() as u64 > max_bytes {
         return Err(too_large(bytes.len() as u64));
     }
-    String::from_utf8(bytes).map_err(|e| InputError::NotText {
-        path: name.clone(),
-        at: e.utf8_error().valid_up_to(),
-    })
+    Ok(bytes)
 }

@@ -10,14 +10,15 @@ use super::mesh::{BUILTIN_BODY_OBJ, BodyMesh, BodySource};
 use super::partition::{self, Partition, PartitionOptions};
 use super::rings::{self, BodyRing, RingError};
 use crate::geom::HeightBands;
-use crate::mesh::{MeshError, ObjError, obj, validate_and_repair};
+use crate::mesh::validate::validate_and_repair_at;
+use crate::mesh::{MeshError, MeshFileError, obj};
 
 /// Why a body could not be used.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum BodyError {
     /// The OBJ is unreadable or malformed.
     #[error(transparent)]
-    Obj(#[from] ObjError),
+    File(#[from] MeshFileError),
     /// The mesh is broken beyond repair.
     #[error(transparent)]
     Mesh(#[from] MeshError),
@@ -59,7 +60,7 @@ impl BodyMesh {
         let name = source.name();
         let parsed = match source {
             BodySource::Builtin => obj::parse_obj(BUILTIN_BODY_OBJ, &name, scale)?,
-            BodySource::File(path) => obj::read_obj(path, scale, max_bytes)?,
+            BodySource::File(path) => crate::mesh::document::read_mesh(path, scale, max_bytes)?,
         };
         Self::from_obj(name, parsed)
     }
@@ -71,7 +72,8 @@ impl BodyMesh {
 
     fn from_obj(name: String, parsed: obj::ObjMesh) -> Result<Self, BodyError> {
         let mut mesh = parsed.mesh;
-        let (report, adjacency) = validate_and_repair(&mut mesh, &name, &parsed.triangle_lines)?;
+        let (report, adjacency) =
+            validate_and_repair_at(&mut mesh, &name, (&parsed.triangle_lines, parsed.place_word))?;
         let bands = HeightBands::new(&mesh);
         Ok(Self {
             name,

@@ -13,7 +13,7 @@ use crate::collision::BodyIndex;
 use crate::collision::GarmentMesh;
 use crate::mesh::topology::{boundary_vertices, undirected_edges};
 use crate::mesh::validate::consistent_parts;
-use crate::mesh::{Adjacency, MeshError, ObjDocument, ObjError, TriMesh};
+use crate::mesh::{Adjacency, MeshDocument, MeshError, MeshFileError, TriMesh};
 
 /// What reading the garment found and repaired.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -31,8 +31,11 @@ pub struct ImportNotes {
     pub duplicate_vertices_welded: usize,
     /// Triangles dropped because two of their corners are one vertex (after welding).
     pub degenerate_triangles_dropped: usize,
-    /// The first lines of those (1-based).
+    /// Where the first of those are in the file: their lines (OBJ) or face numbers
+    /// (1-based).
     pub degenerate_lines: Vec<usize>,
+    /// "line" or "face": what [`Self::degenerate_lines`] count.
+    pub place_word: &'static str,
     /// Triangles of zero area (kept).
     pub zero_area_triangles: usize,
     /// Vertices no face uses (left as they are).
@@ -67,7 +70,11 @@ impl ImportNotes {
         let lines: Vec<String> = self.degenerate_lines.iter().map(ToString::to_string).collect();
         note(
             self.degenerate_triangles_dropped,
-            format!("triangle(s) repeating a vertex left out (lines {})", lines.join(", ")),
+            format!(
+                "triangle(s) repeating a vertex left out ({}s {})",
+                self.place_word,
+                lines.join(", ")
+            ),
         );
         note(self.zero_area_triangles, "zero-area triangle(s) kept".into());
         note(self.unused_vertices, "vertex(es) no face uses, left as they are".into());
@@ -91,7 +98,7 @@ impl ImportNotes {
 pub enum ImportError {
     /// The file could not be read or parsed.
     #[error(transparent)]
-    Obj(#[from] ObjError),
+    File(#[from] MeshFileError),
     /// An edge shared by three or more faces, an unorientable part, or nothing left.
     #[error(transparent)]
     Mesh(#[from] MeshError),
@@ -131,7 +138,7 @@ pub enum ImportError {
 #[derive(Clone, Debug)]
 pub struct ImportedGarment {
     /// The file as read.
-    pub doc: ObjDocument,
+    pub doc: MeshDocument,
     /// The mesh the collision layers see: one vertex per distinct position used by a face,
     /// its triangles oriented away from the body, one patch per group of the file.
     pub mesh: GarmentMesh,
@@ -152,13 +159,14 @@ impl ImportedGarment {
     /// [`ImportError`]: a non-manifold edge or an unorientable part (named by vertex and
     /// line), no usable triangle, a size that fits other units, or a garment apart from
     /// the body.
-    pub fn new(doc: ObjDocument, body: &TriMesh, index: &BodyIndex) -> Result<Self, ImportError> {
+    pub fn new(doc: MeshDocument, body: &TriMesh, index: &BodyIndex) -> Result<Self, ImportError> {
         let place = format!("{}: ", doc.name);
         check_size_and_place(&doc, body)?;
         let mut notes = ImportNotes {
             vertices: doc.positions.len(),
             faces: doc.faces.len(),
             polygons_triangulated: doc.faces.iter().filter(|f| f.corners.len() > 3).count(),
+            place_word: doc.format.place_word(),
             ..ImportNotes::default()
         };
         let (file_triangles, face_of) = doc.triangles();
@@ -172,13 +180,13 @@ impl ImportedGarment {
             let face = &doc.faces[*f as usize];
             if m[0] == m[1] || m[1] == m[2] || m[0] == m[2] {
                 notes.degenerate_triangles_dropped += 1;
-                if notes.degenerate_lines.len() < 10 && notes.degenerate_lines.last() != Some(&face.line) {
-                    notes.degenerate_lines.push(face.line);
+                if notes.degenerate_lines.len() < 10 && notes.degenerate_lines.last() != Some(&face.at) {
+                    notes.degenerate_lines.push(face.at);
                 }
                 continue;
             }
             triangles.push(m);
-            lines.push(face.line);
+            lines.push(face.at);
             groups.push(face.group);
         }
         if triangles.is_empty() {
@@ -203,11 +211,11 @@ impl ImportedGarment {
                 a: file_vertex(e.vertices[0]),
                 b: file_vertex(e.vertices[1]),
                 count: e.triangles.len(),
-                lines: format!(" (lines {})", shown.join(", ")),
+                lines: format!(" ({}s {})", doc.format.place_word(), shown.join(", ")),
             }
         })?;
         notes.boundary_edges = adjacency.boundary_edges;
-        let (flipped, parts) = consistent_parts(&mesh, &adjacency, &lines, &place)?;
+        let (flipped, parts) = consistent_parts(&mesh, &adjacency, (&lines, doc.format.place_word()), &place)?;
         notes.turned_to_agree = flipped.iter().filter(|f| **f).count();
         notes.parts = parts.len();
         for (t, &flip) in mesh.triangles.iter_mut().zip(&flipped) {
@@ -242,7 +250,7 @@ impl ImportedGarment {
     }
 
     /// The file's vertices at the collision mesh's `positions`, and which of them moved
-    /// (bit for bit): what [`ObjDocument::write`] takes.
+    /// (bit for bit): what [`MeshDocument::write`] takes.
     pub fn file_positions(&self, positions: &[DVec3]) -> (Vec<DVec3>, Vec<bool>) {
         self.doc
             .positions
@@ -259,7 +267,7 @@ impl ImportedGarment {
 /// One vertex per distinct position among those the faces use (exact duplicates, a seam
 /// written twice, welded): the positions and, per file vertex, its welded vertex
 /// (`u32::MAX` for a vertex no face uses).
-fn weld(doc: &ObjDocument, file_triangles: &[[u32; 3]], notes: &mut ImportNotes) -> (Vec<DVec3>, Vec<u32>) {
+fn weld(doc: &MeshDocument, file_triangles: &[[u32; 3]], notes: &mut ImportNotes) -> (Vec<DVec3>, Vec<u32>) {
     let mut used = vec![false; doc.positions.len()];
     for t in file_triangles {
         for &v in t {
@@ -315,7 +323,7 @@ fn face_away(mesh: &mut TriMesh, parts: &[Vec<usize>], index: &BodyIndex, notes:
 }
 
 /// The garment's size against the body's height, and its box against the body's.
-fn check_size_and_place(doc: &ObjDocument, body: &TriMesh) -> Result<(), ImportError> {
+fn check_size_and_place(doc: &MeshDocument, body: &TriMesh) -> Result<(), ImportError> {
     let (lo, hi) = doc
         .positions
         .iter()

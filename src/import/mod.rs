@@ -1,6 +1,6 @@
 //! Garments made elsewhere: a garment mesh from another tool (exported from garment CAD,
 //! draped by a simulator, made by a dataset generator) read with everything its tool needs
-//! kept ([`crate::mesh::ObjDocument`]), made ready for the collision layers
+//! kept ([`crate::mesh::MeshDocument`]), made ready for the collision layers
 //! ([`ImportedGarment`]: welded, oriented away from the body, its size checked), counted
 //! exactly, repaired by the same layers as drape's own garments, counted again
 //! ([`check`]), and written back with only the moved vertices changed.

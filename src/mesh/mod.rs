@@ -1,13 +1,19 @@
-//! Triangle meshes: the mesh type, OBJ input and output, topology and validation.
+//! Triangle meshes: the mesh type, mesh files (OBJ, PLY, glTF) in and out, topology and
+//! validation.
 
+pub mod document;
+mod file_error;
+mod gltf_doc;
 pub mod obj;
-pub mod obj_doc;
+mod obj_doc;
+mod ply_doc;
 pub mod topology;
 pub mod trimesh;
 pub mod validate;
 
-pub use obj::{ObjError, read_obj, write_obj};
-pub use obj_doc::{Corner, ObjDocument, ObjFace};
+pub use document::{Corner, Face, MeshDocument, MeshFormat};
+pub use file_error::MeshFileError;
+pub use obj::{read_obj, write_obj};
 pub use topology::Adjacency;
 pub use trimesh::TriMesh;
 pub use validate::{MeshError, MeshReport, validate_and_repair};

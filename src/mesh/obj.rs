@@ -9,47 +9,11 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use glam::DVec3;
-use thiserror::Error;
 
 use super::TriMesh;
+pub use super::file_error::MeshFileError;
 
-/// Why an OBJ file could not be read.
-#[derive(Debug, Error, Clone, PartialEq)]
-pub enum ObjError {
-    /// The file could not be opened or read.
-    #[error("{path}: cannot read: {message}")]
-    Io {
-        /// File name.
-        path: String,
-        /// The system's message.
-        message: String,
-    },
-    /// A statement is malformed.
-    #[error("{path}:{line}:{column}: {message}")]
-    Syntax {
-        /// File name.
-        path: String,
-        /// 1-based line.
-        line: usize,
-        /// 1-based column.
-        column: usize,
-        /// What was expected.
-        message: String,
-    },
-    /// The file cannot be read within bounds (not a regular file, too large, not text).
-    #[error(transparent)]
-    Input(#[from] crate::input::InputError),
-    /// The file has no vertices or no faces.
-    #[error("{path}: {message}")]
-    Empty {
-        /// File name.
-        path: String,
-        /// What is missing.
-        message: String,
-    },
-}
-
-/// A mesh read from OBJ, with the line each triangle came from (for later error messages).
+/// A mesh read from a file, with where each triangle came from (for later error messages).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ObjMesh {
     /// The triangles and vertices, coordinates multiplied by the unit scale.
@@ -58,23 +22,25 @@ pub struct ObjMesh {
     pub triangle_lines: Vec<usize>,
     /// Number of polygons with more than 3 corners that were fan-triangulated.
     pub polygons_triangulated: usize,
+    /// What [`Self::triangle_lines`] count: "line" (OBJ) or "face" (PLY, glTF).
+    pub place_word: &'static str,
 }
 
 /// Reads an OBJ file of at most `max_bytes`; coordinates are multiplied by `scale` (e.g.
 /// 0.01 for centimetres).
 ///
 /// # Failures
-/// [`ObjError`]: unreadable file, not a regular file or too large, malformed numbers,
+/// [`MeshFileError`]: unreadable file, not a regular file or too large, malformed numbers,
 /// non-finite coordinates, invalid or out-of-range indices, faces with fewer than 3
 /// corners, no vertices or no faces.
-pub fn read_obj(path: &Path, scale: f64, max_bytes: u64) -> Result<ObjMesh, ObjError> {
+pub fn read_obj(path: &Path, scale: f64, max_bytes: u64) -> Result<ObjMesh, MeshFileError> {
     let text = crate::input::read_text(path, max_bytes)?;
     parse_obj(&text, &path.display().to_string(), scale)
 }
 
 /// Parses OBJ text; `name` is used in error messages.
-pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError> {
-    let syntax = |line: usize, column: usize, message: String| ObjError::Syntax {
+pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, MeshFileError> {
+    let syntax = |line: usize, column: usize, message: String| MeshFileError::Syntax {
         path: name.to_string(),
         line,
         column,
@@ -97,13 +63,13 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
         }
     }
     if positions.is_empty() {
-        return Err(ObjError::Empty {
+        return Err(MeshFileError::Empty {
             path: name.into(),
             message: "no vertices ('v' lines)".into(),
         });
     }
     if faces.is_empty() {
-        return Err(ObjError::Empty {
+        return Err(MeshFileError::Empty {
             path: name.into(),
             message: "no faces ('f' lines)".into(),
         });
@@ -138,6 +104,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, ObjError
         mesh: TriMesh { positions, triangles },
         triangle_lines,
         polygons_triangulated,
+        place_word: "line",
     })
 }
 
@@ -146,8 +113,8 @@ pub(super) fn vertex<'t>(
     mut tokens: impl Iterator<Item = (usize, &'t str)>,
     line: usize,
     scale: f64,
-    syntax: &dyn Fn(usize, usize, String) -> ObjError,
-) -> Result<DVec3, ObjError> {
+    syntax: &dyn Fn(usize, usize, String) -> MeshFileError,
+) -> Result<DVec3, MeshFileError> {
     let mut xyz = [0.0; 3];
     let mut last_column = 2;
     for (k, slot) in xyz.iter_mut().enumerate() {
@@ -176,8 +143,8 @@ fn face<'t>(
     tokens: impl Iterator<Item = (usize, &'t str)>,
     (line, content): (usize, &str),
     read: usize,
-    syntax: &dyn Fn(usize, usize, String) -> ObjError,
-) -> Result<Vec<(usize, i64)>, ObjError> {
+    syntax: &dyn Fn(usize, usize, String) -> MeshFileError,
+) -> Result<Vec<(usize, i64)>, MeshFileError> {
     let mut corners = Vec::new();
     for (column, token) in tokens {
         let index_text = token.split('/').next().unwrap_or("");

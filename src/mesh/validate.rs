@@ -89,7 +89,7 @@ pub enum MeshError {
     NonOrientable {
         /// `file:` prefix or empty.
         place: String,
-        /// " at line N" or empty.
+        /// " at line N" (" at face N") or empty.
         line: String,
     },
     /// Nothing usable is left.
@@ -109,6 +109,16 @@ pub fn validate_and_repair(
     mesh: &mut TriMesh,
     name: &str,
     triangle_lines: &[usize],
+) -> Result<(MeshReport, Adjacency), MeshError> {
+    validate_and_repair_at(mesh, name, (triangle_lines, "line"))
+}
+
+/// [`validate_and_repair`] with the triangles' places named by `word`: "line" (an OBJ
+/// file's lines) or "face" (the face numbers of a PLY or glTF file).
+pub fn validate_and_repair_at(
+    mesh: &mut TriMesh,
+    name: &str,
+    (triangle_lines, word): (&[usize], &str),
 ) -> Result<(MeshReport, Adjacency), MeshError> {
     let place = if name.is_empty() {
         String::new()
@@ -135,13 +145,13 @@ pub fn validate_and_repair(
             lines: if shown.is_empty() {
                 String::new()
             } else {
-                format!(" (lines {})", shown.join(", "))
+                format!(" ({word}s {})", shown.join(", "))
             },
         }
     })?;
     report.boundary_edges = adjacency.boundary_edges;
 
-    let (flipped, parts) = orient(mesh, &mut adjacency, &lines, &place)?;
+    let (flipped, parts) = orient(mesh, &mut adjacency, (&lines, word), &place)?;
     report.flipped = flipped;
     report.components = parts;
     if report.boundary_edges > 0 {
@@ -233,7 +243,7 @@ fn drop_repeats(
 fn orient(
     mesh: &mut TriMesh,
     adjacency: &mut Adjacency,
-    lines: &[usize],
+    lines: (&[usize], &str),
     place: &str,
 ) -> Result<(usize, usize), MeshError> {
     let (mut flipped, parts) = consistent_parts(mesh, adjacency, lines, place)?;
@@ -270,12 +280,12 @@ fn orient(
 
 /// The edge-connected parts of `mesh` and, per triangle, whether it must be flipped to
 /// agree with the first triangle of its part (breadth-first: a neighbour must run the
-/// shared edge the other way). `lines` (the source line of each triangle) and `place` name
-/// a part that cannot be oriented.
+/// shared edge the other way). `lines` (the source line or face number of each triangle,
+/// and the word for it: "line" or "face") and `place` name a part that cannot be oriented.
 pub(crate) fn consistent_parts(
     mesh: &TriMesh,
     adjacency: &Adjacency,
-    lines: &[usize],
+    (lines, word): (&[usize], &str),
     place: &str,
 ) -> Result<(Vec<bool>, Vec<Vec<usize>>), MeshError> {
     let n = mesh.triangles.len();
@@ -312,7 +322,7 @@ pub(crate) fn consistent_parts(
                     let line = lines.get(o).copied().filter(|&l| l > 0);
                     return Err(MeshError::NonOrientable {
                         place: place.to_string(),
-                        line: line.map(|l| format!(" at line {l}")).unwrap_or_default(),
+                        line: line.map(|l| format!(" at {word} {l}")).unwrap_or_default(),
                     });
                 }
             }

@@ -165,7 +165,7 @@ impl StepError {
     /// Bad input, a failed step, or drape's own failure.
     pub fn kind(&self) -> FailureKind {
         match self {
-            Self::Body(BodyError::Obj(_) | BodyError::Mesh(_)) | Self::NurbsFile { .. } | Self::GarmentFile { .. } => {
+            Self::Body(BodyError::File(_) | BodyError::Mesh(_)) | Self::NurbsFile { .. } | Self::GarmentFile { .. } => {
                 FailureKind::BadInput
             }
             Self::Sinks(_) => FailureKind::Internal,

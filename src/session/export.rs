@@ -42,9 +42,9 @@ impl ObjExporter {
         self.write_text(info, mesh_name, &write_obj(mesh, &header))
     }
 
-    /// A garment read from a file, written back as that file with its collided positions:
-    /// the vertices the collision moved get new `v` lines (and their normals are made
-    /// again), every other line is the input's, byte for byte, in the file's own axes.
+    /// A garment read from a file, written back as that file (in its format) with its
+    /// collided positions: the vertices the collision moved get new coordinates (and their
+    /// normals are made again), everything else is the input's, in the file's own axes.
     fn write_file_garment(
         &mut self,
         info: &StageInfo,
@@ -53,13 +53,26 @@ impl ObjExporter {
         positions: &[glam::DVec3],
     ) -> Result<(), SinkError> {
         let (at, moved) = file.file_positions(positions);
-        self.write_text(info, &format!("{name}_m0"), &file.doc.write(&at, &moved))
+        let bytes = file.doc.write(&at, &moved).map_err(|e| SinkError::Io {
+            path: self.dir.join(format!(
+                "step{:02}_{name}_m0.{}",
+                info.step,
+                file.doc.format.extension()
+            )),
+            action: "write",
+            source: std::io::Error::other(e.to_string()),
+        })?;
+        self.write_file(info, &format!("{name}_m0"), file.doc.format.extension(), &bytes)
     }
 
     fn write_text(&mut self, info: &StageInfo, mesh_name: &str, text: &str) -> Result<(), SinkError> {
-        let path = self.dir.join(format!("step{:02}_{mesh_name}.obj", info.step));
+        self.write_file(info, mesh_name, "obj", text.as_bytes())
+    }
+
+    fn write_file(&mut self, info: &StageInfo, mesh_name: &str, extension: &str, text: &[u8]) -> Result<(), SinkError> {
+        let path = self.dir.join(format!("step{:02}_{mesh_name}.{extension}", info.step));
         // Write then rename, so a failure never leaves half a file under the final name.
-        let tmp = path.with_extension("obj.partial");
+        let tmp = path.with_extension(format!("{extension}.partial"));
         std::fs::write(&tmp, text)
             .and_then(|()| std::fs::rename(&tmp, &path))
             .map_err(|source| SinkError::Io {

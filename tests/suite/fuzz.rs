@@ -5,7 +5,7 @@
 
 use std::path::Path;
 
-use drape::mesh::ObjError;
+use drape::mesh::MeshFileError;
 use drape::mesh::obj::parse_obj;
 use drape::session::{DEMO_SESSION, parse_session};
 use proptest::prelude::*;
@@ -198,7 +198,7 @@ proptest! {
                 prop_assert!(m.mesh.triangles.iter().flatten().all(|&v| v < n));
                 prop_assert!(m.mesh.positions.iter().all(|p| p.is_finite()));
             }
-            Err(ObjError::Syntax { path, line, message, .. }) => {
+            Err(MeshFileError::Syntax { path, line, message, .. }) => {
                 prop_assert_eq!(path, "fuzz.obj");
                 prop_assert!(line >= 1 && line <= lines_of(&text) + 1, "line {line}: {message}");
             }

@@ -98,7 +98,7 @@ pub(crate) enum Command {
     /// answer (scripts/pattern_peers.py puts them side by side).
     #[command(after_help = EXIT_CODES)]
     Flatten(FlattenArgs),
-    /// Check a garment mesh made elsewhere (OBJ) against a body and repair it: prints the
+    /// Check a garment mesh made elsewhere (OBJ, PLY, glTF, GLB) against a body and repair it: prints the
     /// exact counts before and after (garment vertices inside, garment edges crossing the
     /// body, body edges through garment faces, the deepest point, the least clearance, the
     /// body regions A-G they are in), repaired by drape's collision layers; `--repair`
@@ -114,7 +114,7 @@ pub(crate) fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {
 
 #[derive(Args, Debug)]
 pub(crate) struct FlattenArgs {
-    /// Panel meshes (OBJ, metres).
+    /// Panel meshes (OBJ, PLY, glTF or GLB; metres).
     #[arg(required = true)]
     pub(crate) panels: Vec<PathBuf>,
     /// The method: LSCM alone, or ARAP started from it.
@@ -295,8 +295,9 @@ pub(crate) struct ReplayArgs {
 pub(crate) struct RunArgs {
     /// Session file; without it, the built-in demo (assets/sessions/demo.drape).
     pub(crate) session: Option<PathBuf>,
-    /// Use this body OBJ (metres, y up, facing +z) instead of the session's.
-    #[arg(long, value_name = "OBJ")]
+    /// Use this body (OBJ, PLY, glTF or GLB; metres, y up, facing +z) instead of the
+    /// session's.
+    #[arg(long, value_name = "MESH")]
     pub(crate) body: Option<PathBuf>,
     /// The axis that is up in the body's file (x, y, z, -x, ...) [default: y].
     #[arg(long, value_parser = parse_axis)]
@@ -399,12 +400,13 @@ pub(crate) struct NurbsExperimentArgs {
 
 #[derive(Args, Debug)]
 pub(crate) struct SculptCompareArgs {
-    /// The body the garment is built on (OBJ, metres, y up, facing +z); default: the
-    /// built-in body.
-    #[arg(long, value_name = "OBJ")]
+    /// The body the garment is built on (OBJ, PLY, glTF or GLB; metres, y up, facing
+    /// +z); default: the built-in body.
+    #[arg(long, value_name = "MESH")]
     pub(crate) body: Option<PathBuf>,
-    /// Sculpt this mesh (OBJ, metres) instead of the garment; --at must then be x,y,z.
-    #[arg(long, value_name = "OBJ", conflicts_with = "body")]
+    /// Sculpt this mesh (OBJ, PLY, glTF or GLB; metres) instead of the garment; --at must
+    /// then be x,y,z.
+    #[arg(long, value_name = "MESH", conflicts_with = "body")]
     pub(crate) mesh: Option<PathBuf>,
     /// Segments per anchor arc of the garment's M0.
     #[arg(long, default_value_t = 6, value_parser = clap::value_parser!(u16).range(2..=48))]

@@ -9,7 +9,7 @@ use anyhow::Context as _;
 use drape::body::{Body, BodyMesh, BodySource, Frame, LandmarkOptions, PartitionOptions};
 use drape::collision::{BodyIndex, SliceOptions};
 use drape::import::{CheckOptions, CheckReport, Checked, Counts, ImportedGarment, check};
-use drape::mesh::ObjDocument;
+use drape::mesh::{MeshDocument, MeshFormat};
 use drape::session::{BodyStage, CollisionOutcome, CollisionPart, CollisionStage, Stage, StageInfo, StageSink};
 use drape::viz::{LogOptions, RerunLogger, check_garment_blueprint, open_file_recording};
 
@@ -21,11 +21,12 @@ pub(crate) const EXIT_CODES: &str = "Exit codes: 0 the garment was clear as read
 
 #[derive(Args, Debug)]
 pub(crate) struct CheckGarmentArgs {
-    /// The garment mesh (OBJ: triangles, quads or polygons; texture coordinates, normals,
-    /// groups and materials are kept).
+    /// The garment mesh: OBJ (triangles, quads or polygons), PLY (text or binary), glTF or
+    /// GLB. Texture coordinates, normals, groups and materials are kept.
     pub(crate) garment: PathBuf,
-    /// The body (OBJ, metres, y up, facing +z) [default: the built-in body].
-    #[arg(long, value_name = "OBJ")]
+    /// The body (OBJ, PLY, glTF or GLB; metres, y up, facing +z) [default: the built-in
+    /// body].
+    #[arg(long, value_name = "MESH")]
     pub(crate) body: Option<PathBuf>,
     /// The gap a moved vertex stands off the skin, m.
     #[arg(long, default_value_t = 0.002, value_parser = non_negative_metres)]
@@ -39,8 +40,9 @@ pub(crate) struct CheckGarmentArgs {
     /// The axis the body faces in the files.
     #[arg(long, default_value = "z", value_parser = crate::args::parse_axis)]
     pub(crate) front: drape::body::Axis,
-    /// Write the repaired garment here (the input as read when it was already clear).
-    #[arg(long, value_name = "OUT.obj")]
+    /// Write the repaired garment here, in the input's format (the input as read when it
+    /// was already clear); a glTF garment may be written as .gltf or .glb.
+    #[arg(long, value_name = "OUT")]
     pub(crate) repair: Option<PathBuf>,
     /// Print the report as JSON instead of a table.
     #[arg(long)]
@@ -83,11 +85,26 @@ pub(crate) fn check_garment(args: &CheckGarmentArgs) -> Result<ExitCode> {
         Some(cache) => cache.load_or_build(&body, &slices).0,
         None => BodyIndex::new(&body, &slices),
     };
-    let mut doc = ObjDocument::read(&args.garment, scale, crate::max_input_bytes())
+    let mut doc = MeshDocument::read(&args.garment, scale, crate::max_input_bytes())
         .context("cannot read the garment")
         .bad_input()?;
     if !frame.is_identity() {
         doc.reorient(frame.to_drape());
+    }
+    if let Some(out) = &args.repair
+        && let Some(format) = MeshFormat::of_path(out)
+        && !doc.writes_as(format)
+    {
+        let back = match doc.format {
+            MeshFormat::Gltf | MeshFormat::Glb => "glTF (name the file .gltf or .glb)".to_string(),
+            other => format!("{} (name the file .{})", other.name(), other.extension()),
+        };
+        return Err(anyhow::anyhow!(
+            "--repair {}: the garment is {}, written back as {back}",
+            out.display(),
+            doc.format.name(),
+        ))
+        .bad_input();
     }
     let garment = ImportedGarment::new(doc, &body.mesh.mesh, &index).bad_input()?;
     let options = CheckOptions {
@@ -96,8 +113,12 @@ pub(crate) fn check_garment(args: &CheckGarmentArgs) -> Result<ExitCode> {
     };
     let checked = check(&garment, &index, &options);
     if let Some(out) = &args.repair {
-        let text = garment.doc.write(&checked.positions, &checked.moved);
-        write_atomic(out, text.as_bytes()).internal()?;
+        let format = MeshFormat::of_path(out).unwrap_or(garment.doc.format);
+        let bytes = garment
+            .doc
+            .write_as(format, &checked.positions, &checked.moved)
+            .internal()?;
+        write_atomic(out, &bytes).internal()?;
     }
     if let Some(path) = &args.save {
         record(path, &body, &index, &garment, &checked).internal()?;

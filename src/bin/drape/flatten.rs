@@ -23,7 +23,7 @@ pub(crate) fn flatten(args: &FlattenArgs) -> Result<ExitCode> {
         );
     }
     for path in &args.panels {
-        let obj = drape::mesh::read_obj(path, 1.0, crate::max_input_bytes())
+        let obj = drape::mesh::document::read_mesh(path, 1.0, crate::max_input_bytes())
             .with_context(|| format!("reading {}", path.display()))
             .bad_input()?;
         let mesh = &obj.mesh;

@@ -57,7 +57,7 @@ fn input(args: &SculptCompareArgs) -> Result<(TriMesh, DVec3)> {
         let at = point(&args.at)
             .ok_or_else(|| anyhow!("--at must be x,y,z (m) with --mesh, got '{}'", args.at))
             .bad_input()?;
-        let obj = drape::mesh::obj::read_obj(path, 1.0, crate::max_input_bytes())
+        let obj = drape::mesh::document::read_mesh(path, 1.0, crate::max_input_bytes())
             .with_context(|| path.display().to_string())
             .bad_input()?;
         return Ok((obj.mesh, at));

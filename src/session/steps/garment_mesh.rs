@@ -11,7 +11,7 @@ use std::sync::Arc;
 use serde::Serialize;
 
 use crate::import::{ImportNotes, ImportedGarment, face_regions};
-use crate::mesh::ObjDocument;
+use crate::mesh::MeshDocument;
 use crate::session::emit::StepScope;
 use crate::session::error::StepError;
 use crate::session::flow::collide::collide_new;
@@ -50,7 +50,7 @@ pub(super) fn run(
     };
     let limit = cx.options.input_limit();
     let mut doc = scope
-        .timed("garment.read", || ObjDocument::read(path, scale, limit))
+        .timed("garment.read", || MeshDocument::read(path, scale, limit))
         .map_err(|e| fail(e.to_string()))?;
     let frame = cx.options.body_frame;
     if !frame.is_identity() {

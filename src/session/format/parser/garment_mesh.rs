@@ -23,7 +23,10 @@ impl Parser<'_> {
     ) -> Result<Op, ParseError> {
         let Some((file, args)) = rest.split_first().filter(|(t, _)| t.quoted) else {
             let column = rest.first().map_or(line.end_column, |t| t.column);
-            return Err(line.error(column, "expected a quoted OBJ path after 'garment mesh'"));
+            return Err(line.error(
+                column,
+                "expected a quoted mesh path (OBJ, PLY, glTF or GLB) after 'garment mesh'",
+            ));
         };
         let a = Args::parse(line, args, &["name", "ease", "units"], "garment mesh")?;
         let column = a.get("name").map_or(mesh.column, |t| t.column);
