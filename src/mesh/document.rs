@@ -15,81 +15,32 @@ use std::path::Path;
 
 use glam::{DMat3, DVec3};
 
-use super::gltf_doc::GltfKeep;
+pub use super::file_parts::{Corner, Face, MeshFormat, READABLE};
+use super::file_parts::{Moved, Parts};
+use super::gltf_read::GltfKeep;
 use super::obj::ObjMesh;
 use super::obj_doc::ObjText;
 use super::ply_doc::PlyKeep;
-use super::{MeshFileError, TriMesh};
+use super::{MeshFileError, TriMesh, gltf_read, gltf_write, obj_doc, ply_doc};
 
-/// The file formats drape reads and writes garments in.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MeshFormat {
-    /// Wavefront OBJ (text).
-    Obj,
-    /// Stanford PLY (text or binary).
-    Ply,
-    /// glTF 2.0 as JSON, its buffers embedded or beside it.
-    Gltf,
-    /// glTF 2.0 binary.
-    Glb,
+/// The unit normal of each moved vertex: the area-weighted normals `area` summed over every
+/// vertex at its position (a seam or a texture border written as two vertices gets one
+/// smooth normal). `None` for an unmoved vertex or where the faces around have no area.
+fn smooth_normals(positions: &[DVec3], area: &[DVec3], moved: &[bool]) -> Vec<Option<DVec3>> {
+    let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+    let mut by_position: BTreeMap<[u64; 3], DVec3> = BTreeMap::new();
+    for (p, n) in positions.iter().zip(area) {
+        *by_position.entry(key(*p)).or_default() += *n;
+    }
+    positions
+        .iter()
+        .zip(moved)
+        .map(|(p, &m)| {
+            let n = by_position.get(&key(*p)).copied().unwrap_or_default();
+            (m && n.length_squared() > 0.0).then(|| n.normalize())
+        })
+        .collect()
 }
-
-impl MeshFormat {
-    /// The format a file name's extension names (any case), if one drape reads.
-    pub fn of_path(path: &Path) -> Option<Self> {
-        let extension = path.extension()?.to_str()?.to_ascii_lowercase();
-        match extension.as_str() {
-            "obj" => Some(Self::Obj),
-            "ply" => Some(Self::Ply),
-            "gltf" => Some(Self::Gltf),
-            "glb" => Some(Self::Glb),
-            _ => None,
-        }
-    }
-
-    /// The format of a file's first bytes, where they tell: PLY and GLB have magic numbers.
-    pub fn sniff(bytes: &[u8]) -> Option<Self> {
-        if bytes.starts_with(b"ply\n") || bytes.starts_with(b"ply\r\n") {
-            Some(Self::Ply)
-        } else if bytes.starts_with(b"glTF") {
-            Some(Self::Glb)
-        } else {
-            None
-        }
-    }
-
-    /// The format's name, for messages.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Obj => "OBJ",
-            Self::Ply => "PLY",
-            Self::Gltf => "glTF",
-            Self::Glb => "GLB",
-        }
-    }
-
-    /// The file name extension, without the dot.
-    pub fn extension(self) -> &'static str {
-        match self {
-            Self::Obj => "obj",
-            Self::Ply => "ply",
-            Self::Gltf => "gltf",
-            Self::Glb => "glb",
-        }
-    }
-
-    /// How a face is pointed at in messages: by its line in an OBJ file, by its number
-    /// (1-based, in file order) in the others.
-    pub fn place_word(self) -> &'static str {
-        match self {
-            Self::Obj => "line",
-            Self::Ply | Self::Gltf | Self::Glb => "face",
-        }
-    }
-}
-
-/// What drape reads: OBJ, PLY, glTF or GLB, by extension.
-pub const READABLE: &str = "drape reads meshes as OBJ, PLY, glTF or GLB (.obj, .ply, .gltf, .glb)";
 
 /// Reads a body's mesh (positions and triangles) of at most `max_bytes` from an OBJ, PLY,
 /// glTF or GLB file (as [`MeshDocument::read`] tells them apart); coordinates times `scale`
@@ -128,30 +79,6 @@ fn text(bytes: Vec<u8>, name: &str) -> Result<String, MeshFileError> {
         }
         .into()
     })
-}
-
-/// One corner of a face: its vertex, texture coordinate and normal (0-based).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Corner {
-    /// Vertex.
-    pub v: u32,
-    /// Texture coordinate, if given (OBJ).
-    pub vt: Option<u32>,
-    /// Normal, if given (OBJ).
-    pub vn: Option<u32>,
-}
-
-/// One polygon face as written.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Face {
-    /// Where it is: its 1-based line in an OBJ file, its 1-based number among the file's
-    /// faces in the others ([`MeshFormat::place_word`]).
-    pub at: usize,
-    /// Its corners, in order.
-    pub corners: Vec<Corner>,
-    /// Its group (an OBJ `g` or `o`, a glTF mesh primitive, a PLY file's one group): an
-    /// index into [`MeshDocument::groups`].
-    pub group: u32,
 }
 
 /// The format's own record of the file, to write it again.
@@ -214,6 +141,67 @@ impl MeshDocument {
         }
     }
 
+    /// Parses OBJ text; `name` is used in messages.
+    ///
+    /// # Failures
+    /// As [`super::read_obj`], and texture-coordinate or normal indices out of range.
+    pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<Self, MeshFileError> {
+        let (parts, keep) = obj_doc::parse(text, name, scale)?;
+        Ok(Self::from_parts(name, MeshFormat::Obj, scale, parts, Source::Obj(keep)))
+    }
+
+    /// Parses a PLY file's bytes; `name` is used in messages.
+    ///
+    /// # Failures
+    /// [`MeshFileError`]: a malformed header or payload, no `vertex` element with float or
+    /// double `x y z`, no `face` element with a list of vertex indices, a coordinate that is
+    /// not finite (named by vertex), an index out of range or a face of fewer than 3
+    /// vertices (named by face), or no vertices or faces.
+    pub fn parse_ply(bytes: &[u8], name: &str, scale: f64) -> Result<Self, MeshFileError> {
+        let (parts, keep) = ply_doc::parse(bytes, name, scale)?;
+        Ok(Self::from_parts(name, MeshFormat::Ply, scale, parts, Source::Ply(keep)))
+    }
+
+    /// Parses a glTF or GLB file's bytes; `base` is the folder its external buffers are
+    /// in, each read within `max_bytes`; `name` is used in messages.
+    ///
+    /// # Failures
+    /// [`MeshFileError`]: an invalid document, a buffer that cannot be had, a primitive
+    /// that is not triangles, a position accessor that is not three floats or is placed by
+    /// two different nodes, a byte range outside its buffer, an index out of range, no
+    /// triangles.
+    pub fn parse_gltf(
+        bytes: &[u8],
+        name: &str,
+        scale: f64,
+        base: &Path,
+        max_bytes: u64,
+    ) -> Result<Self, MeshFileError> {
+        let (parts, keep) = gltf_read::parse(bytes, name, scale, base, max_bytes)?;
+        let format = if bytes.starts_with(b"glTF") {
+            MeshFormat::Glb
+        } else {
+            MeshFormat::Gltf
+        };
+        Ok(Self::from_parts(name, format, scale, parts, Source::Gltf(keep)))
+    }
+
+    fn from_parts(name: &str, format: MeshFormat, scale: f64, parts: Parts, source: Source) -> Self {
+        Self {
+            name: name.to_string(),
+            format,
+            scale,
+            frame: DMat3::IDENTITY,
+            positions: parts.positions,
+            faces: parts.faces,
+            groups: parts.groups,
+            texcoords: parts.texcoords,
+            normals: parts.normals,
+            materials: parts.materials,
+            source,
+        }
+    }
+
     /// The positions and the faces fanned into triangles, with where each triangle is in
     /// the file: what a body needs.
     pub fn into_mesh(self) -> ObjMesh {
@@ -265,16 +253,32 @@ impl MeshDocument {
                 ),
             });
         }
+        // One position and one flag per vertex of the file: a vertex past the end of
+        // `positions` or `moved` stays where it was read.
+        let moved: Vec<bool> = (0..self.positions.len())
+            .map(|v| moved.get(v).copied().unwrap_or(false) && v < positions.len())
+            .collect();
+        let file: Vec<DVec3> = (0..self.positions.len())
+            .map(|v| {
+                let p = if moved[v] { positions[v] } else { self.positions[v] };
+                self.frame.transpose() * p / self.scale
+            })
+            .collect();
+        let area = self.area_normals(&file);
+        let smooth = smooth_normals(&file, &area, &moved);
+        let job = Moved {
+            name: &self.name,
+            positions: &file,
+            moved: &moved,
+            faces: &self.faces,
+            area: &area,
+            smooth: &smooth,
+        };
         match &self.source {
-            Source::Obj(text) => Ok(text.write(self, positions, moved).into_bytes()),
-            Source::Ply(ply) => ply.write(self, positions, moved),
-            Source::Gltf(gltf) => gltf.write(self, format, positions, moved),
+            Source::Obj(text) => Ok(text.write(&job).into_bytes()),
+            Source::Ply(ply) => ply.write(&job),
+            Source::Gltf(gltf) => gltf_write::write(gltf, format, &job),
         }
-    }
-
-    /// A position of [`Self::positions`] in the file's units and axes.
-    pub(super) fn to_file(&self, p: DVec3) -> DVec3 {
-        self.frame.transpose() * p / self.scale
     }
 
     /// Turns the positions by `rotation` (from the file's axes into drape's); [`Self::write`]
@@ -301,8 +305,8 @@ impl MeshDocument {
     }
 
     /// Per vertex, the area-weighted normal (not unit) of the triangles around it at
-    /// `positions`, in drape's frame.
-    pub(super) fn area_normals(&self, positions: &[DVec3]) -> Vec<DVec3> {
+    /// `positions`.
+    fn area_normals(&self, positions: &[DVec3]) -> Vec<DVec3> {
         let (triangles, _) = self.triangles();
         let mut at = vec![DVec3::ZERO; positions.len()];
         for t in &triangles {
@@ -313,26 +317,6 @@ impl MeshDocument {
             }
         }
         at
-    }
-
-    /// The unit normal, in the file's axes, of each moved vertex: the area-weighted normals
-    /// summed over every vertex at its position (a seam or a texture border written as two
-    /// vertices gets one smooth normal). `None` where the faces around have no area.
-    pub(super) fn moved_normals(&self, positions: &[DVec3], moved: &[bool]) -> Vec<Option<DVec3>> {
-        let at = self.area_normals(positions);
-        let key = |p: DVec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-        let mut by_position: BTreeMap<[u64; 3], DVec3> = BTreeMap::new();
-        for (p, n) in positions.iter().zip(&at) {
-            *by_position.entry(key(*p)).or_default() += *n;
-        }
-        positions
-            .iter()
-            .zip(moved)
-            .map(|(p, &m)| {
-                let n = by_position.get(&key(*p)).copied().unwrap_or_default();
-                (m && n.length_squared() > 0.0).then(|| (self.frame.transpose() * n).normalize())
-            })
-            .collect()
     }
 
     /// A one-line account of what the file holds.
@@ -350,5 +334,32 @@ impl MeshDocument {
         )
         .ok();
         s
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unchanged_document_writes_back_byte_for_byte() {
+        let text = "# made elsewhere\r\nmtllib a.mtl\r\nv 0 0 0 1 0 0\r\nv 1.0000001 0 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\ng front\r\nusemtl cotton\r\nf 1/1/1 2/1/1 3/1/1\r\n";
+        let doc = MeshDocument::parse_obj(text, "a.obj", 1.0).unwrap();
+        assert_eq!(doc.write(&doc.positions, &[false; 3]).unwrap(), text.as_bytes());
+        assert_eq!(doc.groups, vec!["".to_string(), "front".to_string()]);
+        assert_eq!(doc.faces[0].group, 1);
+    }
+
+    #[test]
+    fn a_moved_vertex_keeps_its_colour_and_the_normal_it_uses_is_recomputed() {
+        let text = "v 0 0 0 0.5 0.5 0.5\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\n";
+        let doc = MeshDocument::parse_obj(text, "a.obj", 0.01).unwrap();
+        let mut p = doc.positions.clone();
+        p[0].z = -0.01;
+        let out = String::from_utf8(doc.write(&p, &[true, false, false]).unwrap()).unwrap();
+        let lines: Vec<&str> = out.lines().collect();
+        assert_eq!(lines[0], "v 0 0 -1 0.5 0.5 0.5");
+        assert_eq!(lines[1], "v 1 0 0");
+        assert!(lines[3].starts_with("vn "), "{}", lines[3]);
+        assert_ne!(lines[3], "vn 1 0 0");
     }
 }

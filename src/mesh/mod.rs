@@ -3,7 +3,9 @@
 
 pub mod document;
 mod file_error;
-mod gltf_doc;
+mod file_parts;
+mod gltf_read;
+mod gltf_write;
 pub mod obj;
 mod obj_doc;
 mod ply_doc;

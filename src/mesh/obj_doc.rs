@@ -1,4 +1,4 @@
-//! OBJ in a [`MeshDocument`]: every line kept, to write back with only some vertices moved.
+//! OBJ in a [`super::MeshDocument`]: every line kept, to write back with only some vertices moved.
 //!
 //! [`ObjText::write`] gives the same text with the `v` lines of the moved vertices (and the
 //! `vn` lines they use) written anew, every other line byte for byte as read, so an unmoved
@@ -6,10 +6,10 @@
 
 use std::collections::BTreeMap;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 use super::MeshFileError;
-use super::document::{Corner, Face, MeshDocument, MeshFormat, Source};
+use super::file_parts::{Corner, Face, Moved, Parts};
 use super::obj::{tokens_with_columns, vertex};
 
 /// What an OBJ file needs kept to be written again.
@@ -27,121 +27,116 @@ pub struct ObjText {
     normal_lines: Vec<usize>,
 }
 
-impl MeshDocument {
-    /// Parses OBJ text; `name` is used in messages.
-    ///
-    /// # Failures
-    /// As [`super::read_obj`], and texture-coordinate or normal indices out of range.
-    pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<Self, MeshFileError> {
-        let syntax = |line: usize, column: usize, message: String| MeshFileError::Syntax {
-            path: name.to_string(),
-            line,
-            column,
-            message,
+/// Parses OBJ text; `name` is used in messages: the vertices and faces, and every line.
+///
+/// # Failures
+/// As [`super::read_obj`], and texture-coordinate or normal indices out of range.
+pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjText), MeshFileError> {
+    let syntax = |line: usize, column: usize, message: String| MeshFileError::Syntax {
+        path: name.to_string(),
+        line,
+        column,
+        message,
+    };
+    let mut keep = ObjText {
+        lines: Vec::new(),
+        line_end: if text.find('\n').is_some_and(|k| text[..k].ends_with('\r')) {
+            "\r\n"
+        } else {
+            "\n"
+        },
+        ends_with_newline: text.ends_with('\n'),
+        vertex_lines: Vec::new(),
+        normal_lines: Vec::new(),
+    };
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    let mut groups = vec![String::new()];
+    let (mut texcoords, mut materials) = (0, 0);
+    let mut group = 0u32;
+    for (k, raw) in text.lines().enumerate() {
+        let line = k + 1;
+        let raw = raw.strip_suffix('\r').unwrap_or(raw);
+        keep.lines.push(raw.to_string());
+        let content = raw.split('#').next().unwrap_or("");
+        let mut tokens = tokens_with_columns(content);
+        let Some((_, keyword)) = tokens.next() else {
+            continue;
         };
-        let mut keep = ObjText {
-            lines: Vec::new(),
-            line_end: if text.find('\n').is_some_and(|k| text[..k].ends_with('\r')) {
-                "\r\n"
-            } else {
-                "\n"
-            },
-            ends_with_newline: text.ends_with('\n'),
-            vertex_lines: Vec::new(),
-            normal_lines: Vec::new(),
-        };
-        let mut positions = Vec::new();
-        let mut faces = Vec::new();
-        let mut groups = vec![String::new()];
-        let (mut texcoords, mut materials) = (0, 0);
-        let mut group = 0u32;
-        for (k, raw) in text.lines().enumerate() {
-            let line = k + 1;
-            let raw = raw.strip_suffix('\r').unwrap_or(raw);
-            keep.lines.push(raw.to_string());
-            let content = raw.split('#').next().unwrap_or("");
-            let mut tokens = tokens_with_columns(content);
-            let Some((_, keyword)) = tokens.next() else {
-                continue;
-            };
-            match keyword {
-                "v" => {
-                    positions.push(vertex(tokens, line, scale, &syntax)?);
-                    keep.vertex_lines.push(k);
-                }
-                "vt" => texcoords += 1,
-                "vn" => keep.normal_lines.push(k),
-                "g" | "o" => {
-                    let label: Vec<&str> = tokens.map(|(_, t)| t).collect();
-                    let label = label.join(" ");
-                    group = match groups.iter().position(|g| *g == label) {
-                        Some(i) => i as u32,
-                        None => {
-                            groups.push(label);
-                            (groups.len() - 1) as u32
-                        }
-                    };
-                }
-                "usemtl" | "mtllib" => materials += 1,
-                "f" => {
-                    let read = [positions.len(), texcoords, keep.normal_lines.len()];
-                    let mut corners = Vec::new();
-                    for (column, token) in tokens {
-                        corners.push(corner(token, (line, column), read, &syntax)?);
-                    }
-                    if corners.len() < 3 {
-                        return Err(syntax(
-                            line,
-                            content.trim_end().len() + 1,
-                            format!("a face needs at least 3 vertices, found {}", corners.len()),
-                        ));
-                    }
-                    faces.push(Face {
-                        at: line,
-                        corners,
-                        group,
-                    });
-                }
-                _ => {}
+        match keyword {
+            "v" => {
+                positions.push(vertex(tokens, line, scale, &syntax)?);
+                keep.vertex_lines.push(k);
             }
+            "vt" => texcoords += 1,
+            "vn" => keep.normal_lines.push(k),
+            "g" | "o" => {
+                let label: Vec<&str> = tokens.map(|(_, t)| t).collect();
+                let label = label.join(" ");
+                group = match groups.iter().position(|g| *g == label) {
+                    Some(i) => i as u32,
+                    None => {
+                        groups.push(label);
+                        (groups.len() - 1) as u32
+                    }
+                };
+            }
+            "usemtl" | "mtllib" => materials += 1,
+            "f" => {
+                let read = [positions.len(), texcoords, keep.normal_lines.len()];
+                let mut corners = Vec::new();
+                for (column, token) in tokens {
+                    corners.push(corner(token, (line, column), read, &syntax)?);
+                }
+                if corners.len() < 3 {
+                    return Err(syntax(
+                        line,
+                        content.trim_end().len() + 1,
+                        format!("a face needs at least 3 vertices, found {}", corners.len()),
+                    ));
+                }
+                faces.push(Face {
+                    at: line,
+                    corners,
+                    group,
+                });
+            }
+            _ => {}
         }
-        if positions.is_empty() {
-            return Err(MeshFileError::Empty {
-                path: name.into(),
-                message: "no vertices ('v' lines)".into(),
-            });
-        }
-        if faces.is_empty() {
-            return Err(MeshFileError::Empty {
-                path: name.into(),
-                message: "no faces ('f' lines)".into(),
-            });
-        }
-        Ok(Self {
-            name: name.to_string(),
-            format: MeshFormat::Obj,
-            scale,
-            frame: DMat3::IDENTITY,
-            positions,
-            faces,
-            groups,
-            texcoords,
-            normals: keep.normal_lines.len(),
-            materials,
-            source: Source::Obj(keep),
-        })
     }
+    if positions.is_empty() {
+        return Err(MeshFileError::Empty {
+            path: name.into(),
+            message: "no vertices ('v' lines)".into(),
+        });
+    }
+    if faces.is_empty() {
+        return Err(MeshFileError::Empty {
+            path: name.into(),
+            message: "no faces ('f' lines)".into(),
+        });
+    }
+    let normals = keep.normal_lines.len();
+    let parts = Parts {
+        positions,
+        faces,
+        groups,
+        texcoords,
+        normals,
+        materials,
+    };
+    Ok((parts, keep))
 }
 
 impl ObjText {
-    /// The file again with the vertices `moved` at `positions` (m; the same count as
-    /// [`MeshDocument::positions`]): their `v` lines written anew (any values after the
-    /// three coordinates, such as colours, kept), the `vn` lines their corners use
-    /// recomputed from the faces around them, every other line as read.
-    pub(super) fn write(&self, doc: &MeshDocument, positions: &[DVec3], moved: &[bool]) -> String {
+    /// The file again with the vertices `job.moved` at `job.positions`: their `v` lines
+    /// written anew (any values after the three coordinates, such as colours, kept), the
+    /// `vn` lines their corners use recomputed from the faces around them, every other
+    /// line as read.
+    pub(super) fn write(&self, job: &Moved) -> String {
         let mut replaced: BTreeMap<usize, String> = BTreeMap::new();
-        for (v, (&line, p)) in self.vertex_lines.iter().zip(positions).enumerate() {
-            if !moved.get(v).copied().unwrap_or(false) {
+        for (v, (&line, q)) in self.vertex_lines.iter().zip(job.positions).enumerate() {
+            if !job.moved.get(v).copied().unwrap_or(false) {
                 continue;
             }
             let rest: Vec<&str> = self.lines[line]
@@ -151,7 +146,6 @@ impl ObjText {
                 .split_ascii_whitespace()
                 .skip(4)
                 .collect();
-            let q = doc.to_file(*p);
             let mut text = format!("v {} {} {}", q.x, q.y, q.z);
             for r in rest {
                 text.push(' ');
@@ -159,7 +153,7 @@ impl ObjText {
             }
             replaced.insert(line, text);
         }
-        for (n, normal) in self.normals_of_moved(doc, positions, moved) {
+        for (n, normal) in normals_of_moved(job) {
             replaced.insert(
                 self.normal_lines[n as usize],
                 format!("vn {} {} {}", normal.x, normal.y, normal.z),
@@ -177,33 +171,29 @@ impl ObjText {
         }
         out
     }
+}
 
-    /// The normals (by `vn` index, in the file's axes) that corners of moved vertices use:
-    /// each the unit sum of the area-weighted normals at the vertices whose corners use it.
-    fn normals_of_moved(&self, doc: &MeshDocument, positions: &[DVec3], moved: &[bool]) -> BTreeMap<u32, DVec3> {
-        let mut used: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
-        for face in &doc.faces {
-            for c in &face.corners {
-                if let Some(n) = c.vn
-                    && moved.get(c.v as usize).copied().unwrap_or(false)
-                {
-                    used.entry(n).or_default().push(c.v);
-                }
+/// The normals (by `vn` index) that corners of moved vertices use: each the unit sum of the
+/// area-weighted normals at the vertices whose corners use it.
+fn normals_of_moved(job: &Moved) -> BTreeMap<u32, DVec3> {
+    let mut used: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for face in job.faces {
+        for c in &face.corners {
+            if let Some(n) = c.vn
+                && job.moved.get(c.v as usize).copied().unwrap_or(false)
+            {
+                used.entry(n).or_default().push(c.v);
             }
         }
-        if used.is_empty() {
-            return BTreeMap::new();
-        }
-        let at = doc.area_normals(positions);
-        used.into_iter()
-            .filter_map(|(n, mut vertices)| {
-                vertices.sort_unstable();
-                vertices.dedup();
-                let sum: DVec3 = vertices.iter().map(|&v| at[v as usize]).sum();
-                (sum.length_squared() > 0.0).then(|| (n, (doc.frame.transpose() * sum).normalize()))
-            })
-            .collect()
     }
+    used.into_iter()
+        .filter_map(|(n, mut vertices)| {
+            vertices.sort_unstable();
+            vertices.dedup();
+            let sum: DVec3 = vertices.iter().map(|&v| job.area[v as usize]).sum();
+            (sum.length_squared() > 0.0).then(|| (n, sum.normalize()))
+        })
+        .collect()
 }
 
 /// One corner token `v`, `v/vt`, `v//vn` or `v/vt/vn` (negative indices count back from the
@@ -245,32 +235,4 @@ fn corner(
     let vt = index(parts.next(), read[1], "texture coordinate")?;
     let vn = index(parts.next(), read[2], "normal")?;
     Ok(Corner { v, vt, vn })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn an_unchanged_document_writes_back_byte_for_byte() {
-        let text = "# made elsewhere\r\nmtllib a.mtl\r\nv 0 0 0 1 0 0\r\nv 1.0000001 0 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\ng front\r\nusemtl cotton\r\nf 1/1/1 2/1/1 3/1/1\r\n";
-        let doc = MeshDocument::parse_obj(text, "a.obj", 1.0).unwrap();
-        assert_eq!(doc.write(&doc.positions, &[false; 3]).unwrap(), text.as_bytes());
-        assert_eq!(doc.groups, vec!["".to_string(), "front".to_string()]);
-        assert_eq!(doc.faces[0].group, 1);
-    }
-
-    #[test]
-    fn a_moved_vertex_keeps_its_colour_and_the_normal_it_uses_is_recomputed() {
-        let text = "v 0 0 0 0.5 0.5 0.5\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\n";
-        let doc = MeshDocument::parse_obj(text, "a.obj", 0.01).unwrap();
-        let mut p = doc.positions.clone();
-        p[0].z = -0.01;
-        let out = String::from_utf8(doc.write(&p, &[true, false, false]).unwrap()).unwrap();
-        let lines: Vec<&str> = out.lines().collect();
-        assert_eq!(lines[0], "v 0 0 -1 0.5 0.5 0.5");
-        assert_eq!(lines[1], "v 1 0 0");
-        assert!(lines[3].starts_with("vn "), "{}", lines[3]);
-        assert_ne!(lines[3], "vn 1 0 0");
-    }
 }

@@ -1,4 +1,4 @@
-//! PLY in a [`MeshDocument`], read and written by `ply-rs-bw` in the file's own encoding
+//! PLY in a [`super::MeshDocument`], read and written by `ply-rs-bw` in the file's own encoding
 //! (text, binary little or big endian) with every element and property kept.
 //!
 //! The vertices are the `vertex` element's `x y z` (float or double); the faces its
@@ -9,13 +9,13 @@
 
 use std::io::Cursor;
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Header, Ply, Property, PropertyType, ScalarType};
 use ply_rs_bw::writer::Writer;
 
 use super::MeshFileError;
-use super::document::{Corner, Face, MeshDocument, MeshFormat, Source};
+use super::file_parts::{Corner, Face, Moved, Parts};
 
 /// The parsed file, to write it again.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,63 +35,57 @@ fn error(name: &str, message: impl Into<String>) -> MeshFileError {
     }
 }
 
-impl MeshDocument {
-    /// Parses a PLY file's bytes; `name` is used in messages.
-    ///
-    /// # Failures
-    /// [`MeshFileError`]: a malformed header or payload, no `vertex` element with float or
-    /// double `x y z`, no `face` element with a list of vertex indices, a coordinate that is
-    /// not finite (named by vertex), an index out of range or a face of fewer than 3
-    /// vertices (named by face), or no vertices or faces.
-    pub fn parse_ply(bytes: &[u8], name: &str, scale: f64) -> Result<Self, MeshFileError> {
-        let parser = Parser::<DefaultElement>::new();
-        let mut reader = Cursor::new(bytes);
-        let header = parser
-            .read_header(&mut reader)
-            .map_err(|e| error(name, format!("the header: {e}")))?;
-        let (vertex_def, indices) = check_header(&header, name)?;
-        let start = reader.position() as usize;
-        check_payload(&header, &bytes[start.min(bytes.len())..], name)?;
-        let payload = parser
-            .read_payload(&mut reader, &header)
-            .map_err(|e| error(name, format!("the payload: {e}")))?;
-        let ply = Ply { header, payload };
-        let vertices = ply.payload.get("vertex").map_or(&[][..], Vec::as_slice);
-        let mut positions = Vec::with_capacity(vertices.len());
-        for (v, element) in vertices.iter().enumerate() {
-            let [x, y, z] = XYZ.map(|k| element.get(k).and_then(number).unwrap_or(f64::NAN));
-            let p = DVec3::new(x, y, z) * scale;
-            if !p.is_finite() {
-                return Err(error(
-                    name,
-                    format!("vertex {} has a coordinate that is not finite: {x} {y} {z}", v + 1),
-                ));
-            }
-            positions.push(p);
+/// Parses a PLY file's bytes; `name` is used in messages.
+///
+/// # Failures
+/// [`MeshFileError`]: a malformed header or payload, no `vertex` element with float or
+/// double `x y z`, no `face` element with a list of vertex indices, a coordinate that is
+/// not finite (named by vertex), an index out of range or a face of fewer than 3
+/// vertices (named by face), or no vertices or faces.
+pub(super) fn parse(bytes: &[u8], name: &str, scale: f64) -> Result<(Parts, PlyKeep), MeshFileError> {
+    let parser = Parser::<DefaultElement>::new();
+    let mut reader = Cursor::new(bytes);
+    let header = parser
+        .read_header(&mut reader)
+        .map_err(|e| error(name, format!("the header: {e}")))?;
+    let (vertex_def, indices) = check_header(&header, name)?;
+    let start = reader.position() as usize;
+    check_payload(&header, &bytes[start.min(bytes.len())..], name)?;
+    let payload = parser
+        .read_payload(&mut reader, &header)
+        .map_err(|e| error(name, format!("the payload: {e}")))?;
+    let ply = Ply { header, payload };
+    let vertices = ply.payload.get("vertex").map_or(&[][..], Vec::as_slice);
+    let mut positions = Vec::with_capacity(vertices.len());
+    for (v, element) in vertices.iter().enumerate() {
+        let [x, y, z] = XYZ.map(|k| element.get(k).and_then(number).unwrap_or(f64::NAN));
+        let p = DVec3::new(x, y, z) * scale;
+        if !p.is_finite() {
+            return Err(error(
+                name,
+                format!("vertex {} has a coordinate that is not finite: {x} {y} {z}", v + 1),
+            ));
         }
-        let faces = read_faces(&ply, &indices, positions.len(), name)?;
-        if positions.is_empty() || faces.is_empty() {
-            return Err(MeshFileError::Empty {
-                path: name.into(),
-                message: format!("{} vertices and {} faces", positions.len(), faces.len()),
-            });
-        }
-        let has = |keys: &[&str]| keys.iter().all(|k| vertex_def.properties.contains_key(*k));
-        let uv = has(&["s", "t"]) || has(&["u", "v"]) || has(&["texture_u", "texture_v"]);
-        Ok(Self {
-            name: name.to_string(),
-            format: MeshFormat::Ply,
-            scale,
-            frame: DMat3::IDENTITY,
-            texcoords: if uv { positions.len() } else { 0 },
-            normals: if has(&NORMAL) { positions.len() } else { 0 },
-            positions,
-            faces,
-            groups: vec![String::new()],
-            materials: 0,
-            source: Source::Ply(PlyKeep { ply }),
-        })
+        positions.push(p);
     }
+    let faces = read_faces(&ply, &indices, positions.len(), name)?;
+    if positions.is_empty() || faces.is_empty() {
+        return Err(MeshFileError::Empty {
+            path: name.into(),
+            message: format!("{} vertices and {} faces", positions.len(), faces.len()),
+        });
+    }
+    let has = |keys: &[&str]| keys.iter().all(|k| vertex_def.properties.contains_key(*k));
+    let uv = has(&["s", "t"]) || has(&["u", "v"]) || has(&["texture_u", "texture_v"]);
+    let parts = Parts {
+        texcoords: if uv { positions.len() } else { 0 },
+        normals: if has(&NORMAL) { positions.len() } else { 0 },
+        positions,
+        faces,
+        groups: vec![String::new()],
+        materials: 0,
+    };
+    Ok((parts, PlyKeep { ply }))
 }
 
 /// The vertex element and the name of the face element's index list, checked: `x y z`
@@ -352,29 +346,22 @@ fn typed(def: &ElementDef, key: &str, x: f64) -> Option<Property> {
 }
 
 impl PlyKeep {
-    /// The file again, in its encoding, with the vertices `moved` at `positions` (`x y z`
-    /// in the declared type) and their `nx ny nz`, where the file has them, recomputed;
-    /// every other element and property as read.
-    pub(super) fn write(
-        &self,
-        doc: &MeshDocument,
-        positions: &[DVec3],
-        moved: &[bool],
-    ) -> Result<Vec<u8>, MeshFileError> {
+    /// The file again, in its encoding, with the vertices `job.moved` at `job.positions`
+    /// (`x y z` in the declared type) and their `nx ny nz`, where the file has them, made
+    /// again; every other element and property as read.
+    pub(super) fn write(&self, job: &Moved) -> Result<Vec<u8>, MeshFileError> {
         let mut ply = self.ply.clone();
-        let normals = doc.moved_normals(positions, moved);
         if let (Some(def), Some(vertices)) = (ply.header.elements.get("vertex"), ply.payload.get_mut("vertex")) {
             for (v, element) in vertices.iter_mut().enumerate() {
-                if !moved.get(v).copied().unwrap_or(false) {
+                if !job.moved.get(v).copied().unwrap_or(false) {
                     continue;
                 }
-                let q = doc.to_file(positions[v]);
-                for (k, x) in XYZ.into_iter().zip(q.to_array()) {
+                for (k, x) in XYZ.into_iter().zip(job.positions[v].to_array()) {
                     if let Some(p) = typed(def, k, x) {
                         element.insert(k.to_string(), p);
                     }
                 }
-                if let Some(n) = normals[v] {
+                if let Some(n) = job.smooth[v] {
                     for (k, x) in NORMAL.into_iter().zip(n.to_array()) {
                         if let Some(p) = typed(def, k, x) {
                             element.insert(k.to_string(), p);
@@ -386,7 +373,7 @@ impl PlyKeep {
         let mut out = Vec::new();
         Writer::<DefaultElement>::new()
             .write_ply_unchecked(&mut out, &ply)
-            .map_err(|e| error(&doc.name, format!("writing: {e}")))?;
+            .map_err(|e| error(job.name, format!("writing: {e}")))?;
         Ok(out)
     }
 }
@@ -398,7 +385,7 @@ mod tests {
     #[test]
     fn a_header_that_promises_more_than_the_file_holds_is_named() {
         let text = b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-        let err = MeshDocument::parse_ply(text, "a.ply", 1.0).unwrap_err().to_string();
+        let err = parse(text, "a.ply", 1.0).unwrap_err().to_string();
         assert!(err.contains("element 'vertex' declares 1000000000 items"), "{err}");
     }
 
@@ -407,7 +394,7 @@ mod tests {
         let mut bytes = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list int int vertex_indices\nend_header\n".to_vec();
         bytes.extend(std::iter::repeat_n(0u8, 36));
         bytes.extend(2_000_000_000i32.to_le_bytes());
-        let err = MeshDocument::parse_ply(&bytes, "a.ply", 1.0).unwrap_err().to_string();
+        let err = parse(&bytes, "a.ply", 1.0).unwrap_err().to_string();
         assert!(err.contains("a list of 2000000000 values"), "{err}");
     }
 }

@@ -372,3 +372,48 @@ fn hostile_ply_and_gltf_files_are_named_errors_never_panics() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_glb_garment_in_a_session_is_exported_as_glb_clear_of_the_body() {
+    let body = &real_body().mesh.mesh;
+    let band = bumpy_band();
+    let dir = scratch("gltf-session");
+    std::fs::write(dir.join("band.glb"), gltf_of(&band, 0.1).glb()).expect("written");
+    std::fs::write(
+        dir.join("band.drape"),
+        "drape 1\nm1\ngarment mesh \"band.glb\" name=band ease=0.003\n",
+    )
+    .expect("written");
+    let out = dir.join("out");
+    let o = drape_cli()
+        .arg("run")
+        .arg(dir.join("band.drape"))
+        .args(["--strict", "--log-detail", "metrics", "--save"])
+        .arg(dir.join("band.rrd"))
+        .arg("--export")
+        .arg(&out)
+        .output()
+        .expect("drape runs");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let exported: Vec<_> = std::fs::read_dir(&out)
+        .expect("the export folder")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.to_str().is_some_and(|s| s.ends_with("_band_m0.glb")))
+        .collect();
+    assert_eq!(exported.len(), 1, "{exported:?}");
+    let back = Gltf::from_glb(&std::fs::read(&exported[0]).expect("M0"));
+    let world = TriMesh {
+        positions: back
+            .floats(0, 3)
+            .iter()
+            .map(|p| DVec3::new(p[0].into(), f64::from(p[1]) + 0.1, p[2].into()))
+            .collect(),
+        triangles: [back.uints(3), back.uints(4)]
+            .concat()
+            .chunks(3)
+            .map(|t| [t[0], t[1], t[2]])
+            .collect(),
+    };
+    assert_eq!(brute(body, &world), [0, 0, 0], "{}", text(&o));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,5 +1,5 @@
 //! glTF 2.0 (`.gltf` with its buffers embedded or beside it, or `.glb`) in a
-//! [`MeshDocument`]: the document read and checked by the `gltf` crate, the JSON kept as
+//! [`super::MeshDocument`]: the document read and checked by the `gltf` crate, the JSON kept as
 //! read, to be written back with only the moved vertices' bytes, their normals and their
 //! accessors' bounds changed.
 //!
@@ -11,48 +11,48 @@
 use std::path::Path;
 
 use base64::Engine as _;
-use glam::{DMat3, DMat4, DVec3};
+use glam::{DMat4, DVec3};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
-use serde_json::{Value, json};
+use serde_json::Value;
 
 use super::MeshFileError;
-use super::document::{Corner, Face, MeshDocument, MeshFormat, Source};
+use super::file_parts::{Corner, Face, Parts};
 
 /// The vertices of one position accessor.
 #[derive(Clone, Debug, PartialEq)]
-struct Block {
+pub(super) struct Block {
     /// The accessor.
-    accessor: usize,
-    /// Its first vertex in [`MeshDocument::positions`].
-    first: usize,
+    pub accessor: usize,
+    /// Its first vertex in the document's positions.
+    pub first: usize,
     /// Its vertices.
-    count: usize,
+    pub count: usize,
     /// The node's world transform (file units).
-    world: DMat4,
+    pub world: DMat4,
     /// `NORMAL` accessors of the primitives that use it.
-    normals: Vec<usize>,
+    pub normals: Vec<usize>,
 }
 
 /// Where an accessor's elements are: buffer, first byte, stride.
 #[derive(Clone, Copy, Debug, PartialEq)]
-struct Layout {
-    buffer: usize,
-    offset: usize,
-    stride: usize,
+pub(super) struct Layout {
+    pub buffer: usize,
+    pub offset: usize,
+    pub stride: usize,
 }
 
 /// The document and its buffers, to write it again.
 #[derive(Clone, Debug, PartialEq)]
 pub struct GltfKeep {
-    json: Value,
-    buffers: Vec<Vec<u8>>,
-    blocks: Vec<Block>,
+    pub(super) json: Value,
+    pub(super) buffers: Vec<Vec<u8>>,
+    pub(super) blocks: Vec<Block>,
     /// Per accessor, where its elements are (`None`: no buffer view).
-    layouts: Vec<Option<Layout>>,
+    pub(super) layouts: Vec<Option<Layout>>,
 }
 
-fn error(name: &str, message: impl Into<String>) -> MeshFileError {
+pub(super) fn error(name: &str, message: impl Into<String>) -> MeshFileError {
     MeshFileError::Format {
         path: name.to_string(),
         format: "glTF",
@@ -73,90 +73,84 @@ struct Reading<'a> {
     texcoords: usize,
 }
 
-impl MeshDocument {
-    /// Parses a glTF or GLB file's bytes; `base` is the folder its external buffers are
-    /// in, each read within `max_bytes`; `name` is used in messages.
-    ///
-    /// # Failures
-    /// [`MeshFileError`]: an invalid document, a buffer that cannot be had, a primitive
-    /// that is not triangles, a position accessor that is not three floats or is placed by
-    /// two different nodes, a byte range outside its buffer, an index out of range, no
-    /// triangles.
-    pub fn parse_gltf(
-        bytes: &[u8],
-        name: &str,
-        scale: f64,
-        base: &Path,
-        max_bytes: u64,
-    ) -> Result<Self, MeshFileError> {
-        let glb = bytes.starts_with(b"glTF");
-        let (json_bytes, blob) = if glb {
-            let g = gltf::binary::Glb::from_slice(bytes).map_err(|e| error(name, format!("the GLB container: {e}")))?;
-            (g.json.into_owned(), g.bin.map(std::borrow::Cow::into_owned))
-        } else {
-            (bytes.to_vec(), None)
-        };
-        let json: Value = serde_json::from_slice(&json_bytes).map_err(|e| error(name, format!("the JSON: {e}")))?;
-        let document = gltf::Gltf::from_slice(bytes)
-            .map_err(|e| error(name, format!("the document: {e}")))?
-            .document;
-        let buffers = load_buffers(&document, blob, base, max_bytes, name)?;
-        let layouts: Vec<Option<Layout>> = document.accessors().map(|a| layout(&a)).collect();
-        let mut reading = Reading {
-            name,
-            scale,
-            buffers: &buffers,
-            layouts: &layouts,
-            positions: Vec::new(),
-            faces: Vec::new(),
-            groups: vec![String::new()],
-            blocks: Vec::new(),
-            texcoords: 0,
-        };
-        for (node, world) in placed_nodes(&document) {
-            if let Some(mesh) = node.mesh() {
-                reading.mesh(&mesh, world)?;
-            }
+/// Parses a glTF or GLB file's bytes; `base` is the folder its external buffers are in,
+/// each read within `max_bytes`; `name` is used in messages.
+///
+/// # Failures
+/// As [`super::MeshDocument::parse_gltf`].
+pub(super) fn parse(
+    bytes: &[u8],
+    name: &str,
+    scale: f64,
+    base: &Path,
+    max_bytes: u64,
+) -> Result<(Parts, GltfKeep), MeshFileError> {
+    let glb = bytes.starts_with(b"glTF");
+    let (json_bytes, blob) = if glb {
+        let g = gltf::binary::Glb::from_slice(bytes).map_err(|e| error(name, format!("the GLB container: {e}")))?;
+        (g.json.into_owned(), g.bin.map(std::borrow::Cow::into_owned))
+    } else {
+        (bytes.to_vec(), None)
+    };
+    let json: Value = serde_json::from_slice(&json_bytes).map_err(|e| error(name, format!("the JSON: {e}")))?;
+    let document = gltf::Gltf::from_slice(bytes)
+        .map_err(|e| error(name, format!("the document: {e}")))?
+        .document;
+    let buffers = load_buffers(&document, blob, base, max_bytes, name)?;
+    let layouts: Vec<Option<Layout>> = document.accessors().map(|a| layout(&a)).collect();
+    let mut reading = Reading {
+        name,
+        scale,
+        buffers: &buffers,
+        layouts: &layouts,
+        positions: Vec::new(),
+        faces: Vec::new(),
+        groups: vec![String::new()],
+        blocks: Vec::new(),
+        texcoords: 0,
+    };
+    for (node, world) in placed_nodes(&document) {
+        if let Some(mesh) = node.mesh() {
+            reading.mesh(&mesh, world)?;
         }
-        if reading.positions.is_empty() || reading.faces.is_empty() {
-            return Err(MeshFileError::Empty {
-                path: name.into(),
-                message: "no triangles in the scene's meshes".into(),
-            });
-        }
-        let normals = reading
-            .blocks
-            .iter()
-            .filter(|b| !b.normals.is_empty())
-            .map(|b| b.count)
-            .sum();
-        let Reading {
-            positions,
-            faces,
-            groups,
-            blocks,
-            texcoords,
-            ..
-        } = reading;
-        Ok(Self {
-            name: name.to_string(),
-            format: if glb { MeshFormat::Glb } else { MeshFormat::Gltf },
-            scale,
-            frame: DMat3::IDENTITY,
-            positions,
-            faces,
-            groups,
-            texcoords,
-            normals,
-            materials: document.materials().count(),
-            source: Source::Gltf(GltfKeep {
-                json,
-                buffers,
-                blocks,
-                layouts,
-            }),
-        })
     }
+    if reading.positions.is_empty() || reading.faces.is_empty() {
+        return Err(MeshFileError::Empty {
+            path: name.into(),
+            message: "no triangles in the scene's meshes".into(),
+        });
+    }
+    let normals = reading
+        .blocks
+        .iter()
+        .filter(|b| !b.normals.is_empty())
+        .map(|b| b.count)
+        .sum();
+    let Reading {
+        positions,
+        faces,
+        groups,
+        blocks,
+        texcoords,
+        ..
+    } = reading;
+    let parts = Parts {
+        positions,
+        faces,
+        groups,
+        texcoords,
+        normals,
+        materials: document.materials().count(),
+    };
+    Ok((
+        parts,
+        GltfKeep {
+            json,
+            buffers,
+            blocks,
+            layouts,
+        },
+    ))
 }
 
 /// Every buffer's bytes: the GLB's BIN chunk, a `data:` URI, or a file beside the document.
@@ -460,119 +454,4 @@ fn triangles(mode: Mode, v: &[u32]) -> Vec<[u32; 3]> {
         Mode::TriangleFan => (1..v.len().saturating_sub(1)).map(|k| [v[0], v[k], v[k + 1]]).collect(),
         _ => v.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
     }
-}
-
-impl GltfKeep {
-    /// The document again, as `.glb` or `.gltf` (`format`), with the vertices `moved` at
-    /// `positions`: their bytes (and their normals') written anew in their node's frame,
-    /// the bounds of their position accessors recomputed, the buffers joined into one (the
-    /// GLB's BIN chunk, or a `data:` URI in a `.gltf`); every other value as read.
-    pub(super) fn write(
-        &self,
-        doc: &MeshDocument,
-        format: MeshFormat,
-        positions: &[DVec3],
-        moved: &[bool],
-    ) -> Result<Vec<u8>, MeshFileError> {
-        let mut buffers = self.buffers.clone();
-        let mut json = self.json.clone();
-        let normals = doc.moved_normals(positions, moved);
-        for block in &self.blocks {
-            let range = block.first..block.first + block.count;
-            if !moved[range.clone()].iter().any(|&m| m) {
-                continue;
-            }
-            let to_local = block.world.inverse();
-            let normal_to_local = DMat3::from_mat4(block.world).transpose();
-            let Some(l) = self.layouts[block.accessor] else {
-                continue;
-            };
-            let mut lo = [f32::INFINITY; 3];
-            let mut hi = [f32::NEG_INFINITY; 3];
-            for (i, v) in range.enumerate() {
-                let at = l.offset + i * l.stride;
-                if moved[v] {
-                    let q = to_local.transform_point3(doc.to_file(positions[v])).as_vec3();
-                    put(&mut buffers[l.buffer], at, q.to_array());
-                    if let Some(n) = normals[v] {
-                        let n = (normal_to_local * n).normalize_or_zero().as_vec3().to_array();
-                        for &na in &block.normals {
-                            if let Some(nl) = self.layouts[na] {
-                                put(&mut buffers[nl.buffer], nl.offset + i * nl.stride, n);
-                            }
-                        }
-                    }
-                }
-                let b = &buffers[l.buffer][at..at + 12];
-                for k in 0..3 {
-                    let x = f32::from_le_bytes([b[4 * k], b[4 * k + 1], b[4 * k + 2], b[4 * k + 3]]);
-                    lo[k] = lo[k].min(x);
-                    hi[k] = hi[k].max(x);
-                }
-            }
-            if let Some(accessor) = json.pointer_mut(&format!("/accessors/{}", block.accessor)) {
-                accessor["min"] = json!(lo);
-                accessor["max"] = json!(hi);
-            }
-        }
-        let bin = join_buffers(&mut json, &buffers);
-        let out = match format {
-            MeshFormat::Glb => {
-                let text = serde_json::to_vec(&json).map_err(|e| error(&doc.name, e.to_string()))?;
-                gltf::binary::Glb {
-                    header: gltf::binary::Header {
-                        magic: *b"glTF",
-                        version: 2,
-                        length: 0,
-                    },
-                    json: text.into(),
-                    bin: Some(bin.into()),
-                }
-                .to_vec()
-                .map_err(|e| error(&doc.name, format!("writing: {e}")))?
-            }
-            _ => {
-                let encoded = base64::engine::general_purpose::STANDARD.encode(&bin);
-                json["buffers"][0]["uri"] = json!(format!("data:application/octet-stream;base64,{encoded}"));
-                serde_json::to_vec_pretty(&json).map_err(|e| error(&doc.name, e.to_string()))?
-            }
-        };
-        Ok(out)
-    }
-}
-
-/// Writes three floats at byte `at` (in range: it was read there).
-fn put(buffer: &mut [u8], at: usize, v: [f32; 3]) {
-    for (k, x) in v.into_iter().enumerate() {
-        buffer[at + 4 * k..at + 4 * k + 4].copy_from_slice(&x.to_le_bytes());
-    }
-}
-
-/// Joins `buffers` into one (each from a multiple of four bytes), the buffer views moved
-/// to it; `json` keeps one buffer (the first's name and extras, no URI).
-fn join_buffers(json: &mut Value, buffers: &[Vec<u8>]) -> Vec<u8> {
-    let mut starts = Vec::with_capacity(buffers.len());
-    let mut bin = Vec::new();
-    for b in buffers {
-        while bin.len() % 4 != 0 {
-            bin.push(0);
-        }
-        starts.push(bin.len());
-        bin.extend_from_slice(b);
-    }
-    if let Some(views) = json.get_mut("bufferViews").and_then(Value::as_array_mut) {
-        for view in views {
-            let b = view["buffer"].as_u64().unwrap_or(0) as usize;
-            let offset = view.get("byteOffset").and_then(Value::as_u64).unwrap_or(0);
-            view["buffer"] = json!(0);
-            view["byteOffset"] = json!(offset + starts.get(b).copied().unwrap_or(0) as u64);
-        }
-    }
-    let mut first = json.pointer("/buffers/0").cloned().unwrap_or_else(|| json!({}));
-    if let Some(o) = first.as_object_mut() {
-        o.remove("uri");
-        o.insert("byteLength".into(), json!(bin.len()));
-    }
-    json["buffers"] = json!([first]);
-    bin
 }
