@@ -211,6 +211,7 @@ pub fn check(garment: &ImportedGarment, index: &BodyIndex, options: &CheckOption
     };
     let max_move_m = garment
         .doc
+        .contents
         .positions
         .iter()
         .zip(&positions)

@@ -163,9 +163,9 @@ impl ImportedGarment {
         let place = format!("{}: ", doc.name);
         check_size_and_place(&doc, body)?;
         let mut notes = ImportNotes {
-            vertices: doc.positions.len(),
-            faces: doc.faces.len(),
-            polygons_triangulated: doc.faces.iter().filter(|f| f.corners.len() > 3).count(),
+            vertices: doc.contents.positions.len(),
+            faces: doc.contents.faces.len(),
+            polygons_triangulated: doc.contents.faces.iter().filter(|f| f.corners.len() > 3).count(),
             place_word: doc.format.place_word(),
             ..ImportNotes::default()
         };
@@ -177,7 +177,7 @@ impl ImportedGarment {
         let mut groups = Vec::with_capacity(file_triangles.len());
         for (t, f) in file_triangles.iter().zip(&face_of) {
             let m = t.map(|v| to_mesh[v as usize]);
-            let face = &doc.faces[*f as usize];
+            let face = &doc.contents.faces[*f as usize];
             if m[0] == m[1] || m[1] == m[2] || m[0] == m[2] {
                 notes.degenerate_triangles_dropped += 1;
                 if notes.degenerate_lines.len() < 10 && notes.degenerate_lines.last() != Some(&face.at) {
@@ -229,7 +229,7 @@ impl ImportedGarment {
             .filter(|&t| mesh.scaled_normal(t).length() * 0.5 <= 1e-12 * diagonal_sq)
             .count();
         notes.triangles = mesh.triangles.len();
-        let garment = garment_mesh(mesh, &groups, doc.groups.len());
+        let garment = garment_mesh(mesh, &groups, doc.contents.groups.len());
         Ok(Self {
             doc,
             mesh: garment,
@@ -253,6 +253,7 @@ impl ImportedGarment {
     /// (bit for bit): what [`MeshDocument::write`] takes.
     pub fn file_positions(&self, positions: &[DVec3]) -> (Vec<DVec3>, Vec<bool>) {
         self.doc
+            .contents
             .positions
             .iter()
             .zip(&self.to_mesh)
@@ -268,7 +269,7 @@ impl ImportedGarment {
 /// written twice, welded): the positions and, per file vertex, its welded vertex
 /// (`u32::MAX` for a vertex no face uses).
 fn weld(doc: &MeshDocument, file_triangles: &[[u32; 3]], notes: &mut ImportNotes) -> (Vec<DVec3>, Vec<u32>) {
-    let mut used = vec![false; doc.positions.len()];
+    let mut used = vec![false; doc.contents.positions.len()];
     for t in file_triangles {
         for &v in t {
             used[v as usize] = true;
@@ -276,9 +277,9 @@ fn weld(doc: &MeshDocument, file_triangles: &[[u32; 3]], notes: &mut ImportNotes
     }
     notes.unused_vertices = used.iter().filter(|u| !**u).count();
     let mut first_at: BTreeMap<[u64; 3], u32> = BTreeMap::new();
-    let mut to_mesh = vec![u32::MAX; doc.positions.len()];
+    let mut to_mesh = vec![u32::MAX; doc.contents.positions.len()];
     let mut positions = Vec::new();
-    for (v, p) in doc.positions.iter().enumerate() {
+    for (v, p) in doc.contents.positions.iter().enumerate() {
         if !used[v] {
             continue;
         }
@@ -325,6 +326,7 @@ fn face_away(mesh: &mut TriMesh, parts: &[Vec<usize>], index: &BodyIndex, notes:
 /// The garment's size against the body's height, and its box against the body's.
 fn check_size_and_place(doc: &MeshDocument, body: &TriMesh) -> Result<(), ImportError> {
     let (lo, hi) = doc
+        .contents
         .positions
         .iter()
         .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {

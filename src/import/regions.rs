@@ -24,7 +24,7 @@ pub fn face_regions(garment: &ImportedGarment, index: &BodyIndex) -> (Vec<u32>, 
     let mut names = Vec::with_capacity(ids.len());
     for (k, ((group, partition), id)) in ids.iter_mut().enumerate() {
         *id = k as u32;
-        let group = match garment.doc.groups.get(*group as usize).map(String::as_str) {
+        let group = match garment.doc.contents.groups.get(*group as usize).map(String::as_str) {
             None | Some("") => "default",
             Some(g) => g,
         };

@@ -15,8 +15,8 @@ use std::path::Path;
 
 use glam::{DMat3, DVec3};
 
-pub use super::file_parts::{Corner, Face, MeshFormat, READABLE};
-use super::file_parts::{Moved, Parts};
+use super::file_parts::Moved;
+pub use super::file_parts::{Corner, Face, FileMesh, MeshFormat, READABLE};
 use super::gltf_read::GltfKeep;
 use super::obj::ObjMesh;
 use super::obj_doc::ObjText;
@@ -104,19 +104,8 @@ pub struct MeshDocument {
     /// The rotation from the file's axes to the frame [`Self::positions`] are in
     /// (identity unless [`Self::reorient`]ed).
     pub frame: DMat3,
-    /// Vertex positions, m, in the file's order (glTF: each position accessor's in turn,
-    /// placed by its node).
-    pub positions: Vec<DVec3>,
-    /// The faces.
-    pub faces: Vec<Face>,
-    /// Group names in the order met; index 0 is the faces before any OBJ `g` or `o`.
-    pub groups: Vec<String>,
-    /// Texture coordinates (OBJ `vt` lines; PLY and glTF: vertices that carry one).
-    pub texcoords: usize,
-    /// Normals (OBJ `vn` lines; PLY and glTF: vertices that carry one).
-    pub normals: usize,
-    /// Material statements (OBJ `usemtl` and `mtllib`), materials (glTF), 0 (PLY).
-    pub materials: usize,
+    /// What it holds: vertices, faces, groups.
+    pub contents: FileMesh,
     pub(super) source: Source,
 }
 
@@ -186,18 +175,13 @@ impl MeshDocument {
         Ok(Self::from_parts(name, format, scale, parts, Source::Gltf(keep)))
     }
 
-    fn from_parts(name: &str, format: MeshFormat, scale: f64, parts: Parts, source: Source) -> Self {
+    fn from_parts(name: &str, format: MeshFormat, scale: f64, parts: FileMesh, source: Source) -> Self {
         Self {
             name: name.to_string(),
             format,
             scale,
             frame: DMat3::IDENTITY,
-            positions: parts.positions,
-            faces: parts.faces,
-            groups: parts.groups,
-            texcoords: parts.texcoords,
-            normals: parts.normals,
-            materials: parts.materials,
+            contents: parts,
             source,
         }
     }
@@ -207,11 +191,11 @@ impl MeshDocument {
     pub fn into_mesh(self) -> ObjMesh {
         let (triangles, face_of) = self.triangles();
         ObjMesh {
-            triangle_lines: face_of.iter().map(|&f| self.faces[f as usize].at).collect(),
-            polygons_triangulated: self.faces.iter().filter(|f| f.corners.len() > 3).count(),
+            triangle_lines: face_of.iter().map(|&f| self.contents.faces[f as usize].at).collect(),
+            polygons_triangulated: self.contents.faces.iter().filter(|f| f.corners.len() > 3).count(),
             place_word: self.format.place_word(),
             mesh: TriMesh {
-                positions: self.positions,
+                positions: self.contents.positions,
                 triangles,
             },
         }
@@ -255,12 +239,16 @@ impl MeshDocument {
         }
         // One position and one flag per vertex of the file: a vertex past the end of
         // `positions` or `moved` stays where it was read.
-        let moved: Vec<bool> = (0..self.positions.len())
+        let moved: Vec<bool> = (0..self.contents.positions.len())
             .map(|v| moved.get(v).copied().unwrap_or(false) && v < positions.len())
             .collect();
-        let file: Vec<DVec3> = (0..self.positions.len())
+        let file: Vec<DVec3> = (0..self.contents.positions.len())
             .map(|v| {
-                let p = if moved[v] { positions[v] } else { self.positions[v] };
+                let p = if moved[v] {
+                    positions[v]
+                } else {
+                    self.contents.positions[v]
+                };
                 self.frame.transpose() * p / self.scale
             })
             .collect();
@@ -270,7 +258,7 @@ impl MeshDocument {
             name: &self.name,
             positions: &file,
             moved: &moved,
-            faces: &self.faces,
+            faces: &self.contents.faces,
             area: &area,
             smooth: &smooth,
         };
@@ -284,7 +272,7 @@ impl MeshDocument {
     /// Turns the positions by `rotation` (from the file's axes into drape's); [`Self::write`]
     /// turns them back.
     pub fn reorient(&mut self, rotation: DMat3) {
-        for p in &mut self.positions {
+        for p in &mut self.contents.positions {
             *p = rotation * *p;
         }
         self.frame = rotation * self.frame;
@@ -294,7 +282,7 @@ impl MeshDocument {
     pub fn triangles(&self) -> (Vec<[u32; 3]>, Vec<u32>) {
         let mut triangles = Vec::new();
         let mut face_of = Vec::new();
-        for (f, face) in self.faces.iter().enumerate() {
+        for (f, face) in self.contents.faces.iter().enumerate() {
             let c = &face.corners;
             for k in 1..c.len() - 1 {
                 triangles.push([c[0].v, c[k].v, c[k + 1].v]);
@@ -326,11 +314,11 @@ impl MeshDocument {
             s,
             "{}: {} vertices, {} faces, {} texture coordinates, {} normals, {} group(s)",
             self.format.name(),
-            self.positions.len(),
-            self.faces.len(),
-            self.texcoords,
-            self.normals,
-            self.groups.len() - usize::from(self.faces.iter().all(|f| f.group != 0))
+            self.contents.positions.len(),
+            self.contents.faces.len(),
+            self.contents.texcoords,
+            self.contents.normals,
+            self.contents.groups.len() - usize::from(self.contents.faces.iter().all(|f| f.group != 0))
         )
         .ok();
         s
@@ -344,16 +332,19 @@ mod tests {
     fn an_unchanged_document_writes_back_byte_for_byte() {
         let text = "# made elsewhere\r\nmtllib a.mtl\r\nv 0 0 0 1 0 0\r\nv 1.0000001 0 0\r\nv 0 1 0\r\nvt 0 0\r\nvn 0 0 1\r\ng front\r\nusemtl cotton\r\nf 1/1/1 2/1/1 3/1/1\r\n";
         let doc = MeshDocument::parse_obj(text, "a.obj", 1.0).unwrap();
-        assert_eq!(doc.write(&doc.positions, &[false; 3]).unwrap(), text.as_bytes());
-        assert_eq!(doc.groups, vec!["".to_string(), "front".to_string()]);
-        assert_eq!(doc.faces[0].group, 1);
+        assert_eq!(
+            doc.write(&doc.contents.positions, &[false; 3]).unwrap(),
+            text.as_bytes()
+        );
+        assert_eq!(doc.contents.groups, vec!["".to_string(), "front".to_string()]);
+        assert_eq!(doc.contents.faces[0].group, 1);
     }
 
     #[test]
     fn a_moved_vertex_keeps_its_colour_and_the_normal_it_uses_is_recomputed() {
         let text = "v 0 0 0 0.5 0.5 0.5\nv 1 0 0\nv 0 1 0\nvn 1 0 0\nf 1//1 2//1 3//1\n";
         let doc = MeshDocument::parse_obj(text, "a.obj", 0.01).unwrap();
-        let mut p = doc.positions.clone();
+        let mut p = doc.contents.positions.clone();
         p[0].z = -0.01;
         let out = String::from_utf8(doc.write(&p, &[true, false, false]).unwrap()).unwrap();
         let lines: Vec<&str> = out.lines().collect();

@@ -99,15 +99,22 @@ pub struct Face {
     pub group: u32,
 }
 
-/// What a reader found in a file: vertices (m, in the file's order), faces, groups, and how
-/// many texture coordinates, normals and materials came with them.
+/// What a mesh file holds: vertices in the file's order, faces, groups, and how many
+/// texture coordinates, normals and materials came with them.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub(super) struct Parts {
+pub struct FileMesh {
+    /// Vertex positions, m, in the file's order (glTF: each position accessor's in turn,
+    /// placed by its node).
     pub positions: Vec<DVec3>,
+    /// The faces.
     pub faces: Vec<Face>,
+    /// Group names in the order met; index 0 is the faces before any OBJ `g` or `o`.
     pub groups: Vec<String>,
+    /// Texture coordinates (OBJ `vt` lines; PLY and glTF: vertices that carry one).
     pub texcoords: usize,
+    /// Normals (OBJ `vn` lines; PLY and glTF: vertices that carry one).
     pub normals: usize,
+    /// Material statements (OBJ `usemtl` and `mtllib`), materials (glTF), 0 (PLY).
     pub materials: usize,
 }
 

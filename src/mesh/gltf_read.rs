@@ -17,7 +17,7 @@ use gltf::mesh::Mode;
 use serde_json::Value;
 
 use super::MeshFileError;
-use super::file_parts::{Corner, Face, Parts};
+use super::file_parts::{Corner, Face, FileMesh};
 
 /// The vertices of one position accessor.
 #[derive(Clone, Debug, PartialEq)]
@@ -66,11 +66,8 @@ struct Reading<'a> {
     scale: f64,
     buffers: &'a [Vec<u8>],
     layouts: &'a [Option<Layout>],
-    positions: Vec<DVec3>,
-    faces: Vec<Face>,
-    groups: Vec<String>,
+    contents: FileMesh,
     blocks: Vec<Block>,
-    texcoords: usize,
 }
 
 /// Parses a glTF or GLB file's bytes; `base` is the folder its external buffers are in,
@@ -84,7 +81,7 @@ pub(super) fn parse(
     scale: f64,
     base: &Path,
     max_bytes: u64,
-) -> Result<(Parts, GltfKeep), MeshFileError> {
+) -> Result<(FileMesh, GltfKeep), MeshFileError> {
     let glb = bytes.starts_with(b"glTF");
     let (json_bytes, blob) = if glb {
         let g = gltf::binary::Glb::from_slice(bytes).map_err(|e| error(name, format!("the GLB container: {e}")))?;
@@ -103,47 +100,30 @@ pub(super) fn parse(
         scale,
         buffers: &buffers,
         layouts: &layouts,
-        positions: Vec::new(),
-        faces: Vec::new(),
-        groups: vec![String::new()],
+        contents: FileMesh {
+            groups: vec![String::new()],
+            materials: document.materials().count(),
+            ..FileMesh::default()
+        },
         blocks: Vec::new(),
-        texcoords: 0,
     };
     for (node, world) in placed_nodes(&document) {
         if let Some(mesh) = node.mesh() {
             reading.mesh(&mesh, world)?;
         }
     }
-    if reading.positions.is_empty() || reading.faces.is_empty() {
+    if reading.contents.positions.is_empty() || reading.contents.faces.is_empty() {
         return Err(MeshFileError::Empty {
             path: name.into(),
             message: "no triangles in the scene's meshes".into(),
         });
     }
-    let normals = reading
-        .blocks
-        .iter()
-        .filter(|b| !b.normals.is_empty())
-        .map(|b| b.count)
-        .sum();
     let Reading {
-        positions,
-        faces,
-        groups,
-        blocks,
-        texcoords,
-        ..
+        mut contents, blocks, ..
     } = reading;
-    let parts = Parts {
-        positions,
-        faces,
-        groups,
-        texcoords,
-        normals,
-        materials: document.materials().count(),
-    };
+    contents.normals = blocks.iter().filter(|b| !b.normals.is_empty()).map(|b| b.count).sum();
     Ok((
-        parts,
+        contents,
         GltfKeep {
             json,
             buffers,
@@ -334,7 +314,7 @@ impl Reading<'_> {
             self.vec3(&a, "POSITION")?;
             let (block, new) = self.block(&a, world, &place)?;
             if new && primitive.get(&gltf::Semantic::TexCoords(0)).is_some() {
-                self.texcoords += a.count();
+                self.contents.texcoords += a.count();
             }
             if let Some(n) = primitive.get(&gltf::Semantic::Normals)
                 && n.count() == a.count()
@@ -345,12 +325,14 @@ impl Reading<'_> {
                 self.blocks[block].normals.push(n.index());
             }
             let indices = self.indices(&primitive, a.count(), &place)?;
-            self.groups.push(if primitives > 1 { place } else { mesh_name.clone() });
-            let group = (self.groups.len() - 1) as u32;
+            self.contents
+                .groups
+                .push(if primitives > 1 { place } else { mesh_name.clone() });
+            let group = (self.contents.groups.len() - 1) as u32;
             let first = self.blocks[block].first as u32;
             let triangles = triangles(mode, &indices);
             for t in triangles {
-                let at = self.faces.len() + 1;
+                let at = self.contents.faces.len() + 1;
                 let corners = t
                     .map(|v| Corner {
                         v: first + v,
@@ -358,7 +340,7 @@ impl Reading<'_> {
                         vn: None,
                     })
                     .to_vec();
-                self.faces.push(Face { at, corners, group });
+                self.contents.faces.push(Face { at, corners, group });
             }
         }
         Ok(())
@@ -378,7 +360,7 @@ impl Reading<'_> {
             }
             return Ok((k, false));
         }
-        let first = self.positions.len();
+        let first = self.contents.positions.len();
         for i in 0..a.count() {
             let local = self.read_vec3(a, i)?;
             let p = world.transform_point3(local) * self.scale;
@@ -388,7 +370,7 @@ impl Reading<'_> {
                     format!("{place}: vertex {i} of accessor {} is not finite: {local}", a.index()),
                 ));
             }
-            self.positions.push(p);
+            self.contents.positions.push(p);
         }
         self.blocks.push(Block {
             accessor: a.index(),

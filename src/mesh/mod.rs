@@ -13,7 +13,7 @@ pub mod topology;
 pub mod trimesh;
 pub mod validate;
 
-pub use document::{Corner, Face, MeshDocument, MeshFormat};
+pub use document::{Corner, Face, FileMesh, MeshDocument, MeshFormat};
 pub use file_error::MeshFileError;
 pub use obj::{read_obj, write_obj};
 pub use topology::Adjacency;

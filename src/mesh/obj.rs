@@ -62,18 +62,7 @@ pub fn parse_obj(text: &str, name: &str, scale: f64) -> Result<ObjMesh, MeshFile
             _ => {}
         }
     }
-    if positions.is_empty() {
-        return Err(MeshFileError::Empty {
-            path: name.into(),
-            message: "no vertices ('v' lines)".into(),
-        });
-    }
-    if faces.is_empty() {
-        return Err(MeshFileError::Empty {
-            path: name.into(),
-            message: "no faces ('f' lines)".into(),
-        });
-    }
+    require_both(name, positions.len(), faces.len())?;
     let mut triangles = Vec::new();
     let mut triangle_lines = Vec::new();
     let mut polygons_triangulated = 0;
@@ -135,6 +124,21 @@ pub(super) fn vertex<'t>(
         *slot = value * scale;
     }
     Ok(DVec3::from_array(xyz))
+}
+
+/// Refuses an OBJ file without vertices or without faces.
+pub(super) fn require_both(name: &str, vertices: usize, faces: usize) -> Result<(), MeshFileError> {
+    let missing = if vertices == 0 {
+        "no vertices ('v' lines)"
+    } else if faces == 0 {
+        "no faces ('f' lines)"
+    } else {
+        return Ok(());
+    };
+    Err(MeshFileError::Empty {
+        path: name.into(),
+        message: missing.into(),
+    })
 }
 
 /// The corners of an `f` line (after its keyword), each with its column and its index from

@@ -9,8 +9,8 @@ use std::collections::BTreeMap;
 use glam::DVec3;
 
 use super::MeshFileError;
-use super::file_parts::{Corner, Face, Moved, Parts};
-use super::obj::{tokens_with_columns, vertex};
+use super::file_parts::{Corner, Face, FileMesh, Moved};
+use super::obj::{require_both, tokens_with_columns, vertex};
 
 /// What an OBJ file needs kept to be written again.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,7 +31,7 @@ pub struct ObjText {
 ///
 /// # Failures
 /// As [`super::read_obj`], and texture-coordinate or normal indices out of range.
-pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjText), MeshFileError> {
+pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(FileMesh, ObjText), MeshFileError> {
     let syntax = |line: usize, column: usize, message: String| MeshFileError::Syntax {
         path: name.to_string(),
         line,
@@ -49,10 +49,10 @@ pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjTex
         vertex_lines: Vec::new(),
         normal_lines: Vec::new(),
     };
-    let mut positions = Vec::new();
-    let mut faces = Vec::new();
-    let mut groups = vec![String::new()];
-    let (mut texcoords, mut materials) = (0, 0);
+    let mut parts = FileMesh {
+        groups: vec![String::new()],
+        ..FileMesh::default()
+    };
     let mut group = 0u32;
     for (k, raw) in text.lines().enumerate() {
         let line = k + 1;
@@ -65,25 +65,25 @@ pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjTex
         };
         match keyword {
             "v" => {
-                positions.push(vertex(tokens, line, scale, &syntax)?);
+                parts.positions.push(vertex(tokens, line, scale, &syntax)?);
                 keep.vertex_lines.push(k);
             }
-            "vt" => texcoords += 1,
+            "vt" => parts.texcoords += 1,
             "vn" => keep.normal_lines.push(k),
             "g" | "o" => {
                 let label: Vec<&str> = tokens.map(|(_, t)| t).collect();
                 let label = label.join(" ");
-                group = match groups.iter().position(|g| *g == label) {
+                group = match parts.groups.iter().position(|g| *g == label) {
                     Some(i) => i as u32,
                     None => {
-                        groups.push(label);
-                        (groups.len() - 1) as u32
+                        parts.groups.push(label);
+                        (parts.groups.len() - 1) as u32
                     }
                 };
             }
-            "usemtl" | "mtllib" => materials += 1,
+            "usemtl" | "mtllib" => parts.materials += 1,
             "f" => {
-                let read = [positions.len(), texcoords, keep.normal_lines.len()];
+                let read = [parts.positions.len(), parts.texcoords, keep.normal_lines.len()];
                 let mut corners = Vec::new();
                 for (column, token) in tokens {
                     corners.push(corner(token, (line, column), read, &syntax)?);
@@ -95,7 +95,7 @@ pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjTex
                         format!("a face needs at least 3 vertices, found {}", corners.len()),
                     ));
                 }
-                faces.push(Face {
+                parts.faces.push(Face {
                     at: line,
                     corners,
                     group,
@@ -104,27 +104,8 @@ pub(super) fn parse(text: &str, name: &str, scale: f64) -> Result<(Parts, ObjTex
             _ => {}
         }
     }
-    if positions.is_empty() {
-        return Err(MeshFileError::Empty {
-            path: name.into(),
-            message: "no vertices ('v' lines)".into(),
-        });
-    }
-    if faces.is_empty() {
-        return Err(MeshFileError::Empty {
-            path: name.into(),
-            message: "no faces ('f' lines)".into(),
-        });
-    }
-    let normals = keep.normal_lines.len();
-    let parts = Parts {
-        positions,
-        faces,
-        groups,
-        texcoords,
-        normals,
-        materials,
-    };
+    require_both(name, parts.positions.len(), parts.faces.len())?;
+    parts.normals = keep.normal_lines.len();
     Ok((parts, keep))
 }
 

@@ -15,7 +15,7 @@ use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Header, Ply, Property
 use ply_rs_bw::writer::Writer;
 
 use super::MeshFileError;
-use super::file_parts::{Corner, Face, Moved, Parts};
+use super::file_parts::{Corner, Face, FileMesh, Moved};
 
 /// The parsed file, to write it again.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,7 +42,7 @@ fn error(name: &str, message: impl Into<String>) -> MeshFileError {
 /// double `x y z`, no `face` element with a list of vertex indices, a coordinate that is
 /// not finite (named by vertex), an index out of range or a face of fewer than 3
 /// vertices (named by face), or no vertices or faces.
-pub(super) fn parse(bytes: &[u8], name: &str, scale: f64) -> Result<(Parts, PlyKeep), MeshFileError> {
+pub(super) fn parse(bytes: &[u8], name: &str, scale: f64) -> Result<(FileMesh, PlyKeep), MeshFileError> {
     let parser = Parser::<DefaultElement>::new();
     let mut reader = Cursor::new(bytes);
     let header = parser
@@ -77,7 +77,7 @@ pub(super) fn parse(bytes: &[u8], name: &str, scale: f64) -> Result<(Parts, PlyK
     }
     let has = |keys: &[&str]| keys.iter().all(|k| vertex_def.properties.contains_key(*k));
     let uv = has(&["s", "t"]) || has(&["u", "v"]) || has(&["texture_u", "texture_v"]);
-    let parts = Parts {
+    let parts = FileMesh {
         texcoords: if uv { positions.len() } else { 0 },
         normals: if has(&NORMAL) { positions.len() } else { 0 },
         positions,

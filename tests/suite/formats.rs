@@ -11,19 +11,11 @@ use drape::body::{BodyMesh, BodySource};
 use drape::mesh::TriMesh;
 use glam::DVec3;
 
-use super::common::{drape_cli, real_body, shipped_bodies};
-use super::import::{brute, scratch, text};
+use super::common::{real_body, shipped_bodies};
+use super::garment_mesh::{last_export, run_session};
+use super::import::{brute, check_garment, scratch, text};
 use super::mesh_files::{Gltf, gltf_of, read_ply, write_ply};
 use super::offset_garment::offset_band;
-
-fn check_garment(garment: &Path, extra: &[&str]) -> std::process::Output {
-    drape_cli()
-        .arg("check-garment")
-        .arg(garment)
-        .args(extra)
-        .output()
-        .expect("drape runs")
-}
 
 /// The band with bumps into the built-in body that the import tests use.
 fn bumpy_band() -> TriMesh {
@@ -97,19 +89,7 @@ fn a_gltf_garment_is_repaired_clear_and_keeps_its_document_as_glb_or_gltf() {
     let dir = scratch("gltf");
     let input = dir.join("band.glb");
     std::fs::write(&input, asset.glb()).expect("written");
-    let world = |g: &Gltf| TriMesh {
-        positions: g
-            .floats(0, 3)
-            .iter()
-            .map(|p| DVec3::new(p[0].into(), f64::from(p[1]) + lift, p[2].into()))
-            .collect(),
-        triangles: [g.uints(3), g.uints(4)]
-            .concat()
-            .chunks(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .collect(),
-    };
-    let before = brute(body, &world(&asset));
+    let before = brute(body, &asset.world_mesh(lift));
     assert!(
         before[0] > 20 && before[1] > 0,
         "the fixture must go into the body: {before:?}"
@@ -124,7 +104,12 @@ fn a_gltf_garment_is_repaired_clear_and_keeps_its_document_as_glb_or_gltf() {
         } else {
             Gltf::from_gltf(&bytes)
         };
-        assert_eq!(brute(body, &world(&back)), [0, 0, 0], "{extension}: {}", text(&o));
+        assert_eq!(
+            brute(body, &back.world_mesh(lift)),
+            [0, 0, 0],
+            "{extension}: {}",
+            text(&o)
+        );
         // The document is the input's but for the positions' bounds and the buffer.
         let mut a = asset.json.clone();
         let mut b = back.json.clone();
@@ -379,41 +364,10 @@ fn a_glb_garment_in_a_session_is_exported_as_glb_clear_of_the_body() {
     let band = bumpy_band();
     let dir = scratch("gltf-session");
     std::fs::write(dir.join("band.glb"), gltf_of(&band, 0.1).glb()).expect("written");
-    std::fs::write(
-        dir.join("band.drape"),
-        "drape 1\nm1\ngarment mesh \"band.glb\" name=band ease=0.003\n",
-    )
-    .expect("written");
-    let out = dir.join("out");
-    let o = drape_cli()
-        .arg("run")
-        .arg(dir.join("band.drape"))
-        .args(["--strict", "--log-detail", "metrics", "--save"])
-        .arg(dir.join("band.rrd"))
-        .arg("--export")
-        .arg(&out)
-        .output()
-        .expect("drape runs");
+    let (o, out) = run_session(&dir, "drape 1\nm1\ngarment mesh \"band.glb\" name=band ease=0.003\n");
     assert_eq!(o.status.code(), Some(0), "{}", text(&o));
-    let exported: Vec<_> = std::fs::read_dir(&out)
-        .expect("the export folder")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.to_str().is_some_and(|s| s.ends_with("_band_m0.glb")))
-        .collect();
-    assert_eq!(exported.len(), 1, "{exported:?}");
-    let back = Gltf::from_glb(&std::fs::read(&exported[0]).expect("M0"));
-    let world = TriMesh {
-        positions: back
-            .floats(0, 3)
-            .iter()
-            .map(|p| DVec3::new(p[0].into(), f64::from(p[1]) + 0.1, p[2].into()))
-            .collect(),
-        triangles: [back.uints(3), back.uints(4)]
-            .concat()
-            .chunks(3)
-            .map(|t| [t[0], t[1], t[2]])
-            .collect(),
-    };
-    assert_eq!(brute(body, &world), [0, 0, 0], "{}", text(&o));
+    let exported = last_export(&out, "_band_m0.glb");
+    let back = Gltf::from_glb(&std::fs::read(&exported).expect("M0"));
+    assert_eq!(brute(body, &back.world_mesh(0.1)), [0, 0, 0], "{}", text(&o));
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -13,7 +13,7 @@ use super::import::{brute, read_back, scratch, text};
 use super::offset_garment::{offset_band, to_obj};
 
 /// The newest file in `dir` whose name ends with `suffix` (files are `stepNN_...`).
-fn last_export(dir: &Path, suffix: &str) -> PathBuf {
+pub(super) fn last_export(dir: &Path, suffix: &str) -> PathBuf {
     let mut found: Vec<PathBuf> = std::fs::read_dir(dir)
         .expect("the export folder")
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -23,6 +23,23 @@ fn last_export(dir: &Path, suffix: &str) -> PathBuf {
     found
         .pop()
         .unwrap_or_else(|| panic!("no *{suffix} in {}", dir.display()))
+}
+
+/// Runs `SESSION` (written to `dir/band.drape`) with `drape run --strict`, its recording
+/// saved to `dir/band.rrd` and its meshes exported to `dir/out` (returned).
+pub(super) fn run_session(dir: &Path, session: &str) -> (std::process::Output, PathBuf) {
+    std::fs::write(dir.join("band.drape"), session).expect("written");
+    let out = dir.join("out");
+    let o = drape_cli()
+        .arg("run")
+        .arg(dir.join("band.drape"))
+        .args(["--strict", "--log-detail", "metrics", "--save"])
+        .arg(dir.join("band.rrd"))
+        .arg("--export")
+        .arg(&out)
+        .output()
+        .expect("drape runs");
+    (o, out)
 }
 
 #[test]
@@ -54,17 +71,7 @@ fn a_garment_mesh_step_is_collided_refined_sculpted_and_cut_and_exported_as_its_
             front.y,
             front.z
         );
-        std::fs::write(dir.join("band.drape"), session).expect("written");
-        let out = dir.join("out");
-        let o = drape_cli()
-            .arg("run")
-            .arg(dir.join("band.drape"))
-            .args(["--strict", "--log-detail", "metrics", "--save"])
-            .arg(dir.join("band.rrd"))
-            .arg("--export")
-            .arg(&out)
-            .output()
-            .expect("drape runs");
+        let (o, out) = run_session(&dir, &session);
         let name = path.display();
         assert_eq!(o.status.code(), Some(0), "{name}: {}", text(&o));
         // M0 is the file written back: every line but `v` and `vn` the input's, the `v`

@@ -21,7 +21,8 @@ pub(super) fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-fn check_garment(garment: &Path, extra: &[&str]) -> Output {
+/// `drape check-garment GARMENT EXTRA...`.
+pub(super) fn check_garment(garment: &Path, extra: &[&str]) -> Output {
     drape_cli()
         .arg("check-garment")
         .arg(garment)

@@ -305,6 +305,22 @@ impl Gltf {
         Self { json, bin }
     }
 
+    /// The mesh as [`gltf_of`] lays it out, placed `lift` m up as its node does.
+    pub fn world_mesh(&self, lift: f64) -> TriMesh {
+        TriMesh {
+            positions: self
+                .floats(0, 3)
+                .iter()
+                .map(|p| DVec3::new(p[0].into(), f64::from(p[1]) + lift, p[2].into()))
+                .collect(),
+            triangles: [self.uints(3), self.uints(4)]
+                .concat()
+                .chunks(3)
+                .map(|t| [t[0], t[1], t[2]])
+                .collect(),
+        }
+    }
+
     /// The elements of accessor `k` (`width` floats each), from its view, offset and stride.
     pub fn floats(&self, k: usize, width: usize) -> Vec<Vec<f32>> {
         self.elements(k, width, |b| f32::from_le_bytes(b.try_into().expect("4 bytes")))
