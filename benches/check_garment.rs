@@ -9,7 +9,9 @@
 //! and parse the file, weld and orient, count, repair, certify, write the repaired file):
 //! the median of 3. Columns: the exact counts before and after (vertices inside, edges
 //! crossing, faces pierced), the deepest point before, the vertices moved, the time.
-//! `-- --write` puts the table into docs/import.md; `-- --keep` keeps the garments (and
+//! The garment of the first split is also written as binary PLY (float), text PLY (double)
+//! and GLB and checked the same way in each format (file size, read time, whole time).
+//! `-- --write` puts the tables into docs/import.md; `-- --keep` keeps the garments (and
 //! their repairs) and prints where.
 
 use std::time::Instant;
@@ -29,6 +31,10 @@ use write_figures::write_block;
 #[path = "../tests/suite/offset_garment.rs"]
 mod offset_garment;
 use offset_garment::{offset_band, to_obj};
+#[path = "../tests/suite/mesh_files.rs"]
+#[allow(dead_code)]
+mod mesh_files;
+use mesh_files::{gltf_of, write_ply};
 
 fn main() {
     drape::par::set_threads(1);
@@ -37,6 +43,9 @@ fn main() {
     std::fs::create_dir_all(&dir).expect("a scratch folder");
     let mut sessions = String::from(
         "| body | garment vertices | regions | M0 after: inside / crossing / pierced | moves | M1 vertices | regions refined | M1 after: inside / crossing / pierced | step ms |\n|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let mut formats = String::from(
+        "| body | garment vertices | format | file KB | read ms | whole check ms | after: inside / crossing / pierced | moved |\n|---|---|---|---|---|---|---|---|\n",
     );
     let mut out = String::from(
         "| body | garment vertices | faces | before: inside / crossing / pierced | deepest mm | after: inside / crossing / pierced | moved | status | ms |\n|---|---|---|---|---|---|---|---|---|\n",
@@ -92,6 +101,9 @@ fn main() {
             if splits <= 1 {
                 sessions += &session_row(&name, path, &file, garment.positions.len());
             }
+            if splits == 1 {
+                formats += &format_rows(&name, &body, &index, &garment, &dir);
+            }
             if garment.positions.len() >= 50_000 {
                 break;
             }
@@ -102,10 +114,11 @@ fn main() {
     } else {
         std::fs::remove_dir_all(&dir).ok();
     }
-    println!("\n{out}\n{sessions}");
+    println!("\n{out}\n{sessions}\n{formats}");
     if std::env::args().any(|a| a == "--write") {
         write_block("docs/import.md", "check-garment", &out);
         write_block("docs/import.md", "garment-mesh-session", &sessions);
+        write_block("docs/import.md", "check-garment-formats", &formats);
     }
 }
 
@@ -159,4 +172,63 @@ fn session_row(name: &str, body: &std::path::Path, file: &std::path::Path, verti
     );
     print!("session: {row}");
     row
+}
+
+/// The garment as OBJ, binary PLY (float coordinates), text PLY (double) and GLB, each
+/// checked as `check-garment --repair` would (read, import, count, repair, certify, write
+/// back in its format): the file's size, the read time and the whole time (medians of 3),
+/// the counts after and the vertices moved.
+fn format_rows(
+    name: &str,
+    body: &Body,
+    index: &BodyIndex,
+    garment: &drape::mesh::TriMesh,
+    dir: &std::path::Path,
+) -> String {
+    let files: [(&str, &str, Vec<u8>); 4] = [
+        ("OBJ", "obj", to_obj(garment).into_bytes()),
+        ("PLY binary", "ply", write_ply(garment, true, false)),
+        ("PLY text", "ply", write_ply(garment, false, true)),
+        ("GLB", "glb", gltf_of(garment, 0.0).glb()),
+    ];
+    let mut rows = String::new();
+    for (format, extension, bytes) in files {
+        let file = dir.join(format!("{name}-formats-{}.{extension}", format.replace(' ', "-")));
+        std::fs::write(&file, &bytes).expect("written");
+        let mut read_ms = Vec::new();
+        let mut whole_ms = Vec::new();
+        let mut last = None;
+        for _ in 0..3 {
+            let start = Instant::now();
+            let doc = MeshDocument::read(&file, 1.0, u64::MAX).expect("the garment reads");
+            read_ms.push(start.elapsed().as_secs_f64() * 1e3);
+            let imported = ImportedGarment::new(doc, &body.mesh.mesh, index).expect("the garment imports");
+            let checked = check(&imported, index, &CheckOptions::default());
+            let written = imported
+                .doc
+                .write(&checked.positions, &checked.moved)
+                .expect("written back");
+            std::fs::write(file.with_extension(format!("repaired.{extension}")), written).expect("written");
+            whole_ms.push(start.elapsed().as_secs_f64() * 1e3);
+            last = Some(checked.report);
+        }
+        read_ms.sort_by(f64::total_cmp);
+        whole_ms.sort_by(f64::total_cmp);
+        let r = last.expect("checked");
+        let a = &r.after;
+        let row = format!(
+            "| {name} | {} | {format} | {:.0} | {:.1} | {:.0} | {} / {} / {} | {} |\n",
+            garment.positions.len(),
+            bytes.len() as f64 / 1024.0,
+            read_ms[1],
+            whole_ms[1],
+            a.inside_vertices,
+            a.crossing_edges,
+            a.pierced_faces,
+            r.moved_vertices
+        );
+        print!("formats: {row}");
+        rows += &row;
+    }
+    rows
 }
