@@ -9,6 +9,7 @@ mod gltf_write;
 pub mod obj;
 mod obj_doc;
 mod ply_doc;
+mod ply_row;
 pub mod topology;
 pub mod trimesh;
 pub mod validate;

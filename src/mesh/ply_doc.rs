@@ -11,16 +11,17 @@ use std::io::Cursor;
 
 use glam::DVec3;
 use ply_rs_bw::parser::Parser;
-use ply_rs_bw::ply::{DefaultElement, ElementDef, Encoding, Header, Ply, Property, PropertyType, ScalarType};
+use ply_rs_bw::ply::{ElementDef, Encoding, Header, Ply, Property, PropertyAccess as _, PropertyType, ScalarType};
 use ply_rs_bw::writer::Writer;
 
 use super::MeshFileError;
 use super::file_parts::{Corner, Face, FileMesh, Moved};
+use super::ply_row::{Row, name_hash};
 
 /// The parsed file, to write it again.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PlyKeep {
-    ply: Ply<DefaultElement>,
+    ply: Ply<Row>,
 }
 
 /// The coordinate and normal property names of a vertex.
@@ -43,7 +44,7 @@ fn error(name: &str, message: impl Into<String>) -> MeshFileError {
 /// not finite (named by vertex), an index out of range or a face of fewer than 3
 /// vertices (named by face), or no vertices or faces.
 pub(super) fn parse(bytes: &[u8], name: &str, scale: f64) -> Result<(FileMesh, PlyKeep), MeshFileError> {
-    let parser = Parser::<DefaultElement>::new();
+    let parser = Parser::<Row>::new();
     let mut reader = Cursor::new(bytes);
     let header = parser
         .read_header(&mut reader)
@@ -97,6 +98,13 @@ fn check_header(header: &Header, name: &str) -> Result<(ElementDef, String), Mes
         .find(|e| e.properties.is_empty() && e.count > 0)
     {
         return Err(error(name, format!("element '{}' has no properties", empty.name)));
+    }
+    for e in header.elements.values() {
+        let mut hashes: Vec<u64> = e.properties.keys().map(|k| name_hash(k)).collect();
+        hashes.sort_unstable();
+        if hashes.windows(2).any(|w| w[0] == w[1]) {
+            return Err(error(name, format!("element '{}' names a property twice", e.name)));
+        }
     }
     let vertex = header
         .elements
@@ -300,7 +308,7 @@ fn indices(p: &Property) -> Option<Vec<i64>> {
 }
 
 /// The faces, each checked: at least 3 vertices, every index in range.
-fn read_faces(ply: &Ply<DefaultElement>, key: &str, vertices: usize, name: &str) -> Result<Vec<Face>, MeshFileError> {
+fn read_faces(ply: &Ply<Row>, key: &str, vertices: usize, name: &str) -> Result<Vec<Face>, MeshFileError> {
     let elements = ply.payload.get("face").map_or(&[][..], Vec::as_slice);
     let mut faces = Vec::with_capacity(elements.len());
     for (f, element) in elements.iter().enumerate() {
@@ -350,30 +358,36 @@ impl PlyKeep {
     /// (`x y z` in the declared type) and their `nx ny nz`, where the file has them, made
     /// again; every other element and property as read.
     pub(super) fn write(&self, job: &Moved) -> Result<Vec<u8>, MeshFileError> {
-        let mut ply = self.ply.clone();
-        if let (Some(def), Some(vertices)) = (ply.header.elements.get("vertex"), ply.payload.get_mut("vertex")) {
-            for (v, element) in vertices.iter_mut().enumerate() {
-                if !job.moved.get(v).copied().unwrap_or(false) {
-                    continue;
-                }
-                for (k, x) in XYZ.into_iter().zip(job.positions[v].to_array()) {
-                    if let Some(p) = typed(def, k, x) {
-                        element.insert(k.to_string(), p);
-                    }
-                }
-                if let Some(n) = job.smooth[v] {
-                    for (k, x) in NORMAL.into_iter().zip(n.to_array()) {
+        let fail = |e: std::io::Error| error(job.name, format!("writing: {e}"));
+        let writer = Writer::<Row>::new();
+        let header = &self.ply.header;
+        let mut out = Vec::new();
+        writer.write_header(&mut out, header).map_err(fail)?;
+        for (key, def) in &header.elements {
+            let rows = self.ply.payload.get(key).map_or(&[][..], Vec::as_slice);
+            for (v, row) in rows.iter().enumerate() {
+                let moved = key == "vertex" && job.moved.get(v).copied().unwrap_or(false);
+                let changed = moved.then(|| {
+                    let mut row = row.clone();
+                    let normal = job.smooth[v].map(|n| n.to_array());
+                    let values = XYZ.into_iter().zip(job.positions[v].to_array());
+                    let normals = normal.into_iter().flat_map(|n| NORMAL.into_iter().zip(n));
+                    for (k, x) in values.chain(normals) {
                         if let Some(p) = typed(def, k, x) {
-                            element.insert(k.to_string(), p);
+                            row.set_property(k, p);
                         }
                     }
+                    row
+                });
+                let row = changed.as_ref().unwrap_or(row);
+                match header.encoding {
+                    Encoding::Ascii => writer.write_ascii_element(&mut out, row, def),
+                    Encoding::BinaryBigEndian => writer.write_big_endian_element(&mut out, row, def),
+                    Encoding::BinaryLittleEndian => writer.write_little_endian_element(&mut out, row, def),
                 }
+                .map_err(fail)?;
             }
         }
-        let mut out = Vec::new();
-        Writer::<DefaultElement>::new()
-            .write_ply_unchecked(&mut out, &ply)
-            .map_err(|e| error(job.name, format!("writing: {e}")))?;
         Ok(out)
     }
 }
