@@ -36,6 +36,7 @@ pub mod garment;
 pub mod geom;
 pub mod import;
 pub mod input;
+pub mod layers;
 pub mod m1;
 pub mod mannequin;
 pub mod mesh;

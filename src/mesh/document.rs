@@ -253,7 +253,12 @@ impl MeshDocument {
             })
             .collect();
         let area = self.area_normals(&file);
-        let smooth = smooth_normals(&file, &area, &moved);
+        // One smooth normal per position, for the formats that store a normal per vertex
+        // (OBJ's `vn` lines are shared by corners instead: see its writer).
+        let smooth = match self.source {
+            Source::Obj(_) => Vec::new(),
+            Source::Ply(_) | Source::Gltf(_) => smooth_normals(&file, &area, &moved),
+        };
         let job = Moved {
             name: &self.name,
             positions: &file,

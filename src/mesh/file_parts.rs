@@ -131,6 +131,7 @@ pub(super) struct Moved<'a> {
     /// Per vertex, the area-weighted normal (not unit) of the triangles around it.
     pub area: &'a [DVec3],
     /// Per vertex, for a moved one, the unit normal summed over every vertex at its
-    /// position (a seam or a texture border written as two vertices gets one normal).
+    /// position (a seam or a texture border written as two vertices gets one normal);
+    /// empty for OBJ, whose writer makes its shared `vn` lines from [`Self::area`].
     pub smooth: &'a [Option<DVec3>],
 }

@@ -16,6 +16,7 @@ mod import;
 mod index_cache;
 mod interrupt;
 mod landmarks;
+mod layers;
 mod layout;
 mod m1;
 mod mannequin;

@@ -1,0 +1,142 @@
+//! The outer garment pushed out in front of the inner one, as the body collision pushes a
+//! garment off the skin: every outer vertex behind the inner surface, or nearer in front
+//! of it than the ease (the fabric's thickness), goes to its nearest inner point plus the
+//! ease along that point's pseudo-normal; then, round by round, the ends of an outer edge
+//! still through an inner face go out by the depth of its middle behind the inner surface
+//! plus the ease, and the corners of an outer face an inner edge still passes through go
+//! out along the inner normal there until the face stands the ease in front of the edge,
+//! until the certificate is clear or the rounds run out.
+
+use glam::DVec3;
+use serde::Serialize;
+
+use super::certificate::{LayerCounts, certify_layers, crossing_edges, gap};
+use super::surface::{LayerError, LayerSurface};
+use crate::geom::predicates::segment_crosses_triangle;
+use crate::mesh::TriMesh;
+use crate::mesh::topology::undirected_edges;
+
+/// How the outer garment is pushed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PushOptions {
+    /// The gap the outer keeps in front of the inner, m (the fabric's thickness). Default
+    /// 0.002.
+    pub ease: f64,
+    /// Rounds of edge and face pushes after the vertex push. Default 8.
+    pub rounds: usize,
+}
+
+impl Default for PushOptions {
+    fn default() -> Self {
+        Self { ease: 0.002, rounds: 8 }
+    }
+}
+
+/// What a push did.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PushReport {
+    /// The certificate before.
+    pub before: LayerCounts,
+    /// The certificate after.
+    pub after: LayerCounts,
+    /// Outer vertices moved.
+    pub moved: usize,
+    /// Edge and face rounds run.
+    pub rounds: usize,
+}
+
+/// Pushes `outer`'s positions out in front of `inner` (both oriented away from the body).
+///
+/// # Failures
+/// [`LayerError`] when the outer garment is not a manifold surface.
+pub fn push_outside(
+    inner: &LayerSurface,
+    outer: &mut TriMesh,
+    options: &PushOptions,
+) -> Result<PushReport, LayerError> {
+    let before = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
+    let mut moved = vec![false; outer.positions.len()];
+    let ease = options.ease;
+    // A vertex behind the inner surface or nearer in front than the ease: to its nearest
+    // inner point plus the ease, along that point's pseudo-normal (only ever outward).
+    for (p, m) in outer.positions.iter_mut().zip(&mut moved) {
+        if let Some(near) = inner.nearest(*p).filter(|n| !n.on_opening)
+            && gap(inner, *p).is_some_and(|(behind, signed)| behind || signed < ease)
+        {
+            *p += near.normal * (ease - (*p - near.point).dot(near.normal));
+            *m = true;
+        }
+    }
+    let edges = undirected_edges(outer);
+    let mut rounds = 0;
+    let mut after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
+    while !after.clear() && rounds < options.rounds {
+        rounds += 1;
+        let mut shifts: Vec<(u32, DVec3)> = Vec::new();
+        // An outer edge through an inner face: its middle is behind the inner surface;
+        // both ends go out by that depth plus the ease.
+        for [a, b] in crossing_edges(&outer.positions, &edges, inner) {
+            let mid = (outer.positions[a as usize] + outer.positions[b as usize]) * 0.5;
+            if let Some(near) = inner.nearest(mid).filter(|n| !n.on_opening) {
+                let need = ease - (mid - near.point).dot(near.normal);
+                shifts.extend([a, b].map(|v| (v, near.normal * need.max(0.0))));
+            }
+        }
+        // An inner edge through an outer face: the face's corners go out along the inner
+        // normal there until the face's plane stands the ease in front of the edge's end
+        // that pokes through.
+        for (t, normal, height) in pierced_faces(inner, outer) {
+            let face = outer.scaled_normal(t).normalize_or_zero();
+            let s = (height + ease) / normal.dot(face).max(0.2);
+            shifts.extend(outer.triangles[t].map(|v| (v, normal * s)));
+        }
+        // Each vertex moves by the largest shift asked of it (shifts are outward, so the
+        // largest along its own direction covers the others nearly).
+        shifts.sort_by(|x, y| {
+            x.0.cmp(&y.0)
+                .then(y.1.length_squared().total_cmp(&x.1.length_squared()))
+        });
+        shifts.dedup_by_key(|s| s.0);
+        for (v, shift) in shifts {
+            outer.positions[v as usize] += shift;
+            moved[v as usize] = true;
+        }
+        after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
+    }
+    Ok(PushReport {
+        before,
+        after,
+        moved: moved.iter().filter(|&&m| m).count(),
+        rounds,
+    })
+}
+
+/// The outer faces an inner edge passes through, each with the inner normal at the middle
+/// of such an edge and how far its end in front of the face stands out of the face's plane.
+fn pierced_faces(inner: &LayerSurface, outer: &TriMesh) -> Vec<(usize, DVec3, f64)> {
+    let mut out = Vec::new();
+    for (t, tri) in outer.triangles.iter().enumerate() {
+        let c = tri.map(|i| outer.positions[i as usize]);
+        let face = outer.scaled_normal(t).normalize_or_zero();
+        let lo = c[0].min(c[1]).min(c[2]);
+        let hi = c[0].max(c[1]).max(c[2]);
+        let mut hit: Option<(DVec3, f64)> = None;
+        inner.in_box(lo, hi, |_, corners| {
+            for e in 0..3 {
+                let (p, q) = (corners[e], corners[(e + 1) % 3]);
+                if segment_crosses_triangle(p, q, c) {
+                    let height = (p - c[0]).dot(face).max((q - c[0]).dot(face));
+                    if hit.is_none_or(|h| height > h.1) {
+                        hit = Some(((p + q) * 0.5, height));
+                    }
+                }
+            }
+        });
+        if let Some((middle, height)) = hit
+            && let Some(near) = inner.nearest(middle)
+        {
+            out.push((t, near.normal, height));
+        }
+    }
+    out
+}
