@@ -57,16 +57,7 @@ pub fn push_outside(
     let before = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
     let mut moved = vec![false; outer.positions.len()];
     let ease = options.ease;
-    // A vertex behind the inner surface or nearer in front than the ease: to its nearest
-    // inner point plus the ease, along that point's pseudo-normal (only ever outward).
-    for (p, m) in outer.positions.iter_mut().zip(&mut moved) {
-        if let Some(near) = inner.nearest(*p).filter(|n| !n.on_opening)
-            && gap(inner, *p).is_some_and(|(behind, signed)| behind || signed < ease)
-        {
-            *p += near.normal * (ease - (*p - near.point).dot(near.normal));
-            *m = true;
-        }
-    }
+    put_in_front(inner, outer, &mut moved, ease);
     let edges = undirected_edges(outer);
     let mut rounds = 0;
     let mut after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
@@ -87,7 +78,7 @@ pub fn push_outside(
         // that pokes through.
         for (t, normal, height) in pierced_faces(inner, outer) {
             let face = outer.scaled_normal(t).normalize_or_zero();
-            let s = (height + ease) / normal.dot(face).max(0.2);
+            let s = (height + ease) / normal.dot(face).max(0.7);
             shifts.extend(outer.triangles[t].map(|v| (v, normal * s)));
         }
         // Each vertex moves by the largest shift asked of it (shifts are outward, so the
@@ -101,6 +92,9 @@ pub fn push_outside(
             outer.positions[v as usize] += shift;
             moved[v as usize] = true;
         }
+        // A shift along one inner normal can take a vertex behind another part of the
+        // inner surface (in a fold): the vertex rule again.
+        put_in_front(inner, outer, &mut moved, ease);
         after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
     }
     Ok(PushReport {
@@ -109,6 +103,19 @@ pub fn push_outside(
         moved: moved.iter().filter(|&&m| m).count(),
         rounds,
     })
+}
+
+/// Every outer vertex behind the inner surface, or nearer in front of it than `ease`, to its
+/// nearest inner point plus the ease along that point's pseudo-normal (only ever outward).
+fn put_in_front(inner: &LayerSurface, outer: &mut TriMesh, moved: &mut [bool], ease: f64) {
+    for (p, m) in outer.positions.iter_mut().zip(moved) {
+        if let Some(near) = inner.nearest(*p).filter(|n| !n.on_opening)
+            && gap(inner, *p).is_some_and(|(behind, signed)| behind || signed < ease * (1.0 - 1e-9))
+        {
+            *p += near.normal * (ease - (*p - near.point).dot(near.normal));
+            *m = true;
+        }
+    }
 }
 
 /// The outer faces an inner edge passes through, each with the inner normal at the middle

@@ -180,3 +180,136 @@ fn a_coarse_outer_tube_over_a_fine_inner_one_needs_its_faces_pushed_too() {
     let report = dented_and_pushed_back(12, 10);
     assert!(report.rounds > 0, "{report:?}");
 }
+
+/// A band of `body` between fractions `span` of its height, `offset` m out, with `bumps`
+/// (count, depth) pushed in, made clear of the body by `check-garment`'s repair.
+fn band_clear_of(
+    body: &drape::body::Body,
+    index: &drape::collision::BodyIndex,
+    span: (f64, f64),
+    offset: f64,
+    bumps: (usize, f64),
+) -> TriMesh {
+    let mesh = &body.mesh.mesh;
+    let (lo, hi) = mesh.bounds().expect("a body");
+    let h = hi.y - lo.y;
+    let (band, _) = super::offset_garment::offset_band(
+        mesh,
+        (lo.y + span.0 * h, lo.y + span.1 * h),
+        0,
+        offset,
+        (bumps.0, bumps.1, 11),
+    );
+    let doc = drape::mesh::MeshDocument::parse_obj(&super::offset_garment::to_obj(&band), "band.obj", 1.0)
+        .expect("the band reads");
+    let imported = drape::import::ImportedGarment::new(doc, mesh, index).expect("the band imports");
+    let checked = drape::import::check(&imported, index, &drape::import::CheckOptions::default());
+    TriMesh {
+        positions: checked.positions,
+        triangles: band.triangles,
+    }
+}
+
+/// Outer vertices behind the inner surface, by a second reading written here: the nearest
+/// inner triangle by brute force (its nearest point inside the triangle, not on an
+/// opening), and the side of its plane.
+fn behind_by_brute(inner: &TriMesh, outer: &TriMesh) -> usize {
+    outer
+        .positions
+        .iter()
+        .filter(|p| {
+            let (t, _) = inner
+                .triangles
+                .iter()
+                .enumerate()
+                .map(|(t, tri)| (t, triangle_distance(**p, tri.map(|i| inner.positions[i as usize]))))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .expect("an inner triangle");
+            let [a, b, c] = inner.triangles[t].map(|i| inner.positions[i as usize]);
+            let n = (b - a).cross(c - a);
+            // Only where the nearest point is inside the face: beside an edge the plane
+            // alone does not tell.
+            let foot = **p - n * ((**p - a).dot(n) / n.length_squared());
+            let inside = [(a, b), (b, c), (c, a)]
+                .iter()
+                .all(|(u, v)| (*v - *u).cross(foot - *u).dot(n) > 0.0);
+            inside && (**p - a).dot(n) < 0.0
+        })
+        .count()
+}
+
+#[test]
+fn on_every_shipped_body_an_outer_band_dented_into_an_inner_one_is_put_back_between_it_and_nothing() {
+    use drape::body::{Body, BodyMesh, BodySource, LandmarkOptions, PartitionOptions};
+    use drape::collision::{BodyIndex, SliceOptions};
+    for path in super::common::shipped_bodies() {
+        let mesh = BodyMesh::load(&BodySource::File(path.clone()), 1.0).expect("the body loads");
+        let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default()).expect("analysed");
+        let index = BodyIndex::new(&body, &SliceOptions::default());
+        let skin = &body.mesh.mesh;
+        let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("?").to_string();
+        // The inner band 6 mm out; the outer, narrower, 12 mm out with ten dents up to
+        // 15 mm deep: into the inner band, some into the body.
+        let inner = band_clear_of(&body, &index, (0.62, 0.80), 0.006, (0, 0.0));
+        let mut outer = band_clear_of(&body, &index, (0.64, 0.78), 0.012, (10, 0.015));
+        assert_eq!(
+            super::import::brute(skin, &inner),
+            [0, 0, 0],
+            "{name}: the inner band is clear of the body"
+        );
+        assert_eq!(
+            super::import::brute(skin, &outer),
+            [0, 0, 0],
+            "{name}: the outer band is clear of the body"
+        );
+        let before = [
+            behind_by_brute(&inner, &outer),
+            brute_crossings(&inner, &outer),
+            brute_crossings(&outer, &inner),
+        ];
+        assert!(
+            before[0] > 0 && before[1] > 0,
+            "{name}: the outer band must be dented into the inner: {before:?}"
+        );
+        let surface = LayerSurface::new(&inner, "inner").expect("the inner band");
+        let report = push_outside(&surface, &mut outer, &PushOptions::default()).expect("pushed");
+        let after = [
+            behind_by_brute(&inner, &outer),
+            brute_crossings(&inner, &outer),
+            brute_crossings(&outer, &inner),
+        ];
+        assert_eq!(after, [0, 0, 0], "{name}: {report:?}");
+        assert_eq!(
+            super::import::brute(skin, &outer),
+            [0, 0, 0],
+            "{name}: the outer band after the push, against the body"
+        );
+        eprintln!(
+            "{name}: {before:?} -> {after:?}, {} moved, {} rounds",
+            report.moved, report.rounds
+        );
+    }
+}
+
+/// Edges of `a` through faces of `b`, by brute force.
+fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
+    let mut edges: Vec<[u32; 2]> = a
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    edges
+        .iter()
+        .filter(|[u, v]| {
+            let (p, q) = (a.positions[*u as usize], a.positions[*v as usize]);
+            let (lo, hi) = (p.min(q), p.max(q));
+            b.triangles.iter().any(|t| {
+                let c = t.map(|i| b.positions[i as usize]);
+                let (tlo, thi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
+                tlo.cmple(hi).all() && thi.cmpge(lo).all() && segment_through_triangle(p, q, c)
+            })
+        })
+        .count()
+}
