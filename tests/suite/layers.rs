@@ -181,35 +181,6 @@ fn a_coarse_outer_tube_over_a_fine_inner_one_needs_its_faces_pushed_too() {
     assert!(report.rounds > 0, "{report:?}");
 }
 
-/// A band of `body` between fractions `span` of its height, `offset` m out, with `bumps`
-/// (count, depth) pushed in, made clear of the body by `check-garment`'s repair.
-fn band_clear_of(
-    body: &drape::body::Body,
-    index: &drape::collision::BodyIndex,
-    span: (f64, f64),
-    offset: f64,
-    bumps: (usize, f64),
-) -> TriMesh {
-    let mesh = &body.mesh.mesh;
-    let (lo, hi) = mesh.bounds().expect("a body");
-    let h = hi.y - lo.y;
-    let (band, _) = super::offset_garment::offset_band(
-        mesh,
-        (lo.y + span.0 * h, lo.y + span.1 * h),
-        0,
-        offset,
-        (bumps.0, bumps.1, 11),
-    );
-    let doc = drape::mesh::MeshDocument::parse_obj(&super::offset_garment::to_obj(&band), "band.obj", 1.0)
-        .expect("the band reads");
-    let imported = drape::import::ImportedGarment::new(doc, mesh, index).expect("the band imports");
-    let checked = drape::import::check(&imported, index, &drape::import::CheckOptions::default());
-    TriMesh {
-        positions: checked.positions,
-        triangles: band.triangles,
-    }
-}
-
 /// Outer vertices behind the inner surface, by a second reading written here: the nearest
 /// inner triangle by brute force (its nearest point inside the triangle, not on an
 /// opening), and the side of its plane.
@@ -250,8 +221,8 @@ fn on_every_shipped_body_an_outer_band_dented_into_an_inner_one_is_put_back_betw
         let name = path.file_stem().and_then(|s| s.to_str()).unwrap_or("?").to_string();
         // The inner band 6 mm out; the outer, narrower, 12 mm out with ten dents up to
         // 15 mm deep: into the inner band, some into the body.
-        let inner = band_clear_of(&body, &index, (0.62, 0.80), 0.006, (0, 0.0));
-        let mut outer = band_clear_of(&body, &index, (0.64, 0.78), 0.012, (10, 0.015));
+        let inner = super::offset_garment::band_clear_of(&body, &index, (0.62, 0.80), 0.006, (0, 0.0));
+        let mut outer = super::offset_garment::band_clear_of(&body, &index, (0.64, 0.78), 0.012, (10, 0.015));
         assert_eq!(
             super::import::brute(skin, &inner),
             [0, 0, 0],

@@ -100,3 +100,31 @@ pub fn to_obj(mesh: &TriMesh) -> String {
     }
     s
 }
+
+/// A band of `body` between fractions `span` of its height, `offset` m out, with `bumps`
+/// (count, depth) pushed in, made clear of the body by `check-garment`'s repair.
+pub fn band_clear_of(
+    body: &drape::body::Body,
+    index: &drape::collision::BodyIndex,
+    span: (f64, f64),
+    offset: f64,
+    bumps: (usize, f64),
+) -> TriMesh {
+    let mesh = &body.mesh.mesh;
+    let (lo, hi) = mesh.bounds().expect("a body");
+    let h = hi.y - lo.y;
+    let (band, _) = offset_band(
+        mesh,
+        (lo.y + span.0 * h, lo.y + span.1 * h),
+        0,
+        offset,
+        (bumps.0, bumps.1, 11),
+    );
+    let doc = drape::mesh::MeshDocument::parse_obj(&to_obj(&band), "band.obj", 1.0).expect("the band reads");
+    let imported = drape::import::ImportedGarment::new(doc, mesh, index).expect("the band imports");
+    let checked = drape::import::check(&imported, index, &drape::import::CheckOptions::default());
+    TriMesh {
+        positions: checked.positions,
+        triangles: band.triangles,
+    }
+}
