@@ -16,6 +16,14 @@ use crate::mesh::{Adjacency, TriMesh};
 /// Why a garment cannot be a layer's surface.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LayerError {
+    /// A face names a vertex the mesh does not have, or a position is not finite.
+    #[error("the {layer} garment is malformed: {what}")]
+    Malformed {
+        /// Which layer ("inner", "outer").
+        layer: &'static str,
+        /// What is wrong, and where.
+        what: String,
+    },
     /// An edge with three or more faces: no side of it is "behind".
     #[error(
         "the {layer} garment's edge between vertices {a} and {b} has {count} faces: a layer must be a manifold surface"
@@ -72,8 +80,17 @@ impl LayerSurface {
     /// The surface of `mesh` (oriented away from the body); `layer` names it in errors.
     ///
     /// # Failures
-    /// [`LayerError::NonManifold`] for an edge of three or more faces.
+    /// [`LayerError::Malformed`] for a face naming a missing vertex or a position that is
+    /// not finite, [`LayerError::NonManifold`] for an edge of three or more faces.
     pub fn new(mesh: &TriMesh, layer: &'static str) -> Result<Self, LayerError> {
+        let malformed = |what: String| LayerError::Malformed { layer, what };
+        if let Some(v) = mesh.positions.iter().position(|p| !p.is_finite()) {
+            return Err(malformed(format!("vertex {v} is not finite")));
+        }
+        let n = mesh.positions.len() as u32;
+        if let Some(t) = mesh.triangles.iter().position(|t| t.iter().any(|&i| i >= n)) {
+            return Err(malformed(format!("face {t} names a vertex past the {n} there are")));
+        }
         let adjacency = Adjacency::try_new(mesh).map_err(|e| LayerError::NonManifold {
             layer,
             a: e.vertices[0],

@@ -284,3 +284,29 @@ fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
         })
         .count()
 }
+
+#[test]
+fn a_malformed_or_non_manifold_layer_is_named() {
+    let inner = tube(0.2, (8, 0.0), 3, (0.0, 1.0));
+    let mut broken = inner.clone();
+    broken.triangles[5][1] = 99;
+    let err = LayerSurface::new(&broken, "inner")
+        .expect_err("a face past the vertices")
+        .to_string();
+    assert_eq!(
+        err,
+        "the inner garment is malformed: face 5 names a vertex past the 24 there are"
+    );
+    let mut nan = inner.clone();
+    nan.positions[3].y = f64::NAN;
+    let err = LayerSurface::new(&nan, "outer").expect_err("a NaN").to_string();
+    assert_eq!(err, "the outer garment is malformed: vertex 3 is not finite");
+    let mut fin = inner.clone();
+    let [a, b, _] = fin.triangles[0];
+    fin.positions.push(DVec3::new(0.0, 0.5, 0.0));
+    fin.triangles.push([a, b, 24]);
+    let err = LayerSurface::new(&fin, "inner")
+        .expect_err("an edge of three faces")
+        .to_string();
+    assert!(err.contains("has 3 faces: a layer must be a manifold surface"), "{err}");
+}
