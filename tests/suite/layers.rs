@@ -51,6 +51,18 @@ fn section_radius(p: DVec3, r: f64, around: usize) -> f64 {
     r * (PI / around as f64).cos() / (within - step / 2.0).cos()
 }
 
+/// The undirected edges of `m`, each once, in order.
+fn edges(m: &TriMesh) -> Vec<[u32; 2]> {
+    let mut e: Vec<[u32; 2]> = m
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
+        .collect();
+    e.sort_unstable();
+    e.dedup();
+    e
+}
+
 /// Brute-force counts: outer vertices behind the inner tube (inside its section, within
 /// its height), outer edges through inner faces, outer faces pierced by inner edges.
 fn brute(inner: &TriMesh, outer: &TriMesh, r: f64, around: usize) -> [usize; 3] {
@@ -59,16 +71,6 @@ fn brute(inner: &TriMesh, outer: &TriMesh, r: f64, around: usize) -> [usize; 3] 
         .iter()
         .filter(|p| DVec3::new(p.x, 0.0, p.z).length() < section_radius(**p, r, around))
         .count();
-    let edges = |m: &TriMesh| {
-        let mut e: Vec<[u32; 2]> = m
-            .triangles
-            .iter()
-            .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
-            .collect();
-        e.sort_unstable();
-        e.dedup();
-        e
-    };
     let corners = |m: &TriMesh, t: &[u32; 3]| t.map(|v| m.positions[v as usize]);
     let crossing = edges(outer)
         .iter()
@@ -264,14 +266,7 @@ fn on_every_shipped_body_an_outer_band_dented_into_an_inner_one_is_put_back_betw
 
 /// Edges of `a` through faces of `b`, by brute force.
 fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
-    let mut edges: Vec<[u32; 2]> = a
-        .triangles
-        .iter()
-        .flat_map(|t| (0..3).map(move |k| [t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3])]))
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
-    edges
+    edges(a)
         .iter()
         .filter(|[u, v]| {
             let (p, q) = (a.positions[*u as usize], a.positions[*v as usize]);
