@@ -29,6 +29,7 @@ use bodies::shipped_bodies;
 mod write_figures;
 use write_figures::write_block;
 #[path = "../tests/suite/offset_garment.rs"]
+#[allow(dead_code)]
 mod offset_garment;
 use offset_garment::{offset_band, to_obj};
 #[path = "../tests/suite/mesh_files.rs"]

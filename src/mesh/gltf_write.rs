@@ -92,7 +92,7 @@ fn join_buffers(json: &mut Value, buffers: &[Vec<u8>]) -> Vec<u8> {
     let mut starts = Vec::with_capacity(buffers.len());
     let mut bin = Vec::new();
     for b in buffers {
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         starts.push(bin.len());

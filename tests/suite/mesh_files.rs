@@ -256,11 +256,11 @@ impl Gltf {
     /// As a GLB file.
     pub fn glb(&self) -> Vec<u8> {
         let mut json = serde_json::to_vec(&self.json).expect("JSON");
-        while json.len() % 4 != 0 {
+        while !json.len().is_multiple_of(4) {
             json.push(b' ');
         }
         let mut bin = self.bin.clone();
-        while bin.len() % 4 != 0 {
+        while !bin.len().is_multiple_of(4) {
             bin.push(0);
         }
         let mut out = Vec::new();
