@@ -252,12 +252,18 @@ impl MeshDocument {
                 self.frame.transpose() * p / self.scale
             })
             .collect();
-        let area = self.area_normals(&file);
-        // One smooth normal per position, for the formats that store a normal per vertex
-        // (OBJ's `vn` lines are shared by corners instead: see its writer).
+        // Normals are made again only for a file that has them; one smooth normal per
+        // position for the formats that store a normal per vertex (OBJ's `vn` lines are
+        // shared by corners instead: see its writer).
+        let has_normals = self.contents.normals > 0 && moved.iter().any(|&m| m);
+        let area = if has_normals {
+            self.area_normals(&file)
+        } else {
+            Vec::new()
+        };
         let smooth = match self.source {
-            Source::Obj(_) => Vec::new(),
-            Source::Ply(_) | Source::Gltf(_) => smooth_normals(&file, &area, &moved),
+            Source::Ply(_) | Source::Gltf(_) if has_normals => smooth_normals(&file, &area, &moved),
+            _ => vec![None; file.len()],
         };
         let job = Moved {
             name: &self.name,

@@ -128,10 +128,12 @@ pub(super) struct Moved<'a> {
     pub moved: &'a [bool],
     /// The faces.
     pub faces: &'a [Face],
-    /// Per vertex, the area-weighted normal (not unit) of the triangles around it.
+    /// Per vertex, the area-weighted normal (not unit) of the triangles around it; empty
+    /// when the file has no normals or nothing moved.
     pub area: &'a [DVec3],
     /// Per vertex, for a moved one, the unit normal summed over every vertex at its
     /// position (a seam or a texture border written as two vertices gets one normal);
-    /// empty for OBJ, whose writer makes its shared `vn` lines from [`Self::area`].
+    /// `None` for every vertex of an OBJ file, whose writer makes its shared `vn` lines
+    /// from [`Self::area`], or of a file without normals.
     pub smooth: &'a [Option<DVec3>],
 }
