@@ -301,19 +301,8 @@ fn weld(doc: &MeshDocument, file_triangles: &[[u32; 3]], notes: &mut ImportNotes
 /// normals agree, on the whole, with the body's outward normal at the nearest skin (also
 /// where the garment dips inside).
 fn face_away(mesh: &mut TriMesh, parts: &[Vec<usize>], index: &BodyIndex, notes: &mut ImportNotes) {
-    let reach = 2.0 * index.height;
     for members in parts {
-        let facing: f64 = members
-            .iter()
-            .map(|&t| {
-                let [a, b, c] = mesh.corners(t);
-                let n = (b - a).cross(c - a);
-                index
-                    .nearest((a + b + c) / 3.0, reach)
-                    .map_or(0.0, |near| n.dot(near.normal))
-            })
-            .sum();
-        if facing < 0.0 {
+        if crate::layers::facing(mesh, members.iter().copied(), index) < 0.0 {
             notes.inside_out_parts += 1;
             notes.inside_out_triangles += members.len();
             for &t in members {

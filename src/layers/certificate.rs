@@ -54,6 +54,12 @@ pub(super) fn gap(inner: &LayerSurface, p: DVec3) -> Option<(bool, f64)> {
     Some((behind, near.signed))
 }
 
+/// The signed gap of `p` in front of the inner surface, m (negative behind it; `None`:
+/// beside it, its nearest point on an opening).
+pub fn signed_gap(inner: &LayerSurface, p: DVec3) -> Option<f64> {
+    gap(inner, p).map(|(_, signed)| signed)
+}
+
 /// The certificate of `outer` over `inner`.
 pub fn certify_layers(inner: &LayerSurface, outer: &LayerSurface) -> LayerCounts {
     let mut counts = LayerCounts {

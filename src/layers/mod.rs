@@ -4,9 +4,11 @@
 //! inner face, no inner edge through an outer face.
 
 pub mod certificate;
+pub mod orient;
 pub mod push;
 pub mod surface;
 
 pub use certificate::{LayerCounts, certify_layers};
+pub use orient::{away_from_body, facing};
 pub use push::{PushOptions, PushReport, push_outside};
 pub use surface::{LayerError, LayerSurface, Nearest};

@@ -36,6 +36,7 @@ impl<'k, 's> Emitter<'k, 's> {
             op,
             metrics: StepMetrics::new(step, op),
             shortfalls: Vec::new(),
+            layer: None,
         }
     }
 }
@@ -52,6 +53,9 @@ pub(crate) struct StepScope<'e, 'k, 's> {
     /// What the step left short of a promise: the garment inside or crossing the body after
     /// its collision, or an edit it refused.
     pub(crate) shortfalls: Vec<Shortfall>,
+    /// The garment the step is working on when it is worn over another: its stages are
+    /// marked with it, its figures and timings go under its name.
+    pub(crate) layer: Option<String>,
 }
 
 /// A promise a step could not keep; the session goes on, `--strict` makes the run fail.
@@ -69,6 +73,9 @@ pub enum Shortfall {
     },
     /// The step's edit was refused (it names the limit); the garment is as before.
     Refused(String),
+    /// A garment worn over another could not be kept in front of it (the message names
+    /// the garments and the counts).
+    Layers(String),
 }
 
 impl StepScope<'_, '_, '_> {
@@ -79,6 +86,7 @@ impl StepScope<'_, '_, '_> {
             op: self.op,
             stage: self.out.stage,
             name,
+            layer: self.layer.clone(),
         };
         self.out.stage += 1;
         let start = Instant::now();
@@ -87,7 +95,16 @@ impl StepScope<'_, '_, '_> {
                 self.out.errors.push((name, e));
             }
         }
-        *self.metrics.timings_ms.entry(format!("log.{name}")).or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
+        let key = self.timing_key(&format!("log.{name}"));
+        *self.metrics.timings_ms.entry(key).or_insert(0.0) += start.elapsed().as_secs_f64() * 1e3;
+    }
+
+    /// The key of timing `name`: under the garment's name when it is worn over another.
+    pub(crate) fn timing_key(&self, name: &str) -> String {
+        match &self.layer {
+            Some(layer) => format!("{layer}/{name}"),
+            None => name.to_string(),
+        }
     }
 
     /// Runs `f`, recording its wall time as the compute time of stage `name`.
@@ -96,7 +113,7 @@ impl StepScope<'_, '_, '_> {
         let out = f();
         self.metrics
             .timings_ms
-            .insert(name.to_string(), start.elapsed().as_secs_f64() * 1e3);
+            .insert(self.timing_key(name), start.elapsed().as_secs_f64() * 1e3);
         out
     }
 
@@ -120,9 +137,13 @@ impl StepScope<'_, '_, '_> {
         self.metrics.notes.push(note);
     }
 
-    /// Records a group of figures (see [`StepMetrics::record`]).
+    /// Records a group of figures (see [`StepMetrics::record`]); under the garment's name
+    /// when it is worn over another.
     pub(crate) fn record<T: Serialize + ?Sized>(&mut self, figures: &T) {
-        self.metrics.record(figures);
+        match &self.layer {
+            Some(layer) => self.metrics.record_under(layer, figures),
+            None => self.metrics.record(figures),
+        }
     }
 
     /// Ends the step: its `done` stage, then its metrics and shortfalls.

@@ -151,6 +151,18 @@ pub enum StepError {
     /// A sculpt that cannot be made (its pick too far from the garment).
     #[error("sculpt: {0}")]
     Sculpt(#[from] crate::sculpt::SculptError),
+    /// A step names a garment the session does not wear (the parser refuses it; a step made
+    /// by hand may not).
+    #[error("no garment '{name}': the garments worn are {worn}")]
+    NoSuchGarment {
+        /// The name.
+        name: String,
+        /// The garments worn, innermost first.
+        worn: String,
+    },
+    /// A garment worn over another is not a surface the layers can keep in order.
+    #[error("layers: {0}")]
+    Layer(#[from] crate::layers::LayerError),
     /// Sinks failed (the recording, the export), at these stages.
     #[error("{}", join(.0))]
     Sinks(Vec<(&'static str, SinkError)>),

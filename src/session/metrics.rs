@@ -48,6 +48,23 @@ impl StepMetrics {
         }
     }
 
+    /// Records a group of figures under `key` (an object of them, merged with what is
+    /// there already).
+    pub fn record_under<T: Serialize + ?Sized>(&mut self, key: &str, figures: &T) {
+        match serde_json::to_value(figures) {
+            Ok(Value::Object(fields)) => {
+                let slot = self
+                    .figures
+                    .entry(key.to_string())
+                    .or_insert_with(|| Value::Object(Map::new()));
+                if let Value::Object(under) = slot {
+                    under.extend(fields);
+                }
+            }
+            other => debug_assert!(false, "figures must serialize to an object: {other:?}"),
+        }
+    }
+
     /// The flat JSON object.
     pub fn to_json(&self) -> Value {
         let mut object = Map::new();

@@ -19,15 +19,17 @@ pub mod runner;
 pub mod stage;
 mod state;
 mod steps;
+mod wear;
 
 pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, SinkError, StepError};
-pub use format::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units, parse_session};
+pub use format::{Change, Layer, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
 pub use options::RunOptions;
 pub use runner::{LiveSession, RunReport, run_session};
 pub use stage::{
-    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
+    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, LayerPair,
+    Layered, M1Outcome,
     M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut, Stage, StageInfo, StageSink,
     StepEnd,
 };

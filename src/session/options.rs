@@ -50,4 +50,7 @@ pub(in crate::session) struct StepContext<'a> {
     pub(in crate::session) session: &'a Session,
     /// Run settings from the command line.
     pub(in crate::session) options: &'a RunOptions,
+    /// The garments under the one the step works on, innermost first (none: it is the
+    /// innermost or only one).
+    pub(in crate::session) below: &'a [crate::session::flow::layers::Below],
 }

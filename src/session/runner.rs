@@ -7,10 +7,11 @@ use super::emit::{Emitter, Shortfall};
 use super::error::{RunError, StepError};
 use super::format::{Session, Step};
 use super::metrics::StepMetrics;
-use super::options::{RunOptions, StepContext};
+use super::options::RunOptions;
 use super::stage::{Stage, StageSink, StepEnd};
 use super::state::SessionState;
-use super::steps::{run_step, scene};
+use super::steps::scene;
+use super::wear::run_worn;
 
 /// What a run produced.
 #[derive(Debug, Default)]
@@ -79,12 +80,8 @@ impl<'k, 's> LiveSession<'k, 's> {
     /// is emitted, its metrics kept, and the error returned (the garment is as before).
     pub fn step(&mut self, step: &Step) -> Result<(), Box<RunError>> {
         let n = self.session.steps.len() + 1;
-        let cx = StepContext {
-            session: &self.session,
-            options: &self.options,
-        };
         let mut scope = self.out.step(n, step.op.keyword());
-        match run_step(&mut scope, &mut self.state, &cx, &step.op) {
+        match run_worn(&mut scope, &mut self.state, (&self.session, &self.options), step) {
             Ok(()) => {
                 let (metrics, shortfalls) = scope.done();
                 self.report.steps.push(metrics);

@@ -31,10 +31,16 @@ pub(crate) struct SessionState {
     pub(crate) body: Body,
     /// The body's one index (curve clearance and collision), built by the first garment.
     pub(crate) probe: Option<BodyProbe>,
-    /// The current garment.
+    /// The garment the running step works on (taken from [`Self::worn`] for the step and
+    /// put back after it).
     pub(crate) garment: Option<GarmentState>,
-    /// Garment states before each drag or set of the current garment, for `undo`.
+    /// That garment's states before each of its drags, sets, cuts and sculpts, for `undo`.
     pub(crate) history: Vec<GarmentState>,
+    /// The garments worn, innermost first, each with its undo history.
+    pub(crate) worn: Vec<Worn>,
+    /// Per step `undo` can take back, the garments it changed (indices into
+    /// [`Self::worn`]): the edited one, then those over it that it pushed.
+    pub(crate) undo: Vec<Vec<usize>>,
     /// NURBS parts, in the order added (none: no NURBS work at all).
     pub(crate) nurbs: Vec<crate::nurbs::NurbsPart>,
     /// The body's triangle hulls for the NURBS parts, built with the first part.
@@ -49,6 +55,8 @@ impl SessionState {
             probe: None,
             garment: None,
             history: Vec::new(),
+            worn: Vec::new(),
+            undo: Vec::new(),
             nurbs: Vec::new(),
             nurbs_body: None,
         }
@@ -62,12 +70,24 @@ impl SessionState {
     }
 }
 
+/// A garment the session wears, with its undo history.
+pub(crate) struct Worn {
+    /// Its name (what edits name it by).
+    pub(crate) name: String,
+    /// Its state (`None` only while a step works on it, in [`SessionState::garment`]).
+    pub(crate) garment: Option<GarmentState>,
+    /// Its states before each of its undoable steps.
+    pub(crate) history: Vec<GarmentState>,
+}
+
 /// The current garment: its template, settings, the dimensions set so far, the solve, the
 /// drags made since, its constraint network, and what collision remembers between steps.
 #[derive(Clone)]
 pub(crate) struct GarmentState {
     /// Template (`None`: a garment from a file, [`Self::file`]).
     pub(crate) template: Option<TemplateKind>,
+    /// The name it was given (`garment dress name=outer`), when not its template's.
+    pub(crate) label: Option<String>,
     /// The garment read from a file by `garment mesh` (`None`: built from its template).
     pub(crate) file: Option<Arc<FileGarment>>,
     /// Framework settings (fit, resolution).
@@ -99,6 +119,8 @@ pub(crate) struct GarmentState {
     pub(crate) sculpts: Vec<(super::SculptAt, crate::sculpt::Drag, crate::sculpt::SculptOptions)>,
     /// The last sculpt's result (the garment's latest mesh), when there are sculpts.
     pub(crate) sculpted: Option<SculptOutcome>,
+    /// When it is worn over other garments: how it was pushed out in front of them.
+    pub(crate) layered: Option<super::stage::Layered>,
 }
 
 impl GarmentState {
@@ -115,6 +137,7 @@ impl GarmentState {
     pub(crate) fn name(&self) -> String {
         match (&self.file, self.template) {
             (Some(f), _) => f.name.clone(),
+            (None, _) if self.label.is_some() => self.label.clone().unwrap_or_default(),
             (None, Some(t)) => t.name().to_string(),
             (None, None) => "garment".into(),
         }
@@ -153,6 +176,7 @@ impl GarmentState {
     pub(crate) fn new(template: TemplateKind, options: FrameworkOptions) -> Self {
         Self {
             template: Some(template),
+            label: None,
             file: None,
             options,
             dims: Dimensions::default(),
@@ -168,6 +192,7 @@ impl GarmentState {
             through_cuts: Vec::new(),
             sculpts: Vec::new(),
             sculpted: None,
+            layered: None,
         }
     }
 
@@ -177,6 +202,7 @@ impl GarmentState {
     pub(crate) fn unsolved(&self) -> Self {
         Self {
             template: self.template,
+            label: self.label.clone(),
             file: self.file.clone(),
             options: self.options,
             dims: self.dims.clone(),
@@ -192,6 +218,7 @@ impl GarmentState {
             through_cuts: self.through_cuts.clone(),
             sculpts: self.sculpts.clone(),
             sculpted: None,
+            layered: None,
         }
     }
 

@@ -132,7 +132,7 @@ pub fn run_one(text: &str, body: Option<&Path>, verify: bool) -> SessionOutcome 
             out.steps = report.steps.iter().filter(|s| s.step > 0).count();
             for (step, shortfall) in &report.shortfalls {
                 match shortfall {
-                    Shortfall::Guarantee { .. } => out.guarantee_failures.push(*step),
+                    Shortfall::Guarantee { .. } | Shortfall::Layers(_) => out.guarantee_failures.push(*step),
                     Shortfall::Refused(message) => out.refused.push(reason_of(message)),
                 }
             }

@@ -177,9 +177,14 @@ impl StageSink for RerunLogger {
     fn stage(&mut self, info: &StageInfo, stage: Stage<'_>) -> Result<(), SinkError> {
         self.rec.set_time_sequence("step", info.step as i64);
         self.rec.set_time_sequence("stage", info.stage as i64);
-        if self.options.detail != LogDetail::Final || is_final(&stage) {
-            stage.dispatch(info, self)?;
-        }
+        self.rec.set_layer(info.layer.clone());
+        let logged = if self.options.detail != LogDetail::Final || is_final(&stage) {
+            stage.dispatch(info, self)
+        } else {
+            Ok(())
+        };
+        self.rec.set_layer(None);
+        logged?;
         // Every log call is already its own chunk (OrderedRecording); this sends what is left.
         self.rec.flush_async().map_err(|e| SinkError::Backend {
             what: "rerun flush",
@@ -247,6 +252,10 @@ impl StageSink for RerunLogger {
 
     fn patterns(&mut self, _info: &StageInfo, stage: crate::session::PatternStage<'_>) -> Result<(), SinkError> {
         self.log_patterns(stage)
+    }
+
+    fn layers(&mut self, info: &StageInfo, layered: &crate::session::Layered) -> Result<(), SinkError> {
+        self.log_layers(info, layered)
     }
 
     fn sculpt(&mut self, _info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {

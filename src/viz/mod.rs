@@ -18,6 +18,9 @@
 //! `garment/sculpt` (+ `/edges`), `sculpt/{pick,radius,direction,displacement}`,
 //! `sculpt/levels/<k>` (active faces per adaptive level) and
 //! `sculpt_compare/{none,uniform,adaptive}` (`drape sculpt-compare`).
+//! A garment worn over another logs its own entities under `layers/<name>/` (its
+//! `garment/**`, `collision/**`, `constraints/**`, `sculpt/**` and `patterns/**`), and
+//! `layers/<name>/gap_map` (its gap in front of the garment under it).
 //! Timelines: `step`, `stage`, `iter` (solver iterations over the session) and `level`
 //! (subdivision levels of the [nurbs] experiment).
 
@@ -29,6 +32,7 @@ mod constraints;
 mod draw;
 mod figures;
 mod garment;
+mod layers;
 pub mod logger;
 mod m1;
 mod mannequin;

@@ -65,12 +65,25 @@ pub fn metric_path(path: &str) -> String {
 /// a hash map: two runs of the same session would write the same chunks in different
 /// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
 /// leaves one entity per flush, so the file's chunks follow the calls.
-pub struct OrderedRecording(RecordingStream, bool);
+///
+/// A garment worn over another logs its entities under `layers/<name>/` (see
+/// [`Self::set_layer`]), so that each garment keeps its own.
+pub struct OrderedRecording(RecordingStream, bool, Option<String>);
+
+/// The entity roots that belong to a garment (moved under `layers/<name>/` for a garment
+/// worn over another).
+const GARMENT_ROOTS: [&str; 5] = ["garment", "collision", "constraints", "sculpt", "patterns"];
 
 impl OrderedRecording {
     /// Writes to `rec`; with `metrics_only`, only the metrics, the log and the legends.
     pub(super) fn new(rec: RecordingStream, metrics_only: bool) -> Self {
-        Self(rec, metrics_only)
+        Self(rec, metrics_only, None)
+    }
+
+    /// The garment the next calls log, when it is worn over another (`None`: the innermost
+    /// or only garment, at the usual entities).
+    pub fn set_layer(&mut self, layer: Option<String>) {
+        self.2 = layer;
     }
 
     /// Logs `data` at `path` on the current timelines, as its own chunk.
@@ -79,7 +92,12 @@ impl OrderedRecording {
         path: impl Into<rerun::EntityPath>,
         data: &AS,
     ) -> Result<(), SinkError> {
-        let path = path.into();
+        let mut path = path.into();
+        if let Some(layer) = &self.2
+            && path.iter().next().is_some_and(|p| GARMENT_ROOTS.contains(&p.unescaped_str()))
+        {
+            path = rerun::EntityPath::from(format!("layers/{layer}")).join(&path);
+        }
         // With metrics only (the flag), anything but the metrics, the log and the legends
         // is left out.
         if self.1 && !["metrics", "log", "legend"].contains(&path.iter().next().map_or("", |p| p.unescaped_str())) {

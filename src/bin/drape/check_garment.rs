@@ -228,6 +228,7 @@ fn record(
             op: "scene",
             stage: k as u64,
             name,
+            layer: None,
         };
         logger.stage(&info, stage)?;
     }
@@ -237,6 +238,7 @@ fn record(
             op: "garment",
             stage: 3 + k as u64,
             name: part.stage_name(),
+            layer: None,
         };
         logger.stage(
             &info,

@@ -49,6 +49,7 @@ pub(crate) fn save_study(
             op,
             stage: 0,
             name,
+            layer: None,
         };
         logger.stage(&info, stage)?;
     }

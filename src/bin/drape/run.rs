@@ -107,6 +107,10 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
                 "{}: step {step}: edit refused: {message}",
                 if args.strict { "error" } else { "note" }
             ),
+            Shortfall::Layers(message) => eprintln!(
+                "{}: step {step}: the layers are out of order: {message}",
+                if args.strict { "error" } else { "warning" }
+            ),
         }
     }
     match report.error {

@@ -8,9 +8,7 @@ use serde::Serialize;
 
 use crate::body::Body;
 use crate::collision::{self, AppliedRule, BodyIndex, Collision, VerifyReport};
-use crate::m1::M1Options;
 use crate::session::emit::StepScope;
-use crate::session::options::RunOptions;
 use crate::session::options::StepContext;
 use crate::session::stage::{CollisionOutcome, CollisionPart, CollisionStage, GarmentPart, GarmentStage, Stage};
 use crate::session::state::GarmentState;
@@ -155,14 +153,56 @@ pub(in crate::session) fn collide_and_emit(
     index: &BodyIndex,
     state: &mut GarmentState,
     cx: &StepContext<'_>,
-) -> Option<[usize; 3]> {
-    collide_garment(scope, body, index, state, cx.options, cx.session.scene.m1.as_ref());
+) -> Option<Unclear> {
+    let pushed = collide_garment(scope, (body, index), state, cx);
     if let Some(p) = &cx.session.scene.patterns {
         super::patterns::build_patterns(scope, state, p);
     }
     emit_collision(scope, state, index);
+    if let Err(e) = pushed {
+        return Some(Unclear::Surface(e.to_string()));
+    }
     let q = &state.collision.as_ref()?.collision.quality;
-    (!q.is_clear()).then_some([q.penetrating_vertices, q.crossing_edges, q.pierced_faces])
+    let latest = state.sculpted.as_ref().map(|s| &s.collision).or(state.m1.as_ref().map(|m| &m.collision));
+    match latest.filter(|_| state.layered.is_some()) {
+        // Worn over another garment, the latest mesh was pushed: its body check counts too.
+        Some(l) if !l.quality.is_clear() => {
+            return Some(Unclear::Body([l.inside_after.len(), l.crossing_after_edges.len(), l.pierced_after.len()]));
+        }
+        _ => {}
+    }
+    if !q.is_clear() {
+        return Some(Unclear::Body([q.penetrating_vertices, q.crossing_edges, q.pierced_faces]));
+    }
+    super::layers::out_of_order(state).map(|(under, counts)| Unclear::Layers(under, counts))
+}
+
+/// What a step's collision could not clear.
+pub(in crate::session) enum Unclear {
+    /// Of the body: vertices inside, edges crossing it, faces it pierces.
+    Body([usize; 3]),
+    /// Of a garment under it (named): the certificate between them after the push.
+    Layers(String, crate::layers::LayerCounts),
+    /// The garment could not be pushed at all (not a manifold surface).
+    Surface(String),
+}
+
+impl Unclear {
+    /// The refusal's message, naming the limit.
+    pub(in crate::session) fn message(&self) -> String {
+        match self {
+            Self::Body([inside, crossing, pierced]) => format!(
+                "the garment cannot be kept clear of the body after this edit: {inside} vertices inside, {crossing} \
+                 edges crossing it and {pierced} faces pierced by it after the response"
+            ),
+            Self::Layers(under, c) => format!(
+                "the garment cannot be kept in front of '{under}' after this edit: {} vertices behind it, {} edges \
+                 through it and {} faces pierced by it after the push",
+                c.behind, c.outer_edges_through_inner, c.outer_faces_pierced
+            ),
+            Self::Surface(e) => format!("the garment cannot be layered: {e}"),
+        }
+    }
 }
 
 /// Collides a new garment's first M0 (`garment`, `garment mesh`): a shortfall has nothing to
@@ -174,12 +214,16 @@ pub(in crate::session) fn collide_new(
     next: &mut GarmentState,
     cx: &StepContext<'_>,
 ) {
-    if let Some([inside, crossing, pierced]) = collide_and_emit(scope, body, index, next, cx) {
-        scope.shortfalls.push(crate::session::emit::Shortfall::Guarantee {
-            inside,
-            crossing,
-            pierced,
-        });
+    match collide_and_emit(scope, body, index, next, cx) {
+        Some(Unclear::Body([inside, crossing, pierced])) => {
+            scope.shortfalls.push(crate::session::emit::Shortfall::Guarantee {
+                inside,
+                crossing,
+                pierced,
+            });
+        }
+        Some(unclear) => scope.shortfalls.push(crate::session::emit::Shortfall::Layers(unclear.message())),
+        None => {}
     }
 }
 
@@ -191,13 +235,10 @@ pub(in crate::session) fn unclear(
     scope: &mut StepScope<'_, '_, '_>,
     kept: &GarmentState,
     index: &BodyIndex,
-    [inside, crossing, pierced]: [usize; 3],
+    unmet: &Unclear,
 ) -> String {
     emit_kept(scope, kept, index);
-    format!(
-        "the garment cannot be kept clear of the body after this edit: {inside} vertices inside, {crossing} \
-         edges crossing it and {pierced} faces pierced by it after the response"
-    )
+    unmet.message()
 }
 
 /// Emits a garment state the session returns to (after an undo, or a refused attempt): its
@@ -211,19 +252,28 @@ pub(in crate::session) fn emit_kept(scope: &mut StepScope<'_, '_, '_>, kept: &Ga
     emit_collision(scope, kept, index);
 }
 
-/// Collides the state's M0 with the body, recording the figures in the step's metrics.
+/// Collides the state's M0 with the body and pushes it out in front of the garments under
+/// it (`cx.below`), recording the figures in the step's metrics; then M1 and the sculpts,
+/// their latest mesh pushed out in front of those under it too.
 fn collide_garment(
     scope: &mut StepScope<'_, '_, '_>,
-    body: &Body,
-    index: &BodyIndex,
+    (body, index): (&Body, &BodyIndex),
     state: &mut GarmentState,
-    options: &RunOptions,
-    m1: Option<&M1Options>,
-) {
+    cx: &StepContext<'_>,
+) -> Result<(), crate::layers::LayerError> {
+    let (options, m1, below) = (cx.options, cx.session.scene.m1.as_ref(), cx.below);
     let (Some(garment), Some(ease)) = (state.collision_mesh(index.height), state.ease()) else {
-        return;
+        return Ok(());
     };
-    let collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect);
+    let mut collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect);
+    let layer_ease = crate::layers::PushOptions::default().ease;
+    let pushed_m0 = (!below.is_empty())
+        .then(|| {
+            scope.timed("layers.push_m0", || {
+                super::layers::push_m0(index, (&garment, &mut collision), below, layer_ease)
+            })
+        })
+        .transpose()?;
     let t = collision.timings;
     for (name, ms) in [
         ("collision.detect", t.detect),
@@ -234,7 +284,8 @@ fn collide_garment(
         ("collision.check_faces", t.check_faces),
         ("collision.face_clearance", t.face_clearance),
     ] {
-        scope.metrics.timings_ms.insert(name.to_string(), ms);
+        let key = scope.timing_key(name);
+        scope.metrics.timings_ms.insert(key, ms);
     }
     // --verify checks the step's own quality check (partial unless --quality full) twice:
     // against a full check of every vertex and edge, and against the brute-force truth.
@@ -296,6 +347,35 @@ fn collide_garment(
         super::m1::build_m1(scope, body, index, state, options, m1_options);
     }
     super::sculpt::remake(scope, state, index, &options.collision);
+    state.layered = None;
+    if let Some(m0) = pushed_m0 {
+        scope.timed("layers.push_latest", || {
+            super::layers::finish(index, state, below, m0, layer_ease)
+        })?;
+        record_layers(scope, state);
+    }
+    Ok(())
+}
+
+/// The figures of a garment worn over others: per garment under it, the certificate before
+/// and after each push.
+pub(in crate::session) fn record_layers(scope: &mut StepScope<'_, '_, '_>, state: &GarmentState) {
+    if let Some(l) = &state.layered {
+        let pairs: BTreeMap<&str, &crate::session::stage::LayerPair> =
+            l.pairs.iter().map(|p| (p.under.as_str(), p)).collect();
+        let smallest = l.gaps.iter().copied().filter(|g| g.is_finite()).fold(f64::INFINITY, f64::min);
+        #[derive(Serialize)]
+        struct LayerFigures<'a> {
+            /// Per garment under it: the pushes.
+            over: BTreeMap<&'a str, &'a crate::session::stage::LayerPair>,
+            /// The smallest gap of its latest mesh in front of the garment right under it, m.
+            layer_gap_m: f64,
+        }
+        scope.record(&LayerFigures {
+            over: pairs,
+            layer_gap_m: smallest,
+        });
+    }
 }
 
 /// Emits the state's collision (detection, then response), if it has one.
@@ -311,4 +391,7 @@ pub(in crate::session) fn emit_collision(scope: &mut StepScope<'_, '_, '_>, stat
     super::m1::emit_m1(scope, state);
     super::patterns::emit_patterns(scope, state);
     super::sculpt::emit(scope, state);
+    if let Some(layered) = &state.layered {
+        scope.emit("layers.push", Stage::Layers(layered));
+    }
 }

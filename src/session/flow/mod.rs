@@ -9,6 +9,7 @@
 pub(super) mod collide;
 pub(super) mod drag;
 pub(super) mod garment;
+pub(super) mod layers;
 pub(super) mod m1;
 pub(super) mod nurbs;
 pub(super) mod patterns;

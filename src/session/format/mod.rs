@@ -43,4 +43,4 @@ pub mod syntax;
 
 pub use parser::parse_session;
 pub use statements::{Place, Statement};
-pub use syntax::{Change, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};
+pub use syntax::{Change, Layer, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units};

@@ -22,6 +22,7 @@ mod drape;
 mod garment;
 mod garment_mesh;
 mod landmark;
+mod layers;
 mod log;
 mod m1;
 mod mannequin;
@@ -60,6 +61,8 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
         mesh_garment: None,
         undoable: 0,
         nurbs: Vec::new(),
+        worn: Vec::new(),
+        step_garment: None,
     };
     for (index, raw) in text.lines().enumerate() {
         let line = tokenize(name, index + 1, raw)?;
@@ -120,6 +123,10 @@ struct Parser<'p> {
     undoable: usize,
     /// NURBS parts added so far, with their lines.
     nurbs: Vec<(String, usize)>,
+    /// The garments worn, innermost first (the last is the current one).
+    worn: Vec<layers::Worn>,
+    /// The garment the statement being parsed names (`drag outer:waist.front`).
+    step_garment: Option<String>,
 }
 
 impl Parser<'_> {
@@ -212,15 +219,23 @@ impl Parser<'_> {
             Statement::Mannequin => mannequin(line, rest)?,
             Statement::Section => section(line, rest)?,
             Statement::Garment => self.garment(line, rest)?,
-            Statement::Set => self.set(line, head, rest)?,
-            Statement::Drag => self.drag(line, head, rest)?,
+            Statement::Set | Statement::Drag | Statement::Cut | Statement::Sculpt => {
+                self.on_named_garment(line, rest, |p, rest| match statement {
+                    Statement::Set => p.set(line, head, rest),
+                    Statement::Drag => p.drag(line, head, rest),
+                    Statement::Cut => p.cut(line, head, rest),
+                    _ => p.sculpt(line, head, rest),
+                })?
+            }
             Statement::Undo => self.undo(line, head, rest)?,
-            Statement::Cut => self.cut(line, head, rest)?,
             Statement::Nurbs => self.nurbs(line, head, rest)?,
             Statement::Move => self.move_part(line, head, rest)?,
-            Statement::Sculpt => self.sculpt(line, head, rest)?,
         };
-        self.steps.push(Step { line: line.number, op });
+        self.steps.push(Step {
+            line: line.number,
+            op,
+            garment: self.step_garment.take(),
+        });
         Ok(())
     }
 }

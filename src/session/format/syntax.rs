@@ -136,6 +136,8 @@ pub enum Op {
         contours: ContourKind,
         /// Segments per anchor arc in M0.
         resolution: usize,
+        /// Its name and the garment it is worn over.
+        layer: Layer,
     },
     /// A garment mesh from a file (made by another tool) as the garment: its M0 as read,
     /// collided with the body, certified, refined into M1, sculpted and cut like a
@@ -150,6 +152,8 @@ pub enum Op {
         ease: f64,
         /// The file's units, as a factor to metres.
         scale: f64,
+        /// The garment it is worn over (`over=NAME`), if any.
+        over: Option<String>,
     },
     /// Change a dimension of the current garment and solve again.
     Set {
@@ -202,6 +206,17 @@ pub enum Op {
         /// Refinement settings.
         options: crate::sculpt::SculptOptions,
     },
+}
+
+/// A template garment's name and the garment it is worn over.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layer {
+    /// Its name (`name=`, default the template's): what edits name it by (`drag
+    /// inner:waist.front`) and what its files and entities are called.
+    pub name: String,
+    /// The garment it is worn over (`over=NAME`, the outermost so far); `None`: it replaces
+    /// every garment so far (a session's first garment, or a new start).
+    pub over: Option<String>,
 }
 
 /// Where a sculpt picks the garment.
@@ -263,6 +278,8 @@ pub struct Step {
     pub line: usize,
     /// What to do.
     pub op: Op,
+    /// The garment an edit names (`drag outer:waist.front`); `None`: the outermost one.
+    pub garment: Option<String>,
 }
 
 /// A parsed, validated session.

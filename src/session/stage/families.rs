@@ -348,3 +348,32 @@ pub enum ConstraintStage<'a> {
         message: &'a str,
     },
 }
+
+/// A garment worn over others, after its push out in front of them.
+#[derive(Clone, Debug)]
+pub struct Layered {
+    /// Per garment under it, innermost first: the push of its M0 and of its latest mesh.
+    pub pairs: Vec<LayerPair>,
+    /// Its latest mesh (the last sculpt, else M1, else M0), facing away from the body,
+    /// after the pushes.
+    pub mesh: crate::mesh::TriMesh,
+    /// Per vertex of that mesh, its signed gap in front of the garment right under it, m
+    /// (NaN where the nearest point under it is on an opening).
+    pub gaps: Vec<f64>,
+    /// The garments under it, innermost first: their names and latest meshes (shown muted).
+    pub under: Vec<(String, crate::mesh::TriMesh)>,
+}
+
+/// One garment under another and how the one over it was pushed.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct LayerPair {
+    /// The garment under.
+    #[serde(skip)]
+    pub under: String,
+    /// The push of M0 out in front of its M0: the certificate before and after.
+    pub m0: crate::layers::PushReport,
+    /// The push of the latest mesh out in front of its latest mesh, when either has one
+    /// beyond M0.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub latest: Option<crate::layers::PushReport>,
+}

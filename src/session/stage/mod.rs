@@ -15,8 +15,8 @@ mod families;
 mod sink;
 
 pub use families::{
-    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, M1Outcome,
-    M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut,
+    BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, LayerPair,
+    Layered, M1Outcome, M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut,
 };
 pub use sink::StageSink;
 
@@ -35,6 +35,9 @@ pub struct StageInfo {
     pub stage: u64,
     /// Stage name (`body.load`, `garment.m0`, `collision.response`, ...).
     pub name: &'static str,
+    /// The garment the stage is of when it is worn over another (`None`: the innermost or
+    /// only garment, or a stage of no garment).
+    pub layer: Option<String>,
 }
 
 /// The data of one stage, by family.
@@ -63,6 +66,8 @@ pub enum Stage<'a> {
     Patterns(PatternStage<'a>),
     /// A sculpt of the garment: the drag, the adaptive refinement, its collision.
     Sculpt(SculptStage<'a>),
+    /// A garment worn over others: the push out in front of them and the gaps.
+    Layers(&'a Layered),
     /// The same drag with no, uniform and adaptive subdivision (`drape sculpt-compare`).
     SculptCompare(&'a crate::sculpt::Comparison),
     /// The end of a step: done with its metrics, or failed.

@@ -49,6 +49,11 @@ pub trait StageSink {
         Ok(())
     }
 
+    /// A garment worn over others.
+    fn layers(&mut self, _info: &StageInfo, _layered: &super::Layered) -> Result<(), SinkError> {
+        Ok(())
+    }
+
     /// The collision stages.
     fn collision(&mut self, _info: &StageInfo, _stage: CollisionStage<'_>) -> Result<(), SinkError> {
         Ok(())
@@ -107,6 +112,7 @@ impl Stage<'_> {
             Self::M1(s) => sink.m1(info, s),
             Self::Patterns(s) => sink.patterns(info, s),
             Self::Sculpt(s) => sink.sculpt(info, s),
+            Self::Layers(l) => sink.layers(info, l),
             Self::SculptCompare(c) => sink.sculpt_compare(info, c),
             Self::Step(e) => sink.step_end(info, e),
         }

@@ -50,7 +50,7 @@ pub(super) fn run(
             if let Some(unmet) = collide_and_emit(scope, &state.body, probe.index(), &mut next, cx) {
                 // The response could not clear the new M0: refused like a drag the solver
                 // cannot honour.
-                let message = unclear(scope, current, probe.index(), unmet);
+                let message = unclear(scope, current, probe.index(), &unmet);
                 refuse(scope, &mut state.history, current, edit, &message);
                 return Ok(());
             }

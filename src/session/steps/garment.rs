@@ -16,16 +16,12 @@ pub(super) fn run(
     state: &mut SessionState,
     cx: &StepContext<'_>,
     template: TemplateKind,
-    options: FrameworkOptions,
+    (options, label): (FrameworkOptions, Option<String>),
 ) -> Result<(), StepError> {
     state.history.clear();
-    let mut next = solve_garment(
-        scope,
-        &state.body,
-        &mut state.probe,
-        cx,
-        GarmentState::new(template, options),
-    )?;
+    let mut garment = GarmentState::new(template, options);
+    garment.label = label;
+    let mut next = solve_garment(scope, &state.body, &mut state.probe, cx, garment)?;
     if let (Some(fw), Some(net)) = (&next.framework, &next.net) {
         for part in GarmentPart::all() {
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));

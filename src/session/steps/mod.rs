@@ -24,6 +24,11 @@ use super::options::StepContext;
 use super::state::SessionState;
 use crate::garment::FrameworkOptions;
 
+/// `undo` of the garment in the state's current slot.
+pub(super) fn undo_step(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
+    undo::run(scope, state)
+}
+
 /// Runs one step of the session on `state`.
 pub(super) fn run_step(
     scope: &mut StepScope<'_, '_, '_>,
@@ -40,19 +45,22 @@ pub(super) fn run_step(
             fit,
             contours,
             resolution,
+            layer,
         } => {
             let options = FrameworkOptions::default()
                 .with_style(*style)
                 .with_fit(*fit)
                 .with_contours(*contours)
                 .with_resolution(*resolution);
-            garment::run(scope, state, cx, *template, options)
+            let label = (layer.name != template.name()).then(|| layer.name.clone());
+            garment::run(scope, state, cx, *template, (options, label))
         }
         Op::GarmentMesh {
             path,
             name,
             ease,
             scale,
+            ..
         } => garment_mesh::run(scope, state, cx, (path, name), *ease, *scale),
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),

@@ -49,6 +49,23 @@ pub(super) fn run(
         current.sculpts.len() + 1,
     )
     .map_err(StepError::Sculpt)?;
+    let mut next = current.clone();
+    next.sculpts.push((at.clone(), *drag, *options));
+    next.sculpted = Some(outcome);
+    // Worn over other garments: the sculpted surface pushed out in front of theirs.
+    let layers = (!cx.below.is_empty()).then(|| {
+        let m0 = current
+            .layered
+            .as_ref()
+            .map(|l| l.pairs.iter().map(|p| p.m0.clone()).collect())
+            .unwrap_or_default();
+        scope.timed("layers.push_latest", || {
+            crate::session::flow::layers::finish(index, &mut next, cx.below, m0, crate::layers::PushOptions::default().ease)
+        })
+    });
+    let Some(outcome) = next.sculpted.as_ref() else {
+        return Err(StepError::NoGarment { verb: "sculpt" });
+    };
     let verify = cx.options.verify.then(|| {
         scope.timed("sculpt.verify", || {
             let mesh = outcome.mesh();
@@ -62,30 +79,46 @@ pub(super) fn run(
             }
         })
     });
-    record(scope, &outcome, verify);
+    record(scope, outcome, verify);
     let q = &outcome.collision.quality;
-    if q.penetrating_vertices > before_inside || q.crossing_edges > before_crossing || q.pierced_faces > before_pierced
+    let unmet = if q.penetrating_vertices > before_inside
+        || q.crossing_edges > before_crossing
+        || q.pierced_faces > before_pierced
     {
-        let message = format!(
+        Some(format!(
             "the garment cannot be kept clear of the body after this sculpt: {} vertices inside, {} edges \
              crossing it and {} faces pierced by it after the response",
             q.penetrating_vertices, q.crossing_edges, q.pierced_faces
-        );
+        ))
+    } else {
+        match &layers {
+            Some(Err(e)) => Some(format!("the garment cannot be layered: {e}")),
+            _ => crate::session::flow::layers::out_of_order(&next).map(|(under, c)| {
+                format!(
+                    "the garment cannot be kept in front of '{under}' after this sculpt: {} vertices behind it, {} \
+                     edges through it and {} faces pierced by it after the push",
+                    c.behind, c.outer_edges_through_inner, c.outer_faces_pierced
+                )
+            }),
+        }
+    };
+    if let Some(message) = unmet {
         scope.refuse(
             &message,
             "garment.sculpt",
             Stage::Sculpt(SculptStage {
-                outcome: Some(&outcome),
+                outcome: Some(outcome),
                 refused: Some(&message),
             }),
         );
         state.history.push(current.clone());
         return Ok(());
     }
-    let mut next = current.clone();
-    next.sculpts.push((at.clone(), *drag, *options));
-    next.sculpted = Some(outcome);
     emit(scope, &next);
+    if let Some(layered) = next.layered.as_ref().filter(|_| layers.is_some()) {
+        crate::session::flow::collide::record_layers(scope, &next);
+        scope.emit("layers.push", Stage::Layers(layered));
+    }
     state.advance(next);
     Ok(())
 }

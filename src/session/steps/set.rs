@@ -106,7 +106,7 @@ pub(super) fn run(
     {
         // The response could not clear the new M0: refused like a change the framework
         // cannot take.
-        let message = unclear(scope, current_state, probe.index(), unmet);
+        let message = unclear(scope, current_state, probe.index(), &unmet);
         refuse(scope, &mut state.history, current_state, name, value, &message);
         return Ok(());
     }

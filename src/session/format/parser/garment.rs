@@ -9,7 +9,7 @@ use crate::session::format::syntax::{Op, ParseError};
 
 impl Parser<'_> {
     /// `garment jumpsuit|dress|shirt sleeves=none|short|long collar=none|stand
-    /// fit=tight|loose contours=local|natural resolution=N`.
+    /// fit=tight|loose contours=local|natural resolution=N name=NAME over=NAME`.
     pub(super) fn garment(&mut self, line: &Line<'_>, rest: &[Token<'_>]) -> Result<Op, ParseError> {
         let Some((which, args)) = rest.split_first() else {
             return Err(line.error(
@@ -35,7 +35,7 @@ impl Parser<'_> {
         let a = Args::parse(
             line,
             args,
-            &["sleeves", "collar", "fit", "contours", "resolution"],
+            &["sleeves", "collar", "fit", "contours", "resolution", "name", "over"],
             "garment",
         )?;
         let mut style = template.default_style();
@@ -78,15 +78,18 @@ impl Parser<'_> {
             None => 6,
             Some(t) => integer_in(line, t, "resolution", 2..=24)?,
         };
-        self.garment = Some((template, style));
-        self.mesh_garment = None;
-        self.undoable = 0;
+        let (name, column) = a.get("name").map_or((template.name(), which.column), |t| (t.text, t.column));
+        let over = self.wear(line, (name, column), a.get("over").as_ref(), (Some((template, style)), None))?;
         Ok(Op::Garment {
             template,
             style,
             fit,
             contours,
             resolution,
+            layer: crate::session::format::syntax::Layer {
+                name: name.to_string(),
+                over,
+            },
         })
     }
 }

@@ -12,7 +12,7 @@ const UNITS: [(&str, f64); 4] = [("m", 1.0), ("cm", 0.01), ("mm", 0.001), ("in",
 const MAX_EASE: f64 = 0.1;
 
 impl Parser<'_> {
-    /// `garment mesh "FILE" [name=N] [ease=E] [units=m|cm|mm|in]`: the file resolved
+    /// `garment mesh "FILE" [name=N] [ease=E] [units=m|cm|mm|in] [over=NAME]`: the file resolved
     /// against the session's folder, the name defaulting to the file's stem, the ease to
     /// 0.002 m.
     pub(super) fn garment_mesh(
@@ -28,7 +28,7 @@ impl Parser<'_> {
                 "expected a quoted mesh path (OBJ, PLY, glTF or GLB) after 'garment mesh'",
             ));
         };
-        let a = Args::parse(line, args, &["name", "ease", "units"], "garment mesh")?;
+        let a = Args::parse(line, args, &["name", "ease", "units", "over"], "garment mesh")?;
         let column = a.get("name").map_or(mesh.column, |t| t.column);
         let (path, name) = self.file_and_name(line, (file, a.get("name")), column, ("garment", "garment"))?;
         let ease = match a.get("ease") {
@@ -57,14 +57,13 @@ impl Parser<'_> {
                     )
                 })?,
         };
-        self.garment = None;
-        self.mesh_garment = Some(line.number);
-        self.undoable = 0;
+        let over = self.wear(line, (&name, column), a.get("over").as_ref(), (None, Some(line.number)))?;
         Ok(Op::GarmentMesh {
             path,
             name,
             ease,
             scale,
+            over,
         })
     }
 }

@@ -30,6 +30,8 @@ impl Parser<'_> {
             "at",
             "a control point such as waist.front, or the pick point x,y,z in m",
         )?;
+        // `at=outer:waist.front`: the sculpt is the named garment's.
+        let at_token = self.named(line, at_token)?;
         let at = if at_token.text.chars().any(|c| c.is_ascii_alphabetic()) {
             if let Some(at) = self.mesh_garment {
                 return Err(line.error(

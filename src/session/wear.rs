@@ -1,0 +1,237 @@
+//! Garments worn in layers, around the steps: which garment a step works on (the one it
+//! names, else the outermost), the garments under it handed to the step as surfaces, and
+//! after an edit that moved a garment, every garment over it collided and pushed out in
+//! front again, innermost first. When one of them cannot be kept in order the whole edit is
+//! refused and every garment stays as it was. `undo` takes back a step's changes to every
+//! garment it changed.
+//!
+//! A session with one garment goes through here unchanged: nothing is under it, nothing
+//! over it.
+
+use super::emit::StepScope;
+use super::error::StepError;
+use super::flow::collide::{collide_and_emit, emit_kept};
+use super::flow::layers::{Below, below, latest_mesh};
+use super::format::{Op, Session, Step};
+use super::options::{RunOptions, StepContext};
+use super::stage::Stage;
+use super::state::{GarmentState, SessionState, Worn};
+use super::steps::run_step;
+
+/// Which garment a step works on.
+enum Target {
+    /// A new garment: replacing every garment worn, or over the outermost.
+    New { name: String, over: bool },
+    /// A garment worn (its index, innermost first).
+    Worn(usize),
+    /// No garment is worn (the step needs none, or fails for want of one).
+    None,
+}
+
+/// Runs `step` on the garment it works on.
+pub(super) fn run_worn(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    (session, options): (&Session, &RunOptions),
+    step: &Step,
+) -> Result<(), StepError> {
+    let target = match (&step.op, &step.garment) {
+        (Op::Garment { layer, .. }, _) => Target::New {
+            name: layer.name.clone(),
+            over: layer.over.is_some(),
+        },
+        (Op::GarmentMesh { name, over, .. }, _) => Target::New {
+            name: name.clone(),
+            over: over.is_some(),
+        },
+        (Op::Undo, _) => return undo(scope, state),
+        (_, Some(name)) => Target::Worn(worn_index(state, name)?),
+        (_, None) if state.worn.is_empty() => Target::None,
+        (_, None) => Target::Worn(state.worn.len() - 1),
+    };
+    match target {
+        Target::None => run_step(scope, state, &context(session, options, &[]), &step.op),
+        Target::New { name, over } => {
+            let under = if over { surfaces(state, state.worn.len())? } else { Vec::new() };
+            state.garment = None;
+            state.history.clear();
+            scope.layer = over.then(|| name.clone());
+            let ran = run_step(scope, state, &context(session, options, &under), &step.op);
+            scope.layer = None;
+            ran?;
+            if !over {
+                state.worn.clear();
+            }
+            for w in &mut state.worn {
+                w.history.clear();
+            }
+            state.undo.clear();
+            state.worn.push(Worn {
+                name,
+                garment: state.garment.take(),
+                history: std::mem::take(&mut state.history),
+            });
+            Ok(())
+        }
+        Target::Worn(k) => edit(scope, state, (session, options), step, k),
+    }
+}
+
+fn context<'a>(session: &'a Session, options: &'a RunOptions, below: &'a [Below]) -> StepContext<'a> {
+    StepContext {
+        session,
+        options,
+        below,
+    }
+}
+
+/// The index of the worn garment `name`.
+fn worn_index(state: &SessionState, name: &str) -> Result<usize, StepError> {
+    state
+        .worn
+        .iter()
+        .position(|w| w.name == name)
+        .ok_or_else(|| StepError::NoSuchGarment {
+            name: name.to_string(),
+            worn: state.worn.iter().map(|w| w.name.as_str()).collect::<Vec<_>>().join(", "),
+        })
+}
+
+/// The garments under garment `k` as surfaces.
+fn surfaces(state: &SessionState, k: usize) -> Result<Vec<Below>, StepError> {
+    match (&state.probe, k) {
+        (_, 0) | (None, _) => Ok(Vec::new()),
+        (Some(probe), _) => Ok(below(&state.worn[..k], probe.index())?),
+    }
+}
+
+/// Takes garment `k` out for a step (into the state's current slot).
+fn checkout(state: &mut SessionState, k: usize) {
+    state.garment = state.worn[k].garment.take();
+    state.history = std::mem::take(&mut state.worn[k].history);
+}
+
+/// Puts the current slot back as garment `k`.
+fn checkin(state: &mut SessionState, k: usize) {
+    state.worn[k].garment = state.garment.take();
+    state.worn[k].history = std::mem::take(&mut state.history);
+}
+
+/// What a garment's surface is now (its latest mesh, else its collided M0): whether an edit
+/// moved it.
+fn surface_of(g: Option<&GarmentState>) -> Option<Vec<glam::DVec3>> {
+    let g = g?;
+    latest_mesh(g)
+        .map(|m| m.positions)
+        .or_else(|| g.collision.as_ref().map(|c| c.collision.mesh.positions.clone()))
+}
+
+/// Runs an edit on garment `k`, then collides and pushes the garments over it when it
+/// moved; refuses the whole edit when one of them cannot be kept in order.
+fn edit(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    (session, options): (&Session, &RunOptions),
+    step: &Step,
+    k: usize,
+) -> Result<(), StepError> {
+    let under = surfaces(state, k)?;
+    let before = surface_of(state.worn[k].garment.as_ref());
+    let undoable = state.worn[k].history.len();
+    checkout(state, k);
+    scope.layer = (k > 0).then(|| state.worn[k].name.clone());
+    let ran = run_step(scope, state, &context(session, options, &under), &step.op);
+    scope.layer = None;
+    checkin(state, k);
+    ran?;
+    if state.worn[k].history.len() <= undoable {
+        return Ok(());
+    }
+    let mut changed = vec![k];
+    if k + 1 < state.worn.len() && surface_of(state.worn[k].garment.as_ref()) != before {
+        match push_over(scope, state, (session, options), k)? {
+            Ok(pushed) => changed.extend(pushed),
+            Err(message) => refuse_all(scope, state, k, &message),
+        }
+    }
+    state.undo.push(changed);
+    Ok(())
+}
+
+/// Collides every garment over garment `k` again, innermost first, each pushed out in
+/// front of those under it. `Ok(Ok(changed))`: the garments changed (their states before
+/// are in their histories); `Ok(Err(message))`: one could not be kept in order, and every
+/// garment over `k` is as it was.
+fn push_over(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    (session, options): (&Session, &RunOptions),
+    k: usize,
+) -> Result<Result<Vec<usize>, String>, StepError> {
+    let mut kept: Vec<(usize, GarmentState)> = Vec::new();
+    for j in k + 1..state.worn.len() {
+        let under = surfaces(state, j)?;
+        let (Some(current), Some(probe)) = (state.worn[j].garment.clone(), state.probe.as_ref()) else {
+            continue;
+        };
+        let mut next = current.clone();
+        scope.layer = Some(state.worn[j].name.clone());
+        let unmet = collide_and_emit(scope, &state.body, probe.index(), &mut next, &context(session, options, &under));
+        scope.layer = None;
+        if let Some(unmet) = unmet {
+            let message = format!(
+                "'{}' cannot be kept over '{}' after this edit: {}",
+                state.worn[j].name,
+                state.worn[k].name,
+                unmet.message()
+            );
+            for (j, previous) in kept {
+                state.worn[j].garment = Some(previous);
+            }
+            return Ok(Err(message));
+        }
+        kept.push((j, current));
+        state.worn[j].garment = Some(next);
+    }
+    let changed = kept.iter().map(|(j, _)| *j).collect();
+    for (j, previous) in kept {
+        state.worn[j].history.push(previous);
+    }
+    Ok(Ok(changed))
+}
+
+/// Refuses an edit of garment `k` that the garments over it could not follow: `k` back to
+/// its state before (which stays in its history: undoing the refused edit changes nothing),
+/// every garment from `k` out emitted again as it is, and the refusal recorded.
+fn refuse_all(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState, k: usize, message: &str) {
+    let previous = state.worn[k].history.last().cloned();
+    state.worn[k].garment = previous;
+    if let Some(probe) = &state.probe {
+        for (j, w) in state.worn.iter().enumerate().skip(k) {
+            if let Some(g) = &w.garment {
+                scope.layer = (j > 0).then(|| w.name.clone());
+                emit_kept(scope, g, probe.index());
+            }
+        }
+    }
+    scope.layer = None;
+    let outer = state.worn.last().and_then(|w| w.garment.as_ref()?.layered.as_ref());
+    match outer {
+        Some(layered) => scope.refuse(message, "layers.refused", Stage::Layers(layered)),
+        None => scope.shortfalls.push(super::emit::Shortfall::Refused(message.to_string())),
+    }
+}
+
+/// `undo`: every garment the last undoable step changed back to its state before it.
+fn undo(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
+    let changed = state.undo.pop().ok_or(StepError::NothingToUndo)?;
+    for k in changed {
+        checkout(state, k);
+        scope.layer = (k > 0).then(|| state.worn[k].name.clone());
+        let undone = super::steps::undo_step(scope, state);
+        scope.layer = None;
+        checkin(state, k);
+        undone?;
+    }
+    Ok(())
+}
