@@ -10,5 +10,5 @@ pub mod surface;
 
 pub use certificate::{LayerCounts, certify_layers};
 pub use orient::{away_from_body, facing};
-pub use push::{PushOptions, PushReport, push_outside};
+pub use push::{Outward, PushOptions, PushReport, push_outside, push_outside_along};
 pub use surface::{LayerError, LayerSurface, Nearest};

@@ -14,7 +14,9 @@ pub fn facing(mesh: &TriMesh, triangles: impl IntoIterator<Item = usize>, index:
         .map(|t| {
             let [a, b, c] = mesh.corners(t);
             let n = (b - a).cross(c - a);
-            index.nearest((a + b + c) / 3.0, reach).map_or(0.0, |near| n.dot(near.normal))
+            index
+                .nearest((a + b + c) / 3.0, reach)
+                .map_or(0.0, |near| n.dot(near.normal))
         })
         .sum()
 }

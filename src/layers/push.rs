@@ -45,7 +45,12 @@ pub struct PushReport {
     pub rounds: usize,
 }
 
-/// Pushes `outer`'s positions out in front of `inner` (both oriented away from the body).
+/// The direction a point of the outer garment is pushed in: the body's outward normal at the
+/// skin nearest it (`None`: the inner surface's normal there).
+pub type Outward<'a> = &'a dyn Fn(DVec3) -> Option<DVec3>;
+
+/// Pushes `outer`'s positions out in front of `inner` (both oriented away from the body),
+/// each move along the inner surface's normal at the nearest point.
 ///
 /// # Failures
 /// [`LayerError`] when the outer garment is not a manifold surface.
@@ -54,10 +59,47 @@ pub fn push_outside(
     outer: &mut TriMesh,
     options: &PushOptions,
 ) -> Result<PushReport, LayerError> {
+    push(inner, outer, options, &|_| None)
+}
+
+/// As [`push_outside`], each move along `outward` (the body's outward normal at the skin
+/// nearest the point): the outer garment goes over the inner along the body normal, and
+/// neighbouring vertices move alike where the inner surface is folded (at a crumpled
+/// neckline its normals turn by more than 90 degrees from face to face, and moves along
+/// them would send the outer's vertices apart and through it).
+///
+/// # Failures
+/// [`LayerError`] when the outer garment is not a manifold surface.
+pub fn push_outside_along(
+    inner: &LayerSurface,
+    outer: &mut TriMesh,
+    options: &PushOptions,
+    outward: Outward<'_>,
+) -> Result<PushReport, LayerError> {
+    push(inner, outer, options, outward)
+}
+
+/// The unit direction of a move at `p`: `outward`'s, else `normal`.
+fn way(outward: Outward<'_>, p: DVec3, normal: DVec3) -> DVec3 {
+    outward(p).map_or(normal, |d| d.normalize_or(normal))
+}
+
+/// The length of a move along `d` that takes a point `signed` in front of a surface with
+/// normal `n` to `ease` in front of it (the cosine between them at least 0.3).
+fn along(d: DVec3, n: DVec3, signed: f64, ease: f64) -> f64 {
+    (ease - signed).max(0.0) / d.dot(n).max(0.3)
+}
+
+fn push(
+    inner: &LayerSurface,
+    outer: &mut TriMesh,
+    options: &PushOptions,
+    outward: Outward<'_>,
+) -> Result<PushReport, LayerError> {
     let before = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
     let mut moved = vec![false; outer.positions.len()];
     let ease = options.ease;
-    put_in_front(inner, outer, &mut moved, ease);
+    put_in_front(inner, outer, &mut moved, (ease, outward));
     let edges = undirected_edges(outer);
     let mut rounds = 0;
     let mut after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
@@ -69,8 +111,9 @@ pub fn push_outside(
         for [a, b] in crossing_edges(&outer.positions, &edges, inner) {
             let mid = (outer.positions[a as usize] + outer.positions[b as usize]) * 0.5;
             if let Some(near) = inner.nearest(mid).filter(|n| !n.on_opening) {
-                let need = ease - (mid - near.point).dot(near.normal);
-                shifts.extend([a, b].map(|v| (v, near.normal * need.max(0.0))));
+                let d = way(outward, mid, near.normal);
+                let need = along(d, near.normal, (mid - near.point).dot(near.normal), ease);
+                shifts.extend([a, b].map(|v| (v, d * need)));
             }
         }
         // An inner edge through an outer face: the face's corners go out along the inner
@@ -78,8 +121,10 @@ pub fn push_outside(
         // that pokes through.
         for (t, normal, height) in pierced_faces(inner, outer) {
             let face = outer.scaled_normal(t).normalize_or_zero();
-            let s = (height + ease) / normal.dot(face).max(0.7);
-            shifts.extend(outer.triangles[t].map(|v| (v, normal * s)));
+            let [a, b, c] = outer.corners(t);
+            let d = way(outward, (a + b + c) / 3.0, normal);
+            let s = (height + ease) / d.dot(face).max(0.7);
+            shifts.extend(outer.triangles[t].map(|v| (v, d * s)));
         }
         // Each vertex moves by the largest shift asked of it (shifts are outward, so the
         // largest along its own direction covers the others nearly).
@@ -94,7 +139,7 @@ pub fn push_outside(
         }
         // A shift along one inner normal can take a vertex behind another part of the
         // inner surface (in a fold): the vertex rule again.
-        put_in_front(inner, outer, &mut moved, ease);
+        put_in_front(inner, outer, &mut moved, (ease, outward));
         after = certify_layers(inner, &LayerSurface::new(outer, "outer")?);
     }
     Ok(PushReport {
@@ -107,12 +152,30 @@ pub fn push_outside(
 
 /// Every outer vertex behind the inner surface, or nearer in front of it than `ease`, to its
 /// nearest inner point plus the ease along that point's pseudo-normal (only ever outward).
-fn put_in_front(inner: &LayerSurface, outer: &mut TriMesh, moved: &mut [bool], ease: f64) {
+/// A vertex whose nearest inner point is on an opening (a hem, a cuff) is beside the inner
+/// garment, not behind it, and stays, unless it is nearer than the ease: on the opening
+/// itself (two garments sharing a neckline or a hem), it goes out in front of it too.
+fn put_in_front(inner: &LayerSurface, outer: &mut TriMesh, moved: &mut [bool], (ease, outward): (f64, Outward<'_>)) {
+    let ease_in = ease * (1.0 - 1e-9);
     for (p, m) in outer.positions.iter_mut().zip(moved) {
-        if let Some(near) = inner.nearest(*p).filter(|n| !n.on_opening)
-            && gap(inner, *p).is_some_and(|(behind, signed)| behind || signed < ease * (1.0 - 1e-9))
-        {
-            *p += near.normal * (ease - (*p - near.point).dot(near.normal));
+        // Along a direction that is not the surface's normal, one move may end behind or
+        // near another part of the surface (a fold): a few more.
+        for _ in 0..4 {
+            let Some(near) = inner.nearest(*p) else { break };
+            let push = if near.on_opening {
+                near.point.distance(*p) < ease_in && near.signed < ease_in
+            } else {
+                gap(inner, *p).is_some_and(|(behind, signed)| behind || signed < ease_in)
+            };
+            if !push {
+                break;
+            }
+            let signed = (*p - near.point).dot(near.normal);
+            let d = way(outward, *p, near.normal);
+            // Behind the surface by the exact side test but in front by the pseudo-normal
+            // (nearest to an edge of a fold): at least the ease.
+            let step = along(d, near.normal, signed, ease);
+            *p += d * if step > 0.0 { step } else { ease };
             *m = true;
         }
     }

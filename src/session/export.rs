@@ -128,7 +128,10 @@ impl StageSink for ObjExporter {
     fn sculpt(&mut self, info: &StageInfo, stage: crate::session::SculptStage<'_>) -> Result<(), SinkError> {
         match stage.outcome {
             Some(outcome) if stage.refused.is_none() => {
-                let name = info.layer.as_ref().map_or("garment_sculpt".into(), |l| format!("{l}_sculpt"));
+                let name = info
+                    .layer
+                    .as_ref()
+                    .map_or("garment_sculpt".into(), |l| format!("{l}_sculpt"));
                 self.write(info, &name, &outcome.mesh())
             }
             _ => Ok(()),

@@ -29,9 +29,8 @@ pub use options::RunOptions;
 pub use runner::{LiveSession, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, LayerPair,
-    Layered, M1Outcome,
-    M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut, Stage, StageInfo, StageSink,
-    StepEnd,
+    Layered, M1Outcome, M1Stage, NurbsStage, PatternStage, RingStep, SculptOutcome, SculptStage, SectionCut, Stage,
+    StageInfo, StageSink, StepEnd,
 };
 
 /// The built-in demo session (the same text as `assets/sessions/demo.drape`).

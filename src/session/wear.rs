@@ -28,8 +28,76 @@ enum Target {
     None,
 }
 
-/// Runs `step` on the garment it works on.
+/// Runs `step` on the garment it works on; with more than one garment worn, records the
+/// certificates of every garment against the body and of every pair of layers after it.
 pub(super) fn run_worn(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    run: (&Session, &RunOptions),
+    step: &Step,
+) -> Result<(), StepError> {
+    run_on_target(scope, state, run, step)?;
+    if state.worn.len() > 1 {
+        scope.record(&WornFigures {
+            worn: certificates(&state.worn),
+        });
+    }
+    Ok(())
+}
+
+/// The certificates after a step of a session with layers.
+#[derive(serde::Serialize)]
+struct WornFigures {
+    /// `body/NAME`: vertices inside, edges crossing, faces pierced (M0, plus its latest
+    /// mesh); `UNDER/OVER`: vertices behind, edges through, faces pierced (the same).
+    worn: std::collections::BTreeMap<String, [usize; 3]>,
+}
+
+/// Every worn garment against the body and against each garment under it.
+fn certificates(worn: &[Worn]) -> std::collections::BTreeMap<String, [usize; 3]> {
+    let mut out = std::collections::BTreeMap::new();
+    for w in worn {
+        let Some(g) = &w.garment else { continue };
+        let mut body = [0; 3];
+        if let Some(c) = &g.collision {
+            let q = &c.collision.quality;
+            body = [q.penetrating_vertices, q.crossing_edges, q.pierced_faces];
+        }
+        let latest = g
+            .sculpted
+            .as_ref()
+            .map(|s| &s.collision)
+            .or(g.m1.as_ref().map(|m| &m.collision));
+        if let Some(l) = latest {
+            let more = [
+                l.inside_after.len(),
+                l.crossing_after_edges.len(),
+                l.pierced_after.len(),
+            ];
+            body = std::array::from_fn(|k| body[k] + more[k]);
+        }
+        out.insert(format!("body/{}", w.name), body);
+        for pair in g.layered.iter().flat_map(|l| &l.pairs) {
+            let count = |r: &crate::layers::PushReport| {
+                [
+                    r.after.behind,
+                    r.after.outer_edges_through_inner,
+                    r.after.outer_faces_pierced,
+                ]
+            };
+            let m0 = count(&pair.m0);
+            let latest = pair.latest.as_ref().map_or([0; 3], count);
+            out.insert(
+                format!("{}/{}", pair.under, w.name),
+                std::array::from_fn(|k| m0[k] + latest[k]),
+            );
+        }
+    }
+    out
+}
+
+/// Runs `step` on the garment it works on.
+fn run_on_target(
     scope: &mut StepScope<'_, '_, '_>,
     state: &mut SessionState,
     (session, options): (&Session, &RunOptions),
@@ -52,7 +120,11 @@ pub(super) fn run_worn(
     match target {
         Target::None => run_step(scope, state, &context(session, options, &[]), &step.op),
         Target::New { name, over } => {
-            let under = if over { surfaces(state, state.worn.len())? } else { Vec::new() };
+            let under = if over {
+                surfaces(state, state.worn.len())?
+            } else {
+                Vec::new()
+            };
             state.garment = None;
             state.history.clear();
             scope.layer = over.then(|| name.clone());
@@ -93,7 +165,12 @@ fn worn_index(state: &SessionState, name: &str) -> Result<usize, StepError> {
         .position(|w| w.name == name)
         .ok_or_else(|| StepError::NoSuchGarment {
             name: name.to_string(),
-            worn: state.worn.iter().map(|w| w.name.as_str()).collect::<Vec<_>>().join(", "),
+            worn: state
+                .worn
+                .iter()
+                .map(|w| w.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
         })
 }
 
@@ -176,7 +253,13 @@ fn push_over(
         };
         let mut next = current.clone();
         scope.layer = Some(state.worn[j].name.clone());
-        let unmet = collide_and_emit(scope, &state.body, probe.index(), &mut next, &context(session, options, &under));
+        let unmet = collide_and_emit(
+            scope,
+            &state.body,
+            probe.index(),
+            &mut next,
+            &context(session, options, &under),
+        );
         scope.layer = None;
         if let Some(unmet) = unmet {
             let message = format!(
@@ -218,7 +301,9 @@ fn refuse_all(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState, k: us
     let outer = state.worn.last().and_then(|w| w.garment.as_ref()?.layered.as_ref());
     match outer {
         Some(layered) => scope.refuse(message, "layers.refused", Stage::Layers(layered)),
-        None => scope.shortfalls.push(super::emit::Shortfall::Refused(message.to_string())),
+        None => scope
+            .shortfalls
+            .push(super::emit::Shortfall::Refused(message.to_string())),
     }
 }
 

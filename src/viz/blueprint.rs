@@ -65,23 +65,19 @@ pub fn default_blueprint() -> Blueprint {
                             "+ /constraints/**",
                             "+ /nurbs/parts/**",
                             "+ /nurbs/contacts",
-                            "+ /layers/*/garment/**",
+                            "+ /layers/**",
                             "- /garment/clearance",
                             "- /garment/m1/**",
                             "- /garment/sculpt/**",
                             "- /garment/cut_lines/**",
                             "- /collision/m1/**",
-                            "- /layers/*/garment/clearance",
-                            "- /layers/*/garment/m1/**",
-                            "- /layers/*/garment/sculpt/**",
-                            "- /layers/*/garment/cut_lines/**",
                         ])
                         .into(),
                     // Garments worn over others: each one's gap in front of the one under
                     // it (the fit map's colours), over the muted garment under it.
                     Spatial3DView::new("Layers")
                         .with_origin("/")
-                        .with_contents(["+ /body/mesh", "+ /garment/m0", "+ /layers/*/gap_map"])
+                        .with_contents(["+ /body/mesh", "+ /garment/m0", "+ /layer_gaps/**"])
                         .into(),
                     // The body's own stages: partition tint, landmarks, rings, partition
                     // bounds, the dress forms and sections.

@@ -1,5 +1,5 @@
 //! A garment worn over others: its latest mesh coloured by its gap in front of the garment
-//! right under it (`layers/<name>/gap_map`, the fit map's bands: magenta behind it, red
+//! right under it (`layer_gaps/<name>`, the fit map's bands: magenta behind it, red
 //! within 2 mm, blue over 40 mm), and the garments under it muted (grey, in place of their
 //! M0 at `garment/m0`, or `layers/<under>/garment/m0` for one worn over another).
 
@@ -20,10 +20,16 @@ impl RerunLogger {
         let colors = layered
             .gaps
             .iter()
-            .map(|&g| if g.is_finite() { CLEARANCE_BANDS[clearance_band(g)].1 } else { MUTED })
+            .map(|&g| {
+                if g.is_finite() {
+                    CLEARANCE_BANDS[clearance_band(g)].1
+                } else {
+                    MUTED
+                }
+            })
             .collect();
         self.rec
-            .log(format!("layers/{name}/gap_map"), &colored_mesh(&layered.mesh, colors))
+            .log(format!("layer_gaps/{name}"), &colored_mesh(&layered.mesh, colors))
             .map_err(to_sink)?;
         for (k, (under, mesh)) in layered.under.iter().enumerate() {
             self.rec.set_layer((k > 0).then(|| under.clone()));

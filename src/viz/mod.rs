@@ -20,7 +20,8 @@
 //! `sculpt_compare/{none,uniform,adaptive}` (`drape sculpt-compare`).
 //! A garment worn over another logs its own entities under `layers/<name>/` (its
 //! `garment/**`, `collision/**`, `constraints/**`, `sculpt/**` and `patterns/**`), and
-//! `layers/<name>/gap_map` (its gap in front of the garment under it).
+//! `layer_gaps/<name>` (its gap in front of the garment under it; the garment under it
+//! muted in place of its M0). The Garment view shows all of `layers/**`.
 //! Timelines: `step`, `stage`, `iter` (solver iterations over the session) and `level`
 //! (subdivision levels of the [nurbs] experiment).
 

@@ -94,7 +94,10 @@ impl OrderedRecording {
     ) -> Result<(), SinkError> {
         let mut path = path.into();
         if let Some(layer) = &self.2
-            && path.iter().next().is_some_and(|p| GARMENT_ROOTS.contains(&p.unescaped_str()))
+            && path
+                .iter()
+                .next()
+                .is_some_and(|p| GARMENT_ROOTS.contains(&p.unescaped_str()))
         {
             path = rerun::EntityPath::from(format!("layers/{layer}")).join(&path);
         }

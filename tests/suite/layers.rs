@@ -186,7 +186,7 @@ fn a_coarse_outer_tube_over_a_fine_inner_one_needs_its_faces_pushed_too() {
 /// Outer vertices behind the inner surface, by a second reading written here: the nearest
 /// inner triangle by brute force (its nearest point inside the triangle, not on an
 /// opening), and the side of its plane.
-fn behind_by_brute(inner: &TriMesh, outer: &TriMesh) -> usize {
+pub(super) fn behind_by_brute(inner: &TriMesh, outer: &TriMesh) -> usize {
     outer
         .positions
         .iter()
@@ -265,7 +265,7 @@ fn on_every_shipped_body_an_outer_band_dented_into_an_inner_one_is_put_back_betw
 }
 
 /// Edges of `a` through faces of `b`, by brute force.
-fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
+pub(super) fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
     edges(a)
         .iter()
         .filter(|[u, v]| {

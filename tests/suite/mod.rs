@@ -16,6 +16,7 @@ mod import;
 mod index_cache;
 mod interrupt;
 mod landmarks;
+mod layered_session;
 mod layers;
 mod layout;
 mod m1;

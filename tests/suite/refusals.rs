@@ -103,7 +103,7 @@ fn a_step_that_leaves_the_garment_in_the_body_says_so_and_strict_fails_the_run()
         .iter()
         .filter_map(|(s, f)| match f {
             Shortfall::Guarantee { inside, crossing, .. } => Some((*s, *inside, *crossing)),
-            Shortfall::Refused(_) => None,
+            Shortfall::Refused(_) | Shortfall::Layers(_) => None,
         })
         .collect();
     assert_eq!(

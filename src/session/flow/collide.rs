@@ -163,16 +163,28 @@ pub(in crate::session) fn collide_and_emit(
         return Some(Unclear::Surface(e.to_string()));
     }
     let q = &state.collision.as_ref()?.collision.quality;
-    let latest = state.sculpted.as_ref().map(|s| &s.collision).or(state.m1.as_ref().map(|m| &m.collision));
+    let latest = state
+        .sculpted
+        .as_ref()
+        .map(|s| &s.collision)
+        .or(state.m1.as_ref().map(|m| &m.collision));
     match latest.filter(|_| state.layered.is_some()) {
         // Worn over another garment, the latest mesh was pushed: its body check counts too.
         Some(l) if !l.quality.is_clear() => {
-            return Some(Unclear::Body([l.inside_after.len(), l.crossing_after_edges.len(), l.pierced_after.len()]));
+            return Some(Unclear::Body([
+                l.inside_after.len(),
+                l.crossing_after_edges.len(),
+                l.pierced_after.len(),
+            ]));
         }
         _ => {}
     }
     if !q.is_clear() {
-        return Some(Unclear::Body([q.penetrating_vertices, q.crossing_edges, q.pierced_faces]));
+        return Some(Unclear::Body([
+            q.penetrating_vertices,
+            q.crossing_edges,
+            q.pierced_faces,
+        ]));
     }
     super::layers::out_of_order(state).map(|(under, counts)| Unclear::Layers(under, counts))
 }
@@ -222,7 +234,9 @@ pub(in crate::session) fn collide_new(
                 pierced,
             });
         }
-        Some(unclear) => scope.shortfalls.push(crate::session::emit::Shortfall::Layers(unclear.message())),
+        Some(unclear) => scope
+            .shortfalls
+            .push(crate::session::emit::Shortfall::Layers(unclear.message())),
         None => {}
     }
 }
@@ -363,7 +377,12 @@ pub(in crate::session) fn record_layers(scope: &mut StepScope<'_, '_, '_>, state
     if let Some(l) = &state.layered {
         let pairs: BTreeMap<&str, &crate::session::stage::LayerPair> =
             l.pairs.iter().map(|p| (p.under.as_str(), p)).collect();
-        let smallest = l.gaps.iter().copied().filter(|g| g.is_finite()).fold(f64::INFINITY, f64::min);
+        let smallest = l
+            .gaps
+            .iter()
+            .copied()
+            .filter(|g| g.is_finite())
+            .fold(f64::INFINITY, f64::min);
         #[derive(Serialize)]
         struct LayerFigures<'a> {
             /// Per garment under it: the pushes.

@@ -8,7 +8,9 @@
 use glam::DVec3;
 
 use crate::collision::{self, BodyIndex, Quality};
-use crate::layers::{LayerError, LayerSurface, PushOptions, PushReport, away_from_body, certify_layers, push_outside};
+use crate::layers::{
+    LayerError, LayerSurface, PushOptions, PushReport, away_from_body, certify_layers, push_outside_along,
+};
 use crate::m1::M1Collision;
 use crate::mesh::TriMesh;
 use crate::session::stage::{LayerPair, Layered};
@@ -90,8 +92,10 @@ fn push_all(
         index,
     );
     let mut reports = Vec::with_capacity(below.len());
+    let reach = 2.0 * index.height;
+    let outward = |p: DVec3| index.nearest(p, reach).map(|n| n.normal);
     for b in below {
-        reports.push(push_outside(under(b), &mut mesh, options)?);
+        reports.push(push_outside_along(under(b), &mut mesh, options, &outward)?);
     }
     let moved = reports.iter().any(|r| r.moved > 0);
     if moved && below.len() > 1 {
@@ -105,7 +109,13 @@ fn push_all(
 }
 
 /// The body check of a pushed mesh (every vertex, edge and face), as the collision's own.
-fn body_check(index: &BodyIndex, before: &[DVec3], after: &[DVec3], triangles: &[[u32; 3]], edges: &[[u32; 2]]) -> Quality {
+fn body_check(
+    index: &BodyIndex,
+    before: &[DVec3],
+    after: &[DVec3],
+    triangles: &[[u32; 3]],
+    edges: &[[u32; 2]],
+) -> Quality {
     collision::quality(index, before, after, edges, &[]).with_faces(index, after, triangles, None)
 }
 
@@ -122,7 +132,13 @@ pub(in crate::session) fn push_m0(
         ..PushOptions::default()
     };
     let before = c.mesh.positions.clone();
-    let (reports, moved) = push_all(&mut c.mesh.positions, &c.mesh.triangles, below, |b| &b.m0, (index, &options))?;
+    let (reports, moved) = push_all(
+        &mut c.mesh.positions,
+        &c.mesh.triangles,
+        below,
+        |b| &b.m0,
+        (index, &options),
+    )?;
     if moved {
         let (positions, triangles) = (&c.mesh.positions, &c.mesh.triangles);
         c.quality = collision::quality(index, &before, positions, &garment.edges, &c.responses)
@@ -189,7 +205,9 @@ pub(in crate::session) fn finish(
             latest: latest.as_ref().map(|l| l[k].clone()),
         })
         .collect();
-    let mesh = surface_mesh(state).map(|m| away_from_body(m, index)).unwrap_or_default();
+    let mesh = surface_mesh(state)
+        .map(|m| away_from_body(m, index))
+        .unwrap_or_default();
     let gaps = below.last().map_or_else(Vec::new, |b| {
         mesh.positions
             .iter()
@@ -200,7 +218,10 @@ pub(in crate::session) fn finish(
         pairs,
         mesh,
         gaps,
-        under: below.iter().map(|b| (b.name.clone(), b.latest().mesh.clone())).collect(),
+        under: below
+            .iter()
+            .map(|b| (b.name.clone(), b.latest().mesh.clone()))
+            .collect(),
     });
     Ok(())
 }

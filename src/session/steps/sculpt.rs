@@ -60,7 +60,13 @@ pub(super) fn run(
             .map(|l| l.pairs.iter().map(|p| p.m0.clone()).collect())
             .unwrap_or_default();
         scope.timed("layers.push_latest", || {
-            crate::session::flow::layers::finish(index, &mut next, cx.below, m0, crate::layers::PushOptions::default().ease)
+            crate::session::flow::layers::finish(
+                index,
+                &mut next,
+                cx.below,
+                m0,
+                crate::layers::PushOptions::default().ease,
+            )
         })
     });
     let Some(outcome) = next.sculpted.as_ref() else {

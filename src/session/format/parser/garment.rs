@@ -78,8 +78,15 @@ impl Parser<'_> {
             None => 6,
             Some(t) => integer_in(line, t, "resolution", 2..=24)?,
         };
-        let (name, column) = a.get("name").map_or((template.name(), which.column), |t| (t.text, t.column));
-        let over = self.wear(line, (name, column), a.get("over").as_ref(), (Some((template, style)), None))?;
+        let (name, column) = a
+            .get("name")
+            .map_or((template.name(), which.column), |t| (t.text, t.column));
+        let over = self.wear(
+            line,
+            (name, column),
+            a.get("over").as_ref(),
+            (Some((template, style)), None),
+        )?;
         Ok(Op::Garment {
             template,
             style,

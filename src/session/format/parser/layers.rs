@@ -119,7 +119,11 @@ impl Parser<'_> {
                 format!(
                     "no garment '{name}'{}: the garments worn are {}",
                     did_you_mean(name, self.worn.iter().map(|w| w.name.as_str())),
-                    if self.worn.is_empty() { "none".into() } else { self.names() }
+                    if self.worn.is_empty() {
+                        "none".into()
+                    } else {
+                        self.names()
+                    }
                 ),
             ));
         };
