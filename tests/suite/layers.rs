@@ -98,7 +98,7 @@ fn brute(inner: &TriMesh, outer: &TriMesh, r: f64, around: usize) -> [usize; 3] 
 
 /// The outer tube (`outer_around` by `outer_rings`) dented into the fine inner one, pushed
 /// back, and judged; returns the push's report.
-fn dented_and_pushed_back(outer_around: usize, outer_rings: usize) -> drape::layers::PushReport {
+fn dented_and_pushed_back(outer_around: usize, outer_rings: usize, along_radius: bool) -> drape::layers::PushReport {
     let (r, around) = (0.20, 60);
     let inner = tube(r, (around, 0.0), 31, (0.0, 1.0));
     // Turned by an angle no vertex of the inner tube is at, so that no outer edge runs
@@ -138,7 +138,15 @@ fn dented_and_pushed_back(outer_around: usize, outer_rings: usize) -> drape::lay
     );
     let ease = 0.003;
     let untouched = outer.clone();
-    let report = push_outside(&surface, &mut outer, &PushOptions { ease, rounds: 8 }).expect("pushed");
+    let options = PushOptions { ease, rounds: 8 };
+    // Along the radius (the "body" is the axis), or along the inner tube's normals.
+    let radial = |p: DVec3| Some(DVec3::new(p.x, 0.0, p.z).normalize());
+    let report = if along_radius {
+        drape::layers::push_outside_along(&surface, &mut outer, &options, &radial)
+    } else {
+        push_outside(&surface, &mut outer, &options)
+    }
+    .expect("pushed");
     assert_eq!(brute(&inner, &outer, r, around), [0, 0, 0], "{report:?}");
     assert!(report.after.clear(), "{report:?}");
     // Every outer vertex in front of the inner tube by at least the ease; the ones far
@@ -172,33 +180,54 @@ fn dented_and_pushed_back(outer_around: usize, outer_rings: usize) -> drape::lay
 
 #[test]
 fn an_outer_tube_pushed_into_the_inner_is_put_back_in_front_by_the_ease() {
-    dented_and_pushed_back(44, 23);
+    dented_and_pushed_back(44, 23, false);
+}
+
+#[test]
+fn pushed_along_the_radius_instead_the_outer_tube_is_put_back_in_front_too() {
+    dented_and_pushed_back(44, 23, true);
+    let report = dented_and_pushed_back(12, 10, true);
+    assert!(report.moved > 0, "{report:?}");
 }
 
 #[test]
 fn a_coarse_outer_tube_over_a_fine_inner_one_needs_its_faces_pushed_too() {
     // Twelve vertices a ring: a face between a dented vertex, put back 3 mm in front, and
     // its neighbours sags through the inner tube's ridges, so the face rounds must run.
-    let report = dented_and_pushed_back(12, 10);
+    let report = dented_and_pushed_back(12, 10, false);
     assert!(report.rounds > 0, "{report:?}");
 }
 
 /// Outer vertices behind the inner surface, by a second reading written here: the nearest
 /// inner triangle by brute force (its nearest point inside the triangle, not on an
-/// opening), and the side of its plane.
+/// opening), and the side of its plane. Triangles whose box is farther than the nearest so
+/// far are skipped (only saves time: a triangle is never nearer than its box).
 pub(super) fn behind_by_brute(inner: &TriMesh, outer: &TriMesh) -> usize {
+    let corners = |t: &[u32; 3]| t.map(|i| inner.positions[i as usize]);
+    let boxes: Vec<(DVec3, DVec3)> = inner
+        .triangles
+        .iter()
+        .map(|t| {
+            let c = corners(t);
+            (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]))
+        })
+        .collect();
     outer
         .positions
         .iter()
         .filter(|p| {
-            let (t, _) = inner
-                .triangles
-                .iter()
-                .enumerate()
-                .map(|(t, tri)| (t, triangle_distance(**p, tri.map(|i| inner.positions[i as usize]))))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .expect("an inner triangle");
-            let [a, b, c] = inner.triangles[t].map(|i| inner.positions[i as usize]);
+            let mut best = (usize::MAX, f64::INFINITY);
+            for (t, tri) in inner.triangles.iter().enumerate() {
+                let (lo, hi) = boxes[t];
+                if (**p - p.clamp(lo, hi)).length() >= best.1 {
+                    continue;
+                }
+                let d = triangle_distance(**p, corners(tri));
+                if d < best.1 {
+                    best = (t, d);
+                }
+            }
+            let [a, b, c] = corners(&inner.triangles[best.0]);
             let n = (b - a).cross(c - a);
             // Only where the nearest point is inside the face: beside an edge the plane
             // alone does not tell.
@@ -264,18 +293,41 @@ fn on_every_shipped_body_an_outer_band_dented_into_an_inner_one_is_put_back_betw
     }
 }
 
-/// Edges of `a` through faces of `b`, by brute force.
+/// Edges of `a` through faces of `b`, by brute force: every edge against every face whose
+/// box its box meets (found through a grid of cells, which only saves time).
 pub(super) fn brute_crossings(b: &TriMesh, a: &TriMesh) -> usize {
+    let cell = 0.02;
+    let key = |p: DVec3| (p / cell).floor().as_ivec3().to_array();
+    let corners = |t: &[u32; 3]| t.map(|i| b.positions[i as usize]);
+    let mut grid: std::collections::BTreeMap<[i32; 3], Vec<usize>> = std::collections::BTreeMap::new();
+    for (f, t) in b.triangles.iter().enumerate() {
+        let c = corners(t);
+        let (lo, hi) = (key(c[0].min(c[1]).min(c[2])), key(c[0].max(c[1]).max(c[2])));
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    grid.entry([x, y, z]).or_default().push(f);
+                }
+            }
+        }
+    }
     edges(a)
         .iter()
         .filter(|[u, v]| {
             let (p, q) = (a.positions[*u as usize], a.positions[*v as usize]);
-            let (lo, hi) = (p.min(q), p.max(q));
-            b.triangles.iter().any(|t| {
-                let c = t.map(|i| b.positions[i as usize]);
-                let (tlo, thi) = (c[0].min(c[1]).min(c[2]), c[0].max(c[1]).max(c[2]));
-                tlo.cmple(hi).all() && thi.cmpge(lo).all() && segment_through_triangle(p, q, c)
-            })
+            let (lo, hi) = (key(p.min(q)), key(p.max(q)));
+            let mut near = Vec::new();
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        near.extend(grid.get(&[x, y, z]).into_iter().flatten().copied());
+                    }
+                }
+            }
+            near.sort_unstable();
+            near.dedup();
+            near.iter()
+                .any(|&f| segment_through_triangle(p, q, corners(&b.triangles[f])))
         })
         .count()
 }
