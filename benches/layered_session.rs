@@ -80,7 +80,10 @@ fn certificates(m: &serde_json::Value) -> String {
     ["body/inner", "body/outer", "inner/outer"]
         .map(|k| {
             let c = &m["worn"][k];
-            format!("{}/{}/{}", c[0], c[1], c[2])
+            format!(
+                "{}/{}/{}",
+                c["inside_or_behind"], c["edges_through"], c["faces_pierced"]
+            )
         })
         .join(", ")
 }

@@ -48,13 +48,34 @@ pub(super) fn run_worn(
 /// The certificates after a step of a session with layers.
 #[derive(serde::Serialize)]
 struct WornFigures {
-    /// `body/NAME`: vertices inside, edges crossing, faces pierced (M0, plus its latest
-    /// mesh); `UNDER/OVER`: vertices behind, edges through, faces pierced (the same).
-    worn: std::collections::BTreeMap<String, [usize; 3]>,
+    /// `body/NAME`: the garment against the body; `UNDER/OVER`: a pair of layers (M0, plus
+    /// the latest mesh).
+    worn: std::collections::BTreeMap<String, Certificate>,
+}
+
+/// A certificate's counts.
+#[derive(serde::Serialize)]
+struct Certificate {
+    /// Vertices inside the body, or behind the garment under.
+    inside_or_behind: usize,
+    /// Edges through the body's faces, or through the faces of the garment under.
+    edges_through: usize,
+    /// Faces an edge of the body, or of the garment under, passes through.
+    faces_pierced: usize,
+}
+
+impl From<[usize; 3]> for Certificate {
+    fn from([inside_or_behind, edges_through, faces_pierced]: [usize; 3]) -> Self {
+        Self {
+            inside_or_behind,
+            edges_through,
+            faces_pierced,
+        }
+    }
 }
 
 /// Every worn garment against the body and against each garment under it.
-fn certificates(worn: &[Worn]) -> std::collections::BTreeMap<String, [usize; 3]> {
+fn certificates(worn: &[Worn]) -> std::collections::BTreeMap<String, Certificate> {
     let mut out = std::collections::BTreeMap::new();
     for w in worn {
         let Some(g) = &w.garment else { continue };
@@ -76,7 +97,7 @@ fn certificates(worn: &[Worn]) -> std::collections::BTreeMap<String, [usize; 3]>
             ];
             body = std::array::from_fn(|k| body[k] + more[k]);
         }
-        out.insert(format!("body/{}", w.name), body);
+        out.insert(format!("body/{}", w.name), body.into());
         for pair in g.layered.iter().flat_map(|l| &l.pairs) {
             let count = |r: &crate::layers::PushReport| {
                 [
@@ -89,7 +110,7 @@ fn certificates(worn: &[Worn]) -> std::collections::BTreeMap<String, [usize; 3]>
             let latest = pair.latest.as_ref().map_or([0; 3], count);
             out.insert(
                 format!("{}/{}", pair.under, w.name),
-                std::array::from_fn(|k| m0[k] + latest[k]),
+                Certificate::from(std::array::from_fn(|k| m0[k] + latest[k])),
             );
         }
     }

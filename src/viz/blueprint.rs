@@ -51,6 +51,80 @@ const GUARANTEE_FIGURES: [&str; 8] = [
 /// per-stage log with the clearance scale and the partition table as tabs; the time panel on the `stage` timeline; the blueprint and selection panels
 /// collapsed.
 pub fn default_blueprint() -> Blueprint {
+    layered_blueprint(&[])
+}
+
+/// The contents of the views that show garments worn over others.
+struct Contents {
+    garment: Vec<String>,
+    m1: Vec<String>,
+    clearance: Vec<String>,
+}
+
+impl Contents {
+    fn new(layered: &[String]) -> Self {
+        let each = |rules: &[&str]| -> Vec<String> {
+            layered
+                .iter()
+                .flat_map(|name| {
+                    rules
+                        .iter()
+                        .map(move |r| format!("{}/layers/{name}/{}", &r[..2], &r[2..]))
+                })
+                .collect()
+        };
+        let garment: Vec<String> = [
+            "+ /body/mesh",
+            "+ /garment/**",
+            "+ /collision/**",
+            "+ /constraints/**",
+            "+ /nurbs/parts/**",
+            "+ /nurbs/contacts",
+            "+ /layers/**",
+            "- /garment/clearance",
+            "- /garment/m1/**",
+            "- /garment/sculpt/**",
+            "- /garment/cut_lines/**",
+            "- /collision/m1/**",
+        ]
+        .into_iter()
+        .map(String::from)
+        .chain(each(&[
+            "- garment/clearance",
+            "- garment/m1/**",
+            "- garment/sculpt/**",
+            "- garment/cut_lines/**",
+            "- collision/m1/**",
+        ]))
+        .collect();
+        let m1: Vec<String> = [
+            "+ /body/mesh",
+            "+ /garment/m1/**",
+            "+ /garment/cut_lines/**",
+            "+ /collision/m1/**",
+        ]
+        .into_iter()
+        .map(String::from)
+        .chain(each(&[
+            "+ garment/m1/**",
+            "+ garment/cut_lines/**",
+            "+ collision/m1/**",
+        ]))
+        .collect();
+        let clearance: Vec<String> = std::iter::once("+ /garment/clearance".to_string())
+            .chain(each(&["+ garment/clearance"]))
+            .collect();
+        Self { garment, m1, clearance }
+    }
+}
+
+/// [`default_blueprint`] for a session that wears the garments `layered` over others (their
+/// entities under `layers/<name>/`): the Garment view shows their M0, collision and
+/// framework (not their M1, sculpt, cut lines or clearance), the M1 view their M1 and cut
+/// lines, the Clearance view their clearance maps. The logger sends it when the first
+/// garment worn over another is logged.
+pub fn layered_blueprint(layered: &[String]) -> Blueprint {
+    let Contents { garment, m1, clearance } = Contents::new(layered);
     Blueprint::new(
         Horizontal::new([
             Vertical::new([
@@ -58,20 +132,7 @@ pub fn default_blueprint() -> Blueprint {
                     // M0 on the plain body, with the collision marks and the framework.
                     Spatial3DView::new("Garment")
                         .with_origin("/")
-                        .with_contents([
-                            "+ /body/mesh",
-                            "+ /garment/**",
-                            "+ /collision/**",
-                            "+ /constraints/**",
-                            "+ /nurbs/parts/**",
-                            "+ /nurbs/contacts",
-                            "+ /layers/**",
-                            "- /garment/clearance",
-                            "- /garment/m1/**",
-                            "- /garment/sculpt/**",
-                            "- /garment/cut_lines/**",
-                            "- /collision/m1/**",
-                        ])
+                        .with_contents(garment)
                         .into(),
                     // Garments worn over others: each one's gap in front of the one under
                     // it (the fit map's colours), over the muted garment under it.
@@ -111,18 +172,10 @@ pub fn default_blueprint() -> Blueprint {
                 .into(),
                 Horizontal::new([
                     Tabs::new([
-                        Spatial3DView::new("M1")
-                            .with_origin("/")
-                            .with_contents([
-                                "+ /body/mesh",
-                                "+ /garment/m1/**",
-                                "+ /garment/cut_lines/**",
-                                "+ /collision/m1/**",
-                            ])
-                            .into(),
+                        Spatial3DView::new("M1").with_origin("/").with_contents(m1).into(),
                         Spatial3DView::new("Clearance")
                             .with_origin("/")
-                            .with_contents(["+ /garment/clearance"])
+                            .with_contents(clearance)
                             .into(),
                     ])
                     .into(),

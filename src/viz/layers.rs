@@ -17,6 +17,17 @@ impl RerunLogger {
     /// Logs a garment worn over others (`info.layer` is its name).
     pub(super) fn log_layers(&mut self, info: &StageInfo, layered: &Layered) -> Result<(), SinkError> {
         let name = info.layer.as_deref().unwrap_or("outer");
+        // The first time a garment worn over another is logged: the layout that shows it.
+        if !self.layered.iter().any(|n| n == name) {
+            self.layered.push(name.to_string());
+            let activation = rerun::blueprint::BlueprintActivation {
+                make_active: true,
+                make_default: true,
+            };
+            super::blueprint::layered_blueprint(&self.layered)
+                .send(&self.rec, activation)
+                .map_err(to_sink)?;
+        }
         let colors = layered
             .gaps
             .iter()

@@ -77,6 +77,8 @@ pub struct RerunLogger {
     pub(super) rec: OrderedRecording,
     pub(super) options: LogOptions,
     iter: i64,
+    /// The garments worn over others logged so far (the layout names them).
+    pub(super) layered: Vec<String>,
 }
 
 impl From<rerun::RecordingStreamError> for SinkError {
@@ -144,7 +146,12 @@ impl RerunLogger {
                 .map_err(to_sink)?;
             }
         }
-        Ok(Self { rec, options, iter: 0 })
+        Ok(Self {
+            rec,
+            options,
+            iter: 0,
+            layered: Vec::new(),
+        })
     }
 
     /// The recording.

@@ -44,7 +44,7 @@ pub mod replay;
 mod sculpt;
 pub mod target;
 
-pub use blueprint::{check_garment_blueprint, default_blueprint, nurbs_blueprint, sculpt_blueprint};
+pub use blueprint::{check_garment_blueprint, default_blueprint, layered_blueprint, nurbs_blueprint, sculpt_blueprint};
 pub use logger::{LogOptions, RerunLogger};
 pub use rerun::RecordingStream;
 pub use rerun::blueprint::Blueprint;

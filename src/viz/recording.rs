@@ -16,7 +16,7 @@ pub const METRIC_UNITS: [(&str, &str); 6] = [
 ];
 
 /// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
-/// `metrics/m/...` for lengths, heights, points and residuals (`_m`, `girth`, `_y`,
+/// `metrics/m/...` for lengths, gaps, heights, points and residuals (`_m`, `_gap`, `girth`, `_y`,
 /// `point`, `dragged_to`, `residual`), `metrics/deg/...` for names ending in `_deg`,
 /// `metrics/ratio/...` for stretches and relative errors, `metrics/size/...` for mesh sizes
 /// (vertices, faces, edges, triangles) and what a check tested, skipped, reused or welded
@@ -31,6 +31,7 @@ pub fn metric_path(path: &str) -> String {
     } else if rest.ends_with("_deg") {
         "deg"
     } else if rest.ends_with("_m")
+        || rest.ends_with("_gap")
         || rest.contains("_m/")
         || rest.contains("residual")
         || rest.ends_with("girth")

@@ -125,7 +125,7 @@ fn judge(label: &str, steps: &str, meshes: &[&str], undos: &[(usize, usize)]) {
         // Counts by file (a garment a step did not change keeps its file from before).
         let mut on_body: BTreeMap<PathBuf, [usize; 3]> = BTreeMap::new();
         let mut between: BTreeMap<(PathBuf, PathBuf), [usize; 3]> = BTreeMap::new();
-        for step in 2..figures.len() {
+        for (step, figure) in figures.iter().enumerate().skip(2) {
             for mesh in meshes {
                 let (Some(i), Some(o)) = (
                     current(&export, ("inner", mesh), step),
@@ -149,8 +149,8 @@ fn judge(label: &str, steps: &str, meshes: &[&str], undos: &[(usize, usize)]) {
                 ];
                 eprintln!(
                     "{name}: step {step} ({}{}), {mesh}: body-inner, body-outer, inner-outer {counts:?}",
-                    figures[step]["op"],
-                    if figures[step].get("refused").is_some() {
+                    figure["op"],
+                    if figure.get("refused").is_some() {
                         ", refused"
                     } else {
                         ""
