@@ -189,3 +189,144 @@ fn a_dress_over_a_jumpsuit_stays_in_front_of_it_and_clear_of_the_body_through_ev
 fn a_shirt_under_a_larger_loose_shirt_stays_behind_it_on_m0_and_m1_through_every_edit_on_every_body() {
     judge("shirts", SHIRTS, &["m0", "m1"], &[(6, 4)]);
 }
+
+/// The parse error of `steps` after a scene with the built-in body.
+fn error_of(steps: &str) -> String {
+    match drape::session::parse_session(&format!("drape 1\n{steps}"), "s.drape", Path::new(".")) {
+        Ok(s) => panic!("accepted {steps:?}: {:?}", s.steps),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn layers_that_cannot_be_worn_or_garments_that_are_not_worn_are_named_at_their_place() {
+    for (steps, at, message) in [
+        (
+            "garment dress over=inner\n",
+            "s.drape:2:",
+            "over=inner needs a garment to be worn over: put a 'garment' step before this one",
+        ),
+        (
+            "garment jumpsuit name=inner\ngarment dress over=coat\n",
+            "s.drape:3:",
+            "no garment 'coat' to wear this over: the garments worn are inner",
+        ),
+        (
+            "garment jumpsuit name=a\ngarment dress name=b over=a\ngarment shirt over=a\n",
+            "s.drape:4:",
+            "'a' is under 'b' already: a garment goes over the outermost one (over=b)",
+        ),
+        (
+            "garment jumpsuit\ngarment jumpsuit over=jumpsuit\n",
+            "s.drape:3:",
+            "a garment named 'jumpsuit' is worn already: give this one another name (name=...)",
+        ),
+        (
+            "garment jumpsuit name=inner\ndrag outer:waist.front by=0,0,0.01\n",
+            "s.drape:3:",
+            "no garment 'outer': the garments worn are inner",
+        ),
+        (
+            "garment jumpsuit name=inner\ngarment shirt name=top over=inner\ndrag left_knee by=0,0,0.01\n",
+            "s.drape:4:",
+            "unknown curve 'left_knee' for the shirt",
+        ),
+        (
+            "garment jumpsuit name=inner\nsculpt at=coat:waist.front radius=0.08 peak=0.02\n",
+            "s.drape:3:",
+            "no garment 'coat': the garments worn are inner",
+        ),
+    ] {
+        let e = error_of(steps);
+        assert!(e.starts_with(at) && e.contains(message), "{steps:?}: {e}");
+    }
+    // A garment replaced by one not worn over it takes its name with it.
+    let e = error_of("garment jumpsuit name=inner\ngarment dress\nset inner:waist_girth +0.01\n");
+    assert!(e.contains("no garment 'inner': the garments worn are dress"), "{e}");
+}
+
+#[test]
+fn an_edit_naming_its_garment_is_checked_against_that_garment_and_the_bare_one_works_on_the_outermost() {
+    use drape::constraint::Edit;
+    use drape::session::Op;
+    let session = drape::session::parse_session(
+        "drape 1\ngarment jumpsuit name=inner\ngarment shirt name=top over=inner\n\
+         drag inner:left_knee by=0,0,0.01\nset inner:waist_girth +0.02\ndrag waist.front by=0,0,0.01\n\
+         sculpt at=inner:waist.front radius=0.08 peak=0.02\n",
+        "s.drape",
+        Path::new("."),
+    )
+    .expect("parses");
+    let named: Vec<(Option<&str>, &Op)> = session.steps.iter().map(|s| (s.garment.as_deref(), &s.op)).collect();
+    assert!(matches!(named[2], (Some("inner"), Op::Drag(Edit::Curve { name, .. })) if name == "left_knee"));
+    assert!(matches!(named[3], (Some("inner"), Op::Set { name, .. }) if name == "waist_girth"));
+    assert!(matches!(named[4], (None, Op::Drag(Edit::Point { name, .. })) if name == "waist.front"));
+    assert!(
+        matches!(named[5], (Some("inner"), Op::Sculpt { at: drape::session::SculptAt::Control(c), .. }) if c == "waist.front")
+    );
+    match &session.steps[1].op {
+        Op::Garment { layer, .. } => {
+            assert_eq!((layer.name.as_str(), layer.over.as_deref()), ("top", Some("inner")));
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn sculpts_of_either_layer_keep_them_in_order_on_the_heavy_older_body() {
+    // The dress sculpted in towards the jumpsuit, then the jumpsuit sculpted out into the
+    // dress: the sculpted meshes (each garment's latest) judged as the others are.
+    let path = std::fs::canonicalize("assets/bodies/female-old-heavy.obj").expect("the body");
+    let dir = scratch("layered-sculpts");
+    let file = dir.join("sculpts.drape");
+    std::fs::write(
+        &file,
+        format!(
+            "drape 1\nbody \"{}\"\nm1\n{}sculpt at=outer:waist.front radius=0.1 peak=-0.04\n\
+             sculpt at=inner:waist.front radius=0.1 peak=0.04\n",
+            path.display(),
+            "garment jumpsuit name=inner\ngarment dress name=outer over=inner fit=loose\n"
+        ),
+    )
+    .expect("written");
+    let (export, metrics) = (dir.join("export"), dir.join("metrics.json"));
+    let o = drape_cli()
+        .args([
+            "run",
+            file.to_str().expect("utf-8"),
+            "--log-detail",
+            "metrics",
+            "--save",
+        ])
+        .arg(dir.join("sculpts.rrd"))
+        .arg("--export")
+        .arg(&export)
+        .arg("--metrics")
+        .arg(&metrics)
+        .output()
+        .expect("drape runs");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let figures: Vec<serde_json::Value> =
+        serde_json::from_str(&std::fs::read_to_string(&metrics).expect("metrics")).expect("JSON");
+    for step in [3, 4] {
+        assert!(figures[step].get("refused").is_none(), "step {step}: {}", figures[step]);
+    }
+    // The dress's sculpt went into the jumpsuit before its push.
+    let before = &figures[3]["outer"]["over"]["inner"]["latest"]["before"];
+    assert!(before["behind"].as_u64().unwrap_or(0) > 0, "{before}");
+    let body = read(&export.join("step00_body.obj"));
+    let inner = away_from(&body, read(&export.join("step04_garment_sculpt.obj")));
+    let outer = read(&current(&export, ("outer", "sculpt"), 4).expect("the dress's sculpt"));
+    assert_eq!(
+        [
+            brute(&body, &inner),
+            brute(&body, &outer),
+            [
+                behind_by_brute(&inner, &outer),
+                brute_crossings(&inner, &outer),
+                brute_crossings(&outer, &inner)
+            ]
+        ],
+        [[0; 3]; 3]
+    );
+}

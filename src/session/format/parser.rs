@@ -102,6 +102,16 @@ pub fn parse_session(text: &str, name: &str, base_dir: &Path) -> Result<Session,
     })
 }
 
+/// A garment the session wears, as the parser knows it.
+struct Worn {
+    /// Its name.
+    name: String,
+    /// Its template (`None`: a mesh from a file).
+    garment: Option<(TemplateKind, Style)>,
+    /// The line of its `garment mesh` step, for a mesh from a file.
+    mesh_line: Option<usize>,
+}
+
 /// What the statements so far have set, each with the line that set it.
 struct Parser<'p> {
     base_dir: &'p Path,
@@ -124,7 +134,7 @@ struct Parser<'p> {
     /// NURBS parts added so far, with their lines.
     nurbs: Vec<(String, usize)>,
     /// The garments worn, innermost first (the last is the current one).
-    worn: Vec<layers::Worn>,
+    worn: Vec<Worn>,
     /// The garment the statement being parsed names (`drag outer:waist.front`).
     step_garment: Option<String>,
 }

@@ -2,21 +2,11 @@
 //! garment it edits (`drag outer:waist.front`, `set inner:waist_girth +0.02`, `cut
 //! outer:hem ...`, `sculpt at=outer:waist.front ...`).
 
-use super::Parser;
+use super::{Parser, Worn};
 use crate::garment::{Style, TemplateKind};
 use crate::session::format::lexer::{Line, Token};
 use crate::session::format::suggest::did_you_mean;
 use crate::session::format::syntax::{Op, ParseError};
-
-/// A garment the session wears, as the parser knows it.
-pub(super) struct Worn {
-    /// Its name.
-    pub(super) name: String,
-    /// Its template (`None`: a mesh from a file).
-    pub(super) garment: Option<(TemplateKind, Style)>,
-    /// The line of its `garment mesh` step, for a mesh from a file.
-    pub(super) mesh_line: Option<usize>,
-}
 
 impl Parser<'_> {
     /// Puts on a garment named `name` (written at `column`), over the garment `over` names,
