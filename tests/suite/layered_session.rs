@@ -81,6 +81,30 @@ fn lines_of(p: &Path) -> Vec<String> {
         .collect()
 }
 
+/// Runs the session `file` with the binary (metrics only in the recording), exporting its
+/// meshes into `dir/export`; returns that folder and the steps' metrics.
+fn run_exported(file: &Path, dir: &Path, name: &str) -> (PathBuf, Vec<serde_json::Value>) {
+    let (export, metrics) = (dir.join("export"), dir.join("metrics.json"));
+    let o = drape_cli()
+        .args([
+            "run",
+            file.to_str().expect("utf-8"),
+            "--log-detail",
+            "metrics",
+            "--save",
+        ])
+        .arg(dir.join("layered.rrd"))
+        .arg("--export")
+        .arg(&export)
+        .arg("--metrics")
+        .arg(&metrics)
+        .output()
+        .expect("drape runs");
+    assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+    let figures = serde_json::from_str(&std::fs::read_to_string(&metrics).expect("metrics")).expect("JSON");
+    (export, figures)
+}
+
 /// Runs `steps` (with `m1` in the scene when `meshes` has it) on every shipped body and
 /// judges every step's `meshes` of the two garments; `undos` pairs a step with the one
 /// whose garments it must give back, byte for byte.
@@ -95,26 +119,7 @@ fn judge(label: &str, steps: &str, meshes: &[&str], undos: &[(usize, usize)]) {
             if meshes.contains(&"m1") { "m1\n" } else { "" }
         );
         std::fs::write(&file, format!("{scene}{steps}")).expect("written");
-        let (export, metrics) = (dir.join("export"), dir.join("metrics.json"));
-        let o = drape_cli()
-            .args([
-                "run",
-                file.to_str().expect("utf-8"),
-                "--log-detail",
-                "metrics",
-                "--save",
-            ])
-            .arg(dir.join("layered.rrd"))
-            .arg("--export")
-            .arg(&export)
-            .arg("--metrics")
-            .arg(&metrics)
-            .output()
-            .expect("drape runs");
-        let stderr = String::from_utf8_lossy(&o.stderr);
-        assert!(o.status.success(), "{name}: {stderr}");
-        let figures: Vec<serde_json::Value> =
-            serde_json::from_str(&std::fs::read_to_string(&metrics).expect("metrics")).expect("JSON");
+        let (export, figures) = run_exported(&file, &dir, &name);
         let body = read(&export.join("step00_body.obj"));
         // The outer as first built went through the inner: the push had work to do.
         let first = &figures[2]["outer"]["over"]["inner"]["m0"]["before"];
@@ -289,25 +294,7 @@ fn sculpts_of_either_layer_keep_them_in_order_on_the_heavy_older_body() {
         ),
     )
     .expect("written");
-    let (export, metrics) = (dir.join("export"), dir.join("metrics.json"));
-    let o = drape_cli()
-        .args([
-            "run",
-            file.to_str().expect("utf-8"),
-            "--log-detail",
-            "metrics",
-            "--save",
-        ])
-        .arg(dir.join("sculpts.rrd"))
-        .arg("--export")
-        .arg(&export)
-        .arg("--metrics")
-        .arg(&metrics)
-        .output()
-        .expect("drape runs");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let figures: Vec<serde_json::Value> =
-        serde_json::from_str(&std::fs::read_to_string(&metrics).expect("metrics")).expect("JSON");
+    let (export, figures) = run_exported(&file, &dir, "female-old-heavy");
     for step in [3, 4] {
         assert!(figures[step].get("refused").is_none(), "step {step}: {}", figures[step]);
     }
