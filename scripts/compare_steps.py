@@ -3,7 +3,9 @@
 drape binaries side by side, one core each (`taskset -c 0`, `--threads 1`), runs alternating,
 and prints the median of every stage's compute time (ms, from `--metrics`) for both.
 
-    python3 scripts/compare_steps.py BEFORE_BINARY [AFTER_BINARY] [--runs N]
+    python3 scripts/compare_steps.py BEFORE_BINARY [AFTER_BINARY] [--runs N] [--op set]
+
+`--op set` times the demo's dimension edits (`set`) instead of its drags.
 
 AFTER_BINARY defaults to target/release/drape. With --log-all, both log the whole recording
 (on the same core as the compute, as a one-core user would) and a `logging` row gives the
@@ -24,10 +26,10 @@ GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collisi
 M1 = ["m1.select", "m1.subdivide", "m1.collide"]
 
 
-def drag_timings(binary, session, folder, log_all=False):
+def drag_timings(binary, session, folder, log_all=False, op="drag"):
     detail = [] if log_all else ["--log-detail", "metrics"]
     steps = run_metrics(binary, folder, "--no-index-cache", "run", session, *detail)
-    return [s["timings_ms"] for s in steps if s["op"] == "drag" and "m1.select" in s.get("timings_ms", {})]
+    return [s["timings_ms"] for s in steps if s["op"] == op and "m1.select" in s.get("timings_ms", {})]
 
 
 def main():
@@ -36,6 +38,7 @@ def main():
     ap.add_argument("after", nargs="?", default=str(ROOT / "target/release/drape"))
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--log-all", action="store_true", help="log the whole recording, and time it")
+    ap.add_argument("--op", default="drag", choices=["drag", "set"], help="the steps to time")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
@@ -47,20 +50,22 @@ def main():
         for _ in range(args.runs):
             for name, session in sessions.items():
                 for which, binary in (("before", args.before), ("after", args.after)):
-                    for t in drag_timings(binary, session, folder, args.log_all):
+                    for t in drag_timings(binary, session, folder, args.log_all, args.op):
                         for k in GARMENT + M1:
                             times.setdefault((name, which, k), []).append(t.get(k, 0.0))
                         times.setdefault((name, which, "garment"), []).append(sum(t.get(k, 0.0) for k in GARMENT))
                         times.setdefault((name, which, "M1"), []).append(sum(t.get(k, 0.0) for k in M1))
+                        times.setdefault((name, which, "compute"), []).append(
+                            sum(v for k, v in t.items() if not k.startswith("log.")))
                         times.setdefault((name, which, "logging"), []).append(
                             sum(v for k, v in t.items() if k.startswith("log.")))
     for name in sessions:
-        print(f"\n{name}: drag steps, one core, median ms over {args.runs} runs of the demo's drags\n")
+        print(f"\n{name}: {args.op} steps, one core, median ms over {args.runs} runs of the demo's {args.op}s\n")
         print("| stage | before | after |\n|---|---:|---:|")
-        for k in GARMENT + ["garment"] + M1 + ["M1"] + (["logging"] if args.log_all else []):
+        for k in GARMENT + ["garment"] + M1 + ["M1", "compute"] + (["logging"] if args.log_all else []):
             a = median(times[(name, "before", k)])
             b = median(times[(name, "after", k)])
-            label = f"**{k}**" if k in ("garment", "M1") else k
+            label = f"**{k}**" if k in ("garment", "M1", "compute") else k
             print(f"| {label} | {a:.2f} | {b:.2f} |")
 
 

@@ -108,7 +108,8 @@ pub fn partition_through(anchor: &[u32], partition: &[usize]) -> Vec<usize> {
 }
 
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
-/// have move. `garment_ease` is the garment's ease.
+/// have move, each refined patch alone ([`super::patches`]). `garment_ease` is the
+/// garment's ease.
 pub fn collide_m1(
     index: &BodyIndex,
     m1: &M1,
@@ -116,14 +117,7 @@ pub fn collide_m1(
     garment_ease: f64,
     options: &CollisionOptions,
 ) -> M1Collision {
-    let input = RefinedInput {
-        mesh: &m1.mesh,
-        edges: m1.edges(),
-        base_vertices: m1.m0_vertices,
-        moved: &m1.smoothed,
-        anchor: &m1.anchor,
-    };
-    collide_refined(index, &input, m0, garment_ease, options)
+    super::patches::collide_m1_patches(index, m1, m0, garment_ease, options, None).0
 }
 
 /// Collides a refinement of a collided mesh: only its new and moved vertices are tested and
@@ -136,6 +130,89 @@ pub fn collide_refined(
     garment_ease: f64,
     options: &CollisionOptions,
 ) -> M1Collision {
+    let pinned = pinned_of(refined);
+    let (kept, faces) = kept_from_base(refined, &pinned, m0);
+    let free = collide_free(index, refined, &pinned, &faces, m0, garment_ease, options);
+    assemble(kept, free)
+}
+
+/// Which vertices of a refinement stay where the base has them: the base's, but those it
+/// moved.
+pub(super) fn pinned_of(refined: &RefinedInput<'_>) -> Vec<bool> {
+    let mut pinned = vec![true; refined.base_vertices];
+    pinned.resize(refined.mesh.positions.len(), false);
+    refined.moved.iter().for_each(|&v| pinned[v as usize] = false);
+    pinned
+}
+
+/// What the base's check says of the refinement's parts that are the base's (every vertex
+/// pinned): its edges crossing, its vertices inside and its faces pierced.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub(super) struct Kept {
+    /// The base's edges crossing, in edge order.
+    pub(super) crossing: Vec<[u32; 2]>,
+    /// The pinned vertices inside, ascending.
+    pub(super) inside: Vec<u32>,
+    /// The faces (of the refined mesh) pierced, ascending.
+    pub(super) pierced: Vec<u32>,
+}
+
+/// The refinement's kept part ([`Kept`]) and the faces with a corner that is not pinned,
+/// which its collision checks.
+pub(super) fn kept_from_base(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'_>) -> (Kept, Vec<u32>) {
+    let (crossing, inside) = known_from_base(refined, pinned, m0);
+    let (pierced, faces) = faces_to_check(refined, pinned, m0);
+    (
+        Kept {
+            crossing,
+            inside,
+            pierced,
+        },
+        faces,
+    )
+}
+
+/// What the collision of a refinement found and did where it differs from its base: at the
+/// vertices that are not pinned, the edges with such an end and the faces with such a
+/// corner. Vertex, edge and face numbers are the refined mesh's.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Free {
+    /// Vertices tested.
+    pub(super) tested: usize,
+    /// Of those, inside before the response.
+    pub(super) hits: usize,
+    /// Edges crossing before the response, sorted.
+    pub(super) crossing_before: Vec<[u32; 2]>,
+    /// The moves made.
+    pub(super) responses: Vec<Response>,
+    /// Edges crossing at the start of each edge round.
+    pub(super) edge_rounds: Vec<usize>,
+    /// The positions after the response (the pinned vertices where they were).
+    pub(super) positions: Vec<DVec3>,
+    /// The check after the response (its `inside` and `crossing` index what it measured).
+    pub(super) quality: Quality,
+    /// Edges crossing after the response, sorted.
+    pub(super) crossing_after: Vec<[u32; 2]>,
+    /// Faces pierced before the face rounds.
+    pub(super) pierced_before: usize,
+    /// Faces pierced at the start of each face round.
+    pub(super) face_rounds: Vec<usize>,
+    /// Faces pierced after the response, ascending.
+    pub(super) pierced_after: Vec<u32>,
+}
+
+/// The collision of a refinement's free part (see [`Free`]): `faces` are the faces with a
+/// corner not pinned.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn collide_free(
+    index: &BodyIndex,
+    refined: &RefinedInput<'_>,
+    pinned: &[bool],
+    faces: &[u32],
+    m0: &M0Collided<'_>,
+    garment_ease: f64,
+    options: &CollisionOptions,
+) -> Free {
     let (partition, ring_normal) = (m0.partition, m0.ring_normal);
     let reach = 0.2 * index.height;
     let positions = &refined.mesh.positions;
@@ -145,20 +222,20 @@ pub fn collide_refined(
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();
     rings.resize(positions.len(), None);
-    // The base's vertices the refinement did not move stay where they are.
-    let mut pinned = vec![true; refined.base_vertices];
-    pinned.resize(positions.len(), false);
-    refined.moved.iter().for_each(|&v| pinned[v as usize] = false);
     let roles = VertexRoles {
         normals: &normals,
         boundary: &boundary,
         ring_normal: &rings,
-        pinned: &pinned,
+        pinned,
     };
-    let (edges, kept_crossing, kept_inside) = known_from_base(refined, &pinned, m0);
+    let edges: Vec<[u32; 2]> = refined
+        .edges
+        .iter()
+        .copied()
+        .filter(|&[a, b]| !pinned[a as usize] || !pinned[b as usize])
+        .collect();
     let before = quality_where(index, positions, positions, &tested, &edges, &[], m0.measured);
-    let mut crossing_before_edges: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
-    crossing_before_edges.extend(&kept_crossing);
+    let crossing_before: Vec<[u32; 2]> = before.crossing.iter().map(|&e| edges[e as usize]).collect();
     // The vertices the check found inside are the hits.
     let hits = hits_at(index, positions, &before.inside, &m1_partition, reach);
     let ease = response_ease(index, garment_ease, &options.response);
@@ -182,10 +259,8 @@ pub fn collide_refined(
         Some(known),
     );
     responses.extend(edge_responses);
-    // Faces: the base's faces whose corners are all pinned are pierced exactly when the
-    // base's check said so; the others are checked, lifted where pierced (face rounds, then
-    // edge rounds at the lifted corners) and checked again after.
-    let (mut pierced_after, faces) = faces_to_check(refined, &pinned, m0);
+    // Faces: those with a corner not pinned are checked, lifted where pierced (face
+    // rounds, then edge rounds at the lifted corners) and checked again after.
     let subset: Vec<[u32; 3]> = faces.iter().map(|&f| refined.mesh.triangles[f as usize]).collect();
     let rounds = respond_faces(
         index,
@@ -198,7 +273,7 @@ pub fn collide_refined(
         &options.response,
         Some(known),
     );
-    let pierced_before = pierced_after.len() + rounds.first.len();
+    let pierced_before = rounds.first.len();
     responses.extend(rounds.lifts.iter().copied());
     // After the response only what moved (and what was inside) is measured again, with the
     // edges at those vertices; the others stand as the check before found them.
@@ -210,7 +285,7 @@ pub fn collide_refined(
     let (touching, untouched): (Vec<usize>, Vec<usize>) =
         (0..edges.len()).partition(|&e| edges[e].iter().any(|&v| again[v as usize]));
     let touching_edges: Vec<[u32; 2]> = touching.iter().map(|&e| edges[e]).collect();
-    let mut quality = quality_where(
+    let quality = quality_where(
         index,
         positions,
         &moved,
@@ -219,30 +294,62 @@ pub fn collide_refined(
         &responses,
         m0.measured,
     );
-    let crossing_after_edges = crossing_after(
+    let crossing_after = crossing_after(
         (&edges, &untouched, &before.crossing),
         (&touching_edges, &quality.crossing),
-        &kept_crossing,
     );
-    let inside_after = with_kept(&mut quality, &kept_inside, crossing_after_edges.len());
     // The faces again, each vertex's distance as last measured where it stands now.
     let (again_faces, after) = pierced_again(index, &moved, (&subset, &rounds), (&quality.clearance, &again, &free));
-    pierced_after.extend(after.iter().map(|&k| faces[again_faces[k as usize] as usize]));
+    let mut pierced_after: Vec<u32> = after.iter().map(|&k| faces[again_faces[k as usize] as usize]).collect();
     pierced_after.sort_unstable();
-    let face_rounds = rounds.found;
-    quality.pierced_faces = pierced_after.len();
-    M1Collision {
+    Free {
         tested: tested.len(),
         hits: hits.len(),
-        crossing_before: crossing_before_edges.len(),
-        crossing_before_edges,
+        crossing_before,
         responses,
         edge_rounds,
         positions: moved,
         quality,
-        crossing_after_edges,
-        inside_after,
+        crossing_after,
         pierced_before,
+        face_rounds: rounds.found,
+        pierced_after,
+    }
+}
+
+/// The collision of a refinement from its kept and free parts.
+pub(super) fn assemble(kept: Kept, free: Free) -> M1Collision {
+    let Free {
+        tested,
+        hits,
+        mut crossing_before,
+        responses,
+        edge_rounds,
+        positions,
+        mut quality,
+        mut crossing_after,
+        pierced_before,
+        face_rounds,
+        mut pierced_after,
+    } = free;
+    crossing_before.extend(&kept.crossing);
+    crossing_after.extend(&kept.crossing);
+    let inside_after = with_kept(&mut quality, &kept.inside, crossing_after.len());
+    pierced_after.extend(&kept.pierced);
+    pierced_after.sort_unstable();
+    quality.pierced_faces = pierced_after.len();
+    M1Collision {
+        tested,
+        hits,
+        crossing_before: crossing_before.len(),
+        crossing_before_edges: crossing_before,
+        responses,
+        edge_rounds,
+        positions,
+        quality,
+        crossing_after_edges: crossing_after,
+        inside_after,
+        pierced_before: pierced_before + kept.pierced.len(),
         face_rounds,
         pierced_after,
     }
@@ -317,14 +424,12 @@ fn pierced_again(
     (again_faces, after)
 }
 
-/// The edges crossing after the response, sorted, then the base's kept ones: the untouched
-/// edges (indices into `edges`) the check before found crossing (`was`, indices into
-/// `edges`), and the touching edges the check after found crossing (`now`, indices into
-/// `touching`).
+/// The edges crossing after the response, sorted: the untouched edges (indices into
+/// `edges`) the check before found crossing (`was`, indices into `edges`), and the touching
+/// edges the check after found crossing (`now`, indices into `touching`).
 fn crossing_after(
     (edges, untouched, was): (&[[u32; 2]], &[usize], &[u32]),
     (touching, now): (&[[u32; 2]], &[u32]),
-    kept: &[[u32; 2]],
 ) -> Vec<[u32; 2]> {
     let was: std::collections::BTreeSet<u32> = was.iter().copied().collect();
     let mut after: Vec<[u32; 2]> = untouched
@@ -334,7 +439,6 @@ fn crossing_after(
         .collect();
     after.extend(now.iter().map(|&e| touching[e as usize]));
     after.sort_unstable();
-    after.extend(kept);
     after
 }
 
@@ -344,25 +448,20 @@ fn free_at(clearance: f64) -> f64 {
     if clearance.is_finite() { clearance.abs() } else { 0.0 }
 }
 
-/// What the base's check already says: the edges with an end that differs from the base
-/// (to be measured), and of the others (the base's edges, both ends pinned) those crossing,
-/// exactly when the base's check said so; the pinned vertices the base found inside.
-#[allow(clippy::type_complexity)]
-fn known_from_base(
-    refined: &RefinedInput<'_>,
-    pinned: &[bool],
-    m0: &M0Collided<'_>,
-) -> (Vec<[u32; 2]>, Vec<[u32; 2]>, Vec<u32>) {
-    let (edges, kept): (Vec<[u32; 2]>, Vec<[u32; 2]>) = refined
+/// What the base's check already says: of the base's edges (both ends pinned) those
+/// crossing, exactly when the base's check said so; the pinned vertices the base found
+/// inside.
+fn known_from_base(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'_>) -> (Vec<[u32; 2]>, Vec<u32>) {
+    let kept = refined
         .edges
         .iter()
         .copied()
-        .partition(|&[a, b]| !pinned[a as usize] || !pinned[b as usize]);
+        .filter(|&[a, b]| pinned[a as usize] && pinned[b as usize]);
     let m0_crossing: std::collections::BTreeSet<[u32; 2]> =
         m0.crossing.iter().map(|&[a, b]| [a.min(b), a.max(b)]).collect();
-    let kept_crossing: Vec<[u32; 2]> = kept.into_iter().filter(|e| m0_crossing.contains(e)).collect();
+    let kept_crossing: Vec<[u32; 2]> = kept.filter(|e| m0_crossing.contains(e)).collect();
     let kept_inside: Vec<u32> = m0.inside.iter().copied().filter(|&v| pinned[v as usize]).collect();
-    (edges, kept_crossing, kept_inside)
+    (kept_crossing, kept_inside)
 }
 
 /// The check after the response made whole: the base's kept inside vertices counted in

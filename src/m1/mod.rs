@@ -4,17 +4,21 @@
 //!
 //! Data flow of one step (after M0's collision): [`select()`] (which patches, by which
 //! rule) -> [`build`] (one or two [`sqrt3_step`]s of the selected patches over the collided
-//! M0) -> [`collide_m1`] (only the vertices M0 does not have: detection, response, edge
-//! rounds that leave M0's vertices where they are; then the exact check over all of M1) ->
+//! M0) -> [`collide_m1_patches`] (only the vertices M0 does not have, each refined patch
+//! alone, a patch whose input is unchanged taken from the step before: detection,
+//! response, edge rounds that leave M0's vertices where they are; then the exact check over
+//! all of M1) ->
 //! [`cut::rebuild`] of the stored cut lines on the new M1.
 
 pub mod collide;
 pub mod cut;
+pub mod patches;
 pub mod select;
 pub mod sqrt3;
 
 pub use collide::{M0Collided, M1Collision, RefinedInput, collide_m1, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
+pub use patches::{M1Reuse, PatchCounts, PatchInput, collide_m1_patches};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
 

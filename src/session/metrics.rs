@@ -26,6 +26,10 @@ pub struct StepMetrics {
     /// body index came from, say): printed with the progress, kept in `--metrics`, never
     /// logged to the recording.
     pub notes: Vec<String>,
+    /// How much of the step's work it took from earlier steps instead of doing it again
+    /// (M1's patches kept, say), by name: in `--metrics` under `work`, never logged to the
+    /// recording (it depends on the run's history and settings, not on the garment).
+    pub work: Map<String, Value>,
 }
 
 impl StepMetrics {
@@ -65,6 +69,11 @@ impl StepMetrics {
         }
     }
 
+    /// Records a count of the step's work under `key` (see [`Self::work`]).
+    pub fn record_work(&mut self, key: String, count: usize) {
+        self.work.insert(key, count.into());
+    }
+
     /// The flat JSON object.
     pub fn to_json(&self) -> Value {
         let mut object = Map::new();
@@ -77,6 +86,9 @@ impl StepMetrics {
         }
         if !self.notes.is_empty() {
             object.insert("notes".into(), self.notes.clone().into());
+        }
+        if !self.work.is_empty() {
+            object.insert("work".into(), Value::Object(self.work.clone()));
         }
         if let Some(e) = &self.error {
             object.insert("error".into(), e.clone().into());

@@ -109,6 +109,9 @@ pub(crate) struct GarmentState {
     pub(crate) standard: Option<Vec<glam::DVec3>>,
     /// The last M1, when the scene asks for one.
     pub(crate) m1: Option<M1Outcome>,
+    /// What the last M1's collision leaves for the next, patch by patch: kept through
+    /// edits (a patch whose input is unchanged takes its collision from here).
+    pub(crate) m1_reuse: Option<Arc<crate::m1::M1Reuse>>,
     /// The last pattern, when the scene asks for one (or why it could not be made).
     pub(crate) patterns: Option<Result<crate::pattern::Pattern, crate::pattern::PatternError>>,
     /// The cut lines, stored on M0.
@@ -187,6 +190,7 @@ impl GarmentState {
             edits: Vec::new(),
             standard: None,
             m1: None,
+            m1_reuse: None,
             patterns: None,
             cuts: Vec::new(),
             through_cuts: Vec::new(),
@@ -213,6 +217,7 @@ impl GarmentState {
             edits: self.edits.clone(),
             standard: self.standard.clone(),
             m1: None,
+            m1_reuse: self.m1_reuse.clone(),
             patterns: self.patterns.clone(),
             cuts: self.cuts.clone(),
             through_cuts: self.through_cuts.clone(),

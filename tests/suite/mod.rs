@@ -20,6 +20,7 @@ mod layered_session;
 mod layers;
 mod layout;
 mod m1;
+mod m1_reuse;
 mod mannequin;
 mod mesh_files;
 mod meshes;

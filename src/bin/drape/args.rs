@@ -345,6 +345,10 @@ pub(crate) struct RunArgs {
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
     #[arg(long)]
     pub(crate) no_skipping: bool,
+    /// Collide every refined patch of M1 at every step, none taken from the step before
+    /// (the same M1, bit for bit, in more time), to compare.
+    #[arg(long)]
+    pub(crate) full_m1: bool,
     /// The quality check after each collision: `partial` measures only the vertices, edges
     /// and faces whose positions changed since they were last measured (the same figures),
     /// `full` measures everything every step. --verify runs a full check beside the

@@ -146,6 +146,7 @@ fn run_options(args: &RunArgs, stop: &std::sync::Arc<std::sync::atomic::AtomicBo
         options.collision.detect.method_override = Some(drape::body::DetectionMethod::PointFace);
     }
     options.collision.full_quality = args.quality == "full";
+    options.full_m1 = args.full_m1;
     if args.no_skipping {
         options.collision.detect.inert = false;
         options.collision.detect.patch_skipping = false;

@@ -105,9 +105,11 @@ pub(in crate::session) fn build_m1(
         partition: &outcome.collision.detection.partition,
         ring_normal: &outcome.garment.ring_normal,
     };
-    let collision = scope.timed("m1.collide", || {
-        m1::collide_m1(index, &built, &collided, ease, &options.collision)
+    let reuse = state.m1_reuse.as_deref().filter(|_| !options.full_m1);
+    let (collision, reuse, patches_collided) = scope.timed("m1.collide", || {
+        m1::collide_m1_patches(index, &built, &collided, ease, &options.collision, reuse)
     });
+    state.m1_reuse = Some(std::sync::Arc::new(reuse));
     let cuts = state
         .cuts
         .iter()
@@ -148,6 +150,14 @@ pub(in crate::session) fn build_m1(
         m1_cut_lines: state.cuts.len(),
         m1_verify: verify,
     });
+    // Refined patches collided at this step, and taken unchanged from the step before.
+    for (name, count) in [
+        ("m1.patches_collided", patches_collided.collided),
+        ("m1.patches_kept", patches_collided.kept),
+    ] {
+        let key = scope.timing_key(name);
+        scope.metrics.record_work(key, count);
+    }
     state.m1 = Some(M1Outcome {
         m1: built,
         collision,

@@ -1,0 +1,433 @@
+//! M1's collision patch by patch, and what a step keeps of the last one (docs/design.md
+//! section 7).
+//!
+//! The vertices M1's collision may move (the centroids of a refined patch's faces, and the
+//! old vertices its smoothing moved) have every edge and face in that patch, and M0's
+//! vertices stay where M0's collision put them. So each refined patch is collided alone,
+//! in its own numbering (its vertices in M1's order: M0's first, then its new ones), and
+//! the patches' results are joined in patch order ([`join`]); the parts of M1 that are M0's
+//! take M0's own verdicts ([`super::collide`]). A patch's result depends only on its
+//! [`PatchInput`]: its faces, their positions, and what M0's collision and check left at
+//! its vertices (partition, ring normal, measured distance). A patch whose input equals,
+//! bit for bit, that of a patch collided before ([`M1Reuse`]) takes that result instead of
+//! colliding again: the same M1 as a full rebuild, bit for bit, by construction.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use super::M1;
+use super::collide::{Free, Kept, M0Collided, M1Collision, RefinedInput, assemble, collide_free, pinned_of};
+use crate::collision::VertexDistance;
+use crate::collision::quality::Measured;
+use crate::collision::types::NO_TRIANGLE;
+use crate::collision::{BodyIndex, CollisionOptions, Quality};
+use crate::mesh::TriMesh;
+
+/// One refined patch of M1 in its own numbering: what its collision reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchInput {
+    /// Its vertices' numbers in M1, ascending (M0's first).
+    pub vertices: Vec<u32>,
+    /// Its faces' numbers in M1, ascending.
+    pub faces: Vec<u32>,
+    /// Its faces in its own numbering, with its vertices' positions before the collision.
+    pub mesh: TriMesh,
+    /// Its undirected edges, each once, sorted.
+    pub edges: Vec<[u32; 2]>,
+    /// How many of its vertices are M0's.
+    pub base: usize,
+    /// Its M0 vertices the smoothing moved.
+    pub moved: Vec<u32>,
+    /// The M0 vertex each of its vertices descends from (its own numbering).
+    pub anchor: Vec<u32>,
+    /// Partition of each of its M0 vertices.
+    pub partition: Vec<usize>,
+    /// Ring normal of each of its M0 vertices.
+    pub ring_normal: Vec<Option<DVec3>>,
+    /// M0's check's distance at each of its M0 vertices, where kept.
+    pub measured: Vec<Option<VertexDistance>>,
+}
+
+impl PatchInput {
+    /// Whether its collision is that of `other`: the same faces in its own numbering, at the
+    /// same positions bit for bit, with the same moved vertices, anchors, partitions and ring
+    /// normals. Where it lies in M1 (its vertices' and faces' numbers there, which shift when
+    /// another patch is refined or no longer is) does not count, nor which of its distances
+    /// M0's check kept: a kept distance is the one the check would measure at the same
+    /// position.
+    fn same_as(&self, other: &Self) -> bool {
+        let bits = |p: &DVec3| p.to_array().map(f64::to_bits);
+        self.base == other.base
+            && self.mesh.triangles == other.mesh.triangles
+            && self.edges == other.edges
+            && self.moved == other.moved
+            && self.anchor == other.anchor
+            && self.partition == other.partition
+            && self.ring_normal == other.ring_normal
+            && self.mesh.positions.len() == other.mesh.positions.len()
+            && (self.mesh.positions.iter().zip(&other.mesh.positions)).all(|(a, b)| bits(a) == bits(b))
+    }
+
+    /// Its collision, alone.
+    fn collide(&self, index: &BodyIndex, ease: f64, options: &CollisionOptions) -> Free {
+        let refined = RefinedInput {
+            mesh: &self.mesh,
+            edges: &self.edges,
+            base_vertices: self.base,
+            moved: &self.moved,
+            anchor: &self.anchor,
+        };
+        // M0's distances at the patch's M0 vertices; where none was kept the vertex stands
+        // nowhere (NaN, which no position equals), so the check measures it.
+        let unknown = VertexDistance {
+            signed: f64::NAN,
+            triangle: NO_TRIANGLE,
+        };
+        let measured = Measured {
+            at: (self.mesh.positions[..self.base].iter().zip(&self.measured))
+                .map(|(&p, d)| if d.is_some() { p } else { DVec3::NAN })
+                .collect(),
+            distance: self.measured.iter().map(|d| d.unwrap_or(unknown)).collect(),
+        };
+        let base = M0Collided {
+            inside: &[],
+            crossing: &[],
+            triangles: &[],
+            pierced: &[],
+            partition: &self.partition,
+            ring_normal: &self.ring_normal,
+            measured: Some(&measured),
+        };
+        let pinned = pinned_of(&refined);
+        let faces: Vec<u32> = (0..self.mesh.triangles.len() as u32)
+            .filter(|&f| self.mesh.triangles[f as usize].iter().any(|&v| !pinned[v as usize]))
+            .collect();
+        collide_free(index, &refined, &pinned, &faces, &base, ease, options)
+    }
+}
+
+/// What the last M1's collision left for the next: each refined patch's input and result,
+/// with the settings they were made under.
+#[derive(Clone, Debug, Default)]
+pub struct M1Reuse {
+    /// The body (a hash of its index's positions and triangles), the garment's ease (its
+    /// bits) and the collision settings.
+    settings: Option<(u64, u64, CollisionOptions)>,
+    /// Per patch: its input and its collision.
+    patches: Vec<Option<(PatchInput, Arc<Free>)>>,
+}
+
+/// How M1's collision went patch by patch: how many were collided and how many taken from
+/// before.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PatchCounts {
+    /// Refined patches collided at this step.
+    pub collided: usize,
+    /// Refined patches whose collision was taken from an earlier step.
+    pub kept: usize,
+}
+
+/// A hash of the body the collision runs against.
+fn body_key(index: &BodyIndex) -> u64 {
+    let mut bytes: Vec<u8> = Vec::with_capacity(24 * index.positions.len() + 12 * index.triangles.len() + 8);
+    for p in &index.positions {
+        for x in p.to_array() {
+            bytes.extend(x.to_bits().to_le_bytes());
+        }
+    }
+    for t in &index.triangles {
+        for v in t {
+            bytes.extend(v.to_le_bytes());
+        }
+    }
+    bytes.extend(index.height.to_bits().to_le_bytes());
+    xxhash_rust::xxh64::xxh64(&bytes, 0)
+}
+
+/// Collides M1 patch by patch; with `reuse`, a refined patch whose input is the same as
+/// there takes its collision from there. Returns the collision, what to keep for the next
+/// step, and the counts.
+pub fn collide_m1_patches(
+    index: &BodyIndex,
+    m1: &M1,
+    m0: &M0Collided<'_>,
+    garment_ease: f64,
+    options: &CollisionOptions,
+    reuse: Option<&M1Reuse>,
+) -> (M1Collision, M1Reuse, PatchCounts) {
+    let settings = Some((body_key(index), garment_ease.to_bits(), options.clone()));
+    let reuse = reuse.filter(|r| r.settings == settings);
+    let pinned = pinned_of(&RefinedInput {
+        mesh: &m1.mesh,
+        edges: m1.edges(),
+        base_vertices: m1.m0_vertices,
+        moved: &m1.smoothed,
+        anchor: &m1.anchor,
+    });
+    let kept = kept_of_m1(m1, &pinned, m0);
+    let inputs = patch_inputs(m1, &pinned, m0);
+    let results: Vec<(Arc<Free>, bool)> = crate::par::par_map_from(inputs.len(), 2, |k| {
+        let (p, input) = &inputs[k];
+        let before = reuse
+            .and_then(|r| r.patches.get(*p as usize))
+            .and_then(Option::as_ref)
+            .filter(|(was, _)| was.same_as(input));
+        match before {
+            Some((_, free)) => (free.clone(), true),
+            None => (Arc::new(input.collide(index, garment_ease, options)), false),
+        }
+    });
+    let counts = PatchCounts {
+        collided: results.iter().filter(|r| !r.1).count(),
+        kept: results.iter().filter(|r| r.1).count(),
+    };
+    let collision = join(m1, &inputs, results.iter().map(|r| &*r.0), kept);
+    let mut next = M1Reuse {
+        settings,
+        patches: vec![None; m1.selection.rules.len()],
+    };
+    for ((p, input), (free, _)) in inputs.into_iter().zip(results) {
+        if let Some(slot) = next.patches.get_mut(p as usize) {
+            *slot = Some((input, free));
+        }
+    }
+    (collision, next, counts)
+}
+
+/// The parts of M1 that are M0's (every vertex pinned), with M0's verdicts: its edges M0's
+/// check found crossing, its vertices inside, and its faces pierced (a face of M1 whose
+/// corners are all pinned is a face of M0 the refinement left whole).
+fn kept_of_m1(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Kept {
+    let both = |[a, b]: [u32; 2]| pinned.get(a as usize) == Some(&true) && pinned.get(b as usize) == Some(&true);
+    let mut crossing: Vec<[u32; 2]> = m0
+        .crossing
+        .iter()
+        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .filter(|&e| both(e) && m1.edges.binary_search(&e).is_ok())
+        .collect();
+    crossing.sort_unstable();
+    crossing.dedup();
+    let inside: Vec<u32> = m0
+        .inside
+        .iter()
+        .copied()
+        .filter(|&v| pinned.get(v as usize) == Some(&true))
+        .collect();
+    let sorted = |mut t: [u32; 3]| {
+        t.sort_unstable();
+        t
+    };
+    let mut m0_pierced: Vec<[u32; 3]> = m0
+        .pierced
+        .iter()
+        .filter_map(|&f| m0.triangles.get(f as usize).map(|&t| sorted(t)))
+        .collect();
+    m0_pierced.sort_unstable();
+    let pierced = if m0_pierced.is_empty() {
+        Vec::new()
+    } else {
+        (0..m1.mesh.triangles.len() as u32)
+            .filter(|&f| {
+                let t = m1.mesh.triangles[f as usize];
+                t.iter().all(|&v| pinned[v as usize]) && m0_pierced.binary_search(&sorted(t)).is_ok()
+            })
+            .collect()
+    };
+    Kept {
+        crossing,
+        inside,
+        pierced,
+    }
+}
+
+/// Each refined patch's input, by patch number.
+fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, PatchInput)> {
+    let patches = m1.selection.rules.len();
+    let n = m1.mesh.positions.len();
+    // M1's faces grouped by patch, ascending within each.
+    let (first, grouped) = group(patches, m1.face_patch.iter().enumerate().map(|(f, &p)| (p, f as u32)));
+    // The patch of each vertex that is not pinned (all its faces are in one patch), and the
+    // edges at such a vertex grouped by it, in M1's order.
+    let mut patch_of = vec![u32::MAX; n];
+    for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
+        for &v in t {
+            if !pinned[v as usize] {
+                patch_of[v as usize] = p;
+            }
+        }
+    }
+    let free_end = |[a, b]: [u32; 2]| if pinned[b as usize] { a } else { b };
+    let (edge_first, edges) = group(
+        patches,
+        (m1.edges.iter())
+            .filter(|&&[a, b]| !pinned[a as usize] || !pinned[b as usize])
+            .map(|&e| (patch_of[free_end(e) as usize], e)),
+    );
+    let mut local = vec![u32::MAX; n];
+    let mut out = Vec::new();
+    for (p, rules) in m1.selection.rules.iter().enumerate() {
+        if rules.is_empty() {
+            continue;
+        }
+        let faces = grouped[first[p]..first[p + 1]].to_vec();
+        let mut vertices: Vec<u32> = faces.iter().flat_map(|&f| m1.mesh.triangles[f as usize]).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        for (i, &v) in vertices.iter().enumerate() {
+            local[v as usize] = i as u32;
+        }
+        let at = |v: u32| local[v as usize];
+        let mesh = TriMesh {
+            positions: vertices.iter().map(|&v| m1.mesh.positions[v as usize]).collect(),
+            triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
+        };
+        let base = vertices.partition_point(|&v| (v as usize) < m1.m0_vertices);
+        let old = &vertices[..base];
+        out.push((
+            p as u32,
+            PatchInput {
+                edges: edges[edge_first[p]..edge_first[p + 1]]
+                    .iter()
+                    .map(|e| e.map(at))
+                    .collect(),
+                moved: (vertices.iter().enumerate())
+                    .filter(|&(i, &v)| i < base && !pinned[v as usize])
+                    .map(|(i, _)| i as u32)
+                    .collect(),
+                anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
+                partition: old
+                    .iter()
+                    .map(|&v| m0.partition.get(v as usize).copied().unwrap_or(0))
+                    .collect(),
+                ring_normal: old
+                    .iter()
+                    .map(|&v| m0.ring_normal.get(v as usize).copied().flatten())
+                    .collect(),
+                measured: old
+                    .iter()
+                    .map(|&v| {
+                        m0.measured
+                            .and_then(|m| m.distance(v as usize, m1.mesh.positions[v as usize]))
+                    })
+                    .collect(),
+                base,
+                mesh,
+                vertices,
+                faces,
+            },
+        ));
+    }
+    out
+}
+
+/// Items grouped by a key below `groups` (others dropped), in their order within each:
+/// where each group begins (and one past the last), and the items.
+fn group<T: Copy + Default>(groups: usize, items: impl Iterator<Item = (u32, T)> + Clone) -> (Vec<usize>, Vec<T>) {
+    let mut first = vec![0usize; groups + 1];
+    for (g, _) in items.clone() {
+        if let Some(n) = first.get_mut(g as usize + 1) {
+            *n += 1;
+        }
+    }
+    for g in 0..groups {
+        first[g + 1] += first[g];
+    }
+    let mut next = first.clone();
+    let mut out = vec![T::default(); first[groups]];
+    for (g, item) in items {
+        if (g as usize) < groups {
+            out[next[g as usize]] = item;
+            next[g as usize] += 1;
+        }
+    }
+    (first, out)
+}
+
+/// The patches' collisions joined into M1's (vertex, edge and face numbers M1's; moves in
+/// patch order), with the kept part.
+fn join<'a>(m1: &M1, inputs: &[(u32, PatchInput)], frees: impl Iterator<Item = &'a Free>, kept: Kept) -> M1Collision {
+    let n = m1.mesh.positions.len();
+    let mut positions = m1.mesh.positions.clone();
+    let mut quality = Quality {
+        clearance: vec![f64::INFINITY; n],
+        nearest: vec![NO_TRIANGLE; n],
+        max_stretch: 1.0,
+        ..Quality::default()
+    };
+    let (mut tested, mut hits, mut pierced_before) = (0, 0, 0);
+    let (mut crossing_before, mut crossing_after, mut pierced_after) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut edge_rounds, mut face_rounds) = (vec![0], vec![0]);
+    let mut responses = Vec::new();
+    let mut inside = Vec::new();
+    for ((_, input), free) in inputs.iter().zip(frees) {
+        let global = |v: u32| input.vertices[v as usize];
+        let edge = |[a, b]: [u32; 2]| [global(a), global(b)];
+        tested += free.tested;
+        hits += free.hits;
+        pierced_before += free.pierced_before;
+        crossing_before.extend(free.crossing_before.iter().map(|&e| edge(e)));
+        crossing_after.extend(free.crossing_after.iter().map(|&e| edge(e)));
+        pierced_after.extend(free.pierced_after.iter().map(|&f| input.faces[f as usize]));
+        add_rounds(&mut edge_rounds, &free.edge_rounds);
+        add_rounds(&mut face_rounds, &free.face_rounds);
+        responses.extend(free.responses.iter().map(|r| {
+            let mut r = *r;
+            r.vertex = global(r.vertex);
+            r
+        }));
+        inside.extend(free.quality.inside.iter().map(|&v| global(v)));
+        for (k, &v) in input.vertices.iter().enumerate() {
+            let v = v as usize;
+            if k >= input.base || input.moved.contains(&(k as u32)) {
+                positions[v] = free.positions[k];
+            }
+            if free.quality.clearance[k].is_finite() {
+                quality.clearance[v] = free.quality.clearance[k];
+                quality.nearest[v] = free.quality.nearest[k];
+            }
+        }
+        let q = &free.quality;
+        quality.max_depth_m = quality.max_depth_m.max(q.max_depth_m);
+        quality.max_move_m = quality.max_move_m.max(q.max_move_m);
+        quality.max_stretch = quality.max_stretch.max(q.max_stretch);
+    }
+    crossing_before.sort_unstable();
+    crossing_after.sort_unstable();
+    inside.sort_unstable();
+    quality.penetrating_vertices = inside.len();
+    if !inside.is_empty() {
+        let depth: f64 = inside.iter().map(|&v| -quality.clearance[v as usize]).sum();
+        quality.mean_depth_m = depth / inside.len() as f64;
+    }
+    quality.inside = inside;
+    if !responses.is_empty() {
+        let errs = responses.iter().map(|r| r.ease_error.abs());
+        quality.max_ease_error_m = errs.clone().fold(0.0, f64::max);
+        quality.mean_ease_error_m = errs.sum::<f64>() / responses.len() as f64;
+    }
+    let free = Free {
+        tested,
+        hits,
+        crossing_before,
+        responses,
+        edge_rounds,
+        positions,
+        quality,
+        crossing_after,
+        pierced_before,
+        face_rounds,
+        pierced_after,
+    };
+    assemble(kept, free)
+}
+
+/// Adds a patch's per-round counts to the whole's, round by round.
+fn add_rounds(total: &mut Vec<usize>, rounds: &[usize]) {
+    if total.len() < rounds.len() {
+        total.resize(rounds.len(), 0);
+    }
+    for (t, r) in total.iter_mut().zip(rounds) {
+        *t += r;
+    }
+}

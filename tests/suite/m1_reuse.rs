@@ -1,0 +1,134 @@
+//! M1 made incrementally (a refined patch whose input did not change takes its collision
+//! from the step before) against M1 made whole at every step (`full_m1`): random drag and
+//! dimension sessions on every shipped body give the same M1 at every step, bit for bit
+//! (mesh, positions after the collision, every figure and list of the collision), and the
+//! incremental run really kept patches.
+
+use drape::session::{M1Stage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session};
+
+use super::common::{Lcg, shipped_bodies};
+
+/// Every M1 a run logs, by step.
+#[derive(Default)]
+struct M1s(Vec<(usize, drape::session::M1Outcome)>);
+
+impl StageSink for M1s {
+    fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        self.0.push((info.step, stage.outcome.clone()));
+        Ok(())
+    }
+}
+
+/// A position list's bits.
+fn bits(positions: &[glam::DVec3]) -> Vec<[u64; 3]> {
+    positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
+}
+
+/// A random session: a tight jumpsuit with M1, its ease tightened (so that M1's collision
+/// has vertices to move), then drags of control points, dimension edits and undos drawn by
+/// `rng`.
+fn random_session(body: &std::path::Path, rng: &mut Lcg, steps: usize) -> String {
+    const POINTS: [&str; 6] = [
+        "waist.front_left",
+        "chest.front_left",
+        "left_knee",
+        "crotch.point",
+        "waist.front",
+        "right_thigh.inner",
+    ];
+    const DIMENSIONS: [(&str, f64); 3] = [("waist_girth", 0.04), ("hip_girth", 0.04), ("inseam", 0.05)];
+    let mut text = format!(
+        "drape 1\nbody \"{}\"\nunits m\nm1\ngarment jumpsuit fit=tight resolution=5\nset ease 0.004\n",
+        body.display()
+    );
+    let pick = |n: usize, rng: &mut Lcg| ((rng.next() * n as f64) as usize).min(n - 1);
+    for _ in 0..steps {
+        match pick(10, rng) {
+            0..=5 => {
+                let point = POINTS[pick(POINTS.len(), rng)];
+                let d: Vec<String> = (0..3).map(|_| format!("{:.4}", 0.03 * (rng.next() - 0.5))).collect();
+                text += &format!("drag {point} by={}\n", d.join(","));
+            }
+            6..=7 => {
+                let (dimension, range) = DIMENSIONS[pick(DIMENSIONS.len(), rng)];
+                text += &format!("set {dimension} {:+.4}\n", range * (rng.next() - 0.5));
+            }
+            _ => text += "undo\n",
+        }
+    }
+    text
+}
+
+/// Runs `text`, M1 made incrementally or whole; the M1s and each step's kept patches.
+fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, Vec<u64>) {
+    let session = parse_session(text, "reuse.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = M1s::default();
+    let options = RunOptions {
+        full_m1,
+        ..RunOptions::default()
+    };
+    let report = run_session(&session, &options, &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}\n{text}", report.error);
+    let kept = report
+        .steps
+        .iter()
+        .filter_map(|m| m.work.get("m1.patches_kept").and_then(|v| v.as_u64()))
+        .collect();
+    (sink.0, kept)
+}
+
+#[test]
+fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_sessions_on_every_body() {
+    let mut rng = Lcg(0x6d31_7265_7573_6521);
+    for body in shipped_bodies() {
+        let text = random_session(&body, &mut rng, 8);
+        let (incremental, kept) = run(&text, false);
+        let (whole, kept_whole) = run(&text, true);
+        let moved = |m1s: &[(usize, drape::session::M1Outcome)]| {
+            m1s.iter().filter(|(_, o)| !o.collision.responses.is_empty()).count()
+        };
+        eprintln!(
+            "{}: {} M1s, {} with moves; patches kept {kept:?}",
+            body.display(),
+            incremental.len(),
+            moved(&incremental)
+        );
+        assert_eq!(incremental.len(), whole.len(), "{}: M1 stages", body.display());
+        assert!(
+            incremental.len() >= 4,
+            "{}: too few M1s to compare\n{text}",
+            body.display()
+        );
+        for ((step, a), (step_b, b)) in incremental.iter().zip(&whole) {
+            let at = format!("{} step {step}\n{text}", body.display());
+            assert_eq!(step, step_b, "{at}");
+            assert_eq!(a.m1.mesh.triangles, b.m1.mesh.triangles, "{at}: M1 faces");
+            assert_eq!(a.m1.face_patch, b.m1.face_patch, "{at}: M1 face patches");
+            assert_eq!(
+                bits(&a.m1.mesh.positions),
+                bits(&b.m1.mesh.positions),
+                "{at}: M1 before its collision"
+            );
+            assert_eq!(
+                bits(&a.collision.positions),
+                bits(&b.collision.positions),
+                "{at}: M1 after its collision"
+            );
+            assert_eq!(a.collision, b.collision, "{at}: M1's collision, figures and lists");
+            assert_eq!(a.cuts, b.cuts, "{at}: cut lines");
+        }
+        // The runs differ in what they did: the whole one kept nothing, the incremental one
+        // kept patches at some step (otherwise this test compared two full builds).
+        assert!(kept_whole.iter().all(|&k| k == 0), "{}: {kept_whole:?}", body.display());
+        assert!(
+            kept.iter().any(|&k| k > 0),
+            "{}: no patch kept {kept:?}\n{text}",
+            body.display()
+        );
+        assert!(
+            moved(&whole) > 0,
+            "{}: M1's collision moved nothing\n{text}",
+            body.display()
+        );
+    }
+}
