@@ -1,7 +1,7 @@
 """What the figure scripts share: runs of the binary pinned to cores, their --metrics, and the
 splicing of a generated section into a Markdown file.
 
-    from harness import ROOT, pinned, run_metrics, splice, median, section_file
+    from harness import ROOT, pinned, run_metrics, runs_and_binary, splice, median, section_file
 
 A generated section sits between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`; nothing
 else in the file is touched. Standard library only.
@@ -32,6 +32,16 @@ def run_metrics(binary, folder, *args, threads=1):
     subprocess.run(pinned(binary, *args, "--metrics", metrics, "--save", folder / "run.rrd", threads=threads),
                    cwd=ROOT, capture_output=True, check=True)
     return json.loads(metrics.read_text())
+
+
+def runs_and_binary(description=None):
+    """An argument parser with what the timing scripts share: `--runs N` (default 3) and
+    `--binary PATH` (default target/release/drape)."""
+    import argparse
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--binary", default=str(ROOT / "target/release/drape"))
+    return ap
 
 
 def median(values):
