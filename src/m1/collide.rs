@@ -9,7 +9,6 @@
 
 use glam::DVec3;
 
-use super::M1;
 use crate::collision::faces::FaceRounds;
 use crate::collision::quality::{Measured, quality_where};
 use crate::collision::{
@@ -105,19 +104,6 @@ pub fn partition_through(anchor: &[u32], partition: &[usize]) -> Vec<usize> {
         .iter()
         .map(|&a| partition.get(a as usize).copied().unwrap_or(0))
         .collect()
-}
-
-/// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
-/// have move, each refined patch alone ([`super::patches`]). `garment_ease` is the
-/// garment's ease.
-pub fn collide_m1(
-    index: &BodyIndex,
-    m1: &M1,
-    m0: &M0Collided<'_>,
-    garment_ease: f64,
-    options: &CollisionOptions,
-) -> M1Collision {
-    super::patches::collide_m1_patches(index, m1, m0, garment_ease, options, None).0
 }
 
 /// Collides a refinement of a collided mesh: only its new and moved vertices are tested and

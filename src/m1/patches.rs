@@ -145,6 +145,19 @@ fn body_key(index: &BodyIndex) -> u64 {
     xxhash_rust::xxh64::xxh64(&bytes, 0)
 }
 
+/// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
+/// have move, each refined patch alone (see the module's notes). `garment_ease` is the
+/// garment's ease.
+pub fn collide_m1(
+    index: &BodyIndex,
+    m1: &M1,
+    m0: &M0Collided<'_>,
+    garment_ease: f64,
+    options: &CollisionOptions,
+) -> M1Collision {
+    collide_m1_patches(index, m1, m0, garment_ease, options, None).0
+}
+
 /// Collides M1 patch by patch; with `reuse`, a refined patch whose input is the same as
 /// there takes its collision from there. Returns the collision, what to keep for the next
 /// step, and the counts.
