@@ -180,17 +180,28 @@ pub fn collide_m1_patches(
     });
     let kept = kept_of_m1(m1, &pinned, m0);
     let inputs = patch_inputs(m1, &pinned, m0);
-    let results: Vec<(Arc<Free>, bool)> = crate::par::par_map_from(inputs.len(), 2, |k| {
-        let (p, input) = &inputs[k];
-        let before = reuse
-            .and_then(|r| r.patches.get(*p as usize))
-            .and_then(Option::as_ref)
-            .filter(|(was, _)| was.same_as(input));
-        match before {
-            Some((_, free)) => (free.clone(), true),
-            None => (Arc::new(input.collide(index, garment_ease, options)), false),
-        }
-    });
+    // The patches kept from before, then the others collided, shared out among the threads.
+    let kept_before: Vec<Option<Arc<Free>>> = (inputs.iter())
+        .map(|(p, input)| {
+            let before = reuse.and_then(|r| r.patches.get(*p as usize)).and_then(Option::as_ref);
+            before
+                .filter(|(was, _)| was.same_as(input))
+                .map(|(_, free)| free.clone())
+        })
+        .collect();
+    let anew: Vec<usize> = (0..inputs.len()).filter(|&k| kept_before[k].is_none()).collect();
+    let mut collided = crate::par::par_map_from(anew.len(), 2, |i| {
+        Arc::new(inputs[anew[i]].1.collide(index, garment_ease, options))
+    })
+    .into_iter();
+    // One collided result for each patch not kept, in order.
+    let results: Vec<(Arc<Free>, bool)> = kept_before
+        .into_iter()
+        .filter_map(|kept| match kept {
+            Some(free) => Some((free, true)),
+            None => collided.next().map(|free| (free, false)),
+        })
+        .collect();
     let counts = PatchCounts {
         collided: results.iter().filter(|r| !r.1).count(),
         kept: results.iter().filter(|r| r.1).count(),
