@@ -43,7 +43,7 @@ def step_rows(steps, op):
             continue
         compute = {k: v for k, v in t.items() if not k.startswith("log.")}
         row = {name: stage_ms(compute, prefixes) for name, prefixes in STAGES}
-        row["other compute"] = sum(compute.values()) - sum(row.values())
+        row["other compute"] = max(0.0, sum(compute.values()) - sum(row.values()))  # not -0.0 from rounding
         row["compute"] = sum(compute.values())
         row["logging"] = sum(v for k, v in t.items() if k.startswith("log."))
         row["whole step"] = row["compute"] + row["logging"]
