@@ -145,7 +145,7 @@ pub(super) struct Kept {
 
 /// The refinement's kept part ([`Kept`]) and the faces with a corner that is not pinned,
 /// which its collision checks.
-pub(super) fn kept_from_base(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'_>) -> (Kept, Vec<u32>) {
+fn kept_from_base(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'_>) -> (Kept, Vec<u32>) {
     let (crossing, inside) = known_from_base(refined, pinned, m0);
     let (pierced, faces) = faces_to_check(refined, pinned, m0);
     (
