@@ -58,14 +58,7 @@ impl TriMesh {
 
     /// Per-vertex normals: the normalized sum of incident area-weighted face normals.
     pub fn vertex_normals(&self) -> Vec<DVec3> {
-        let mut normals = vec![DVec3::ZERO; self.positions.len()];
-        for (t, tri) in self.triangles.iter().enumerate() {
-            let n = self.scaled_normal(t);
-            for &v in tri {
-                normals[v as usize] += n;
-            }
-        }
-        normals.iter().map(|n| n.normalize_or_zero()).collect()
+        vertex_normals_of(&self.positions, &self.triangles)
     }
 
     /// Every triangle split into four at its edges' midpoints (the same surface, each
@@ -95,4 +88,18 @@ impl TriMesh {
     pub fn positions_f32(&self) -> Vec<[f32; 3]> {
         self.positions.iter().map(|p| p.as_vec3().to_array()).collect()
     }
+}
+
+/// [`TriMesh::vertex_normals`] of the mesh `triangles` make over `positions`, without
+/// building the mesh.
+pub fn vertex_normals_of(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
+    let mut normals = vec![DVec3::ZERO; positions.len()];
+    for tri in triangles {
+        let [a, b, c] = tri.map(|v| positions[v as usize]);
+        let n = (b - a).cross(c - a);
+        for &v in tri {
+            normals[v as usize] += n;
+        }
+    }
+    normals.iter().map(|n| n.normalize_or_zero()).collect()
 }

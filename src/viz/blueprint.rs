@@ -81,7 +81,7 @@ impl Contents {
             "+ /nurbs/parts/**",
             "+ /nurbs/contacts",
             "+ /layers/**",
-            "- /garment/clearance",
+            "- /garment/clearance/**",
             "- /garment/m1/**",
             "- /garment/sculpt/**",
             "- /garment/cut_lines/**",
@@ -90,7 +90,7 @@ impl Contents {
         .into_iter()
         .map(String::from)
         .chain(each(&[
-            "- garment/clearance",
+            "- garment/clearance/**",
             "- garment/m1/**",
             "- garment/sculpt/**",
             "- garment/cut_lines/**",
@@ -111,8 +111,8 @@ impl Contents {
             "+ collision/m1/**",
         ]))
         .collect();
-        let clearance: Vec<String> = std::iter::once("+ /garment/clearance".to_string())
-            .chain(each(&["+ garment/clearance"]))
+        let clearance: Vec<String> = std::iter::once("+ /garment/clearance/**".to_string())
+            .chain(each(&["+ garment/clearance/**"]))
             .collect();
         Self { garment, m1, clearance }
     }
@@ -138,7 +138,12 @@ pub fn layered_blueprint(layered: &[String]) -> Blueprint {
                     // it (the fit map's colours), over the muted garment under it.
                     Spatial3DView::new("Layers")
                         .with_origin("/")
-                        .with_contents(["+ /body/mesh", "+ /garment/m0", "+ /layer_gaps/**"])
+                        .with_contents([
+                            "+ /body/mesh",
+                            "+ /garment/m0/mesh/**",
+                            "+ /garment/m0/muted",
+                            "+ /layer_gaps/**",
+                        ])
                         .into(),
                     // The body's own stages: partition tint, landmarks, rings, partition
                     // bounds, the dress forms and sections.
@@ -218,7 +223,7 @@ pub fn check_garment_blueprint() -> Blueprint {
                             "+ /body/mesh",
                             "+ /garment/**",
                             "+ /collision/**",
-                            "- /garment/clearance",
+                            "- /garment/clearance/**",
                             "- /collision/m1/**",
                         ])
                         .into(),
@@ -235,7 +240,7 @@ pub fn check_garment_blueprint() -> Blueprint {
                         .into(),
                     Spatial3DView::new("Clearance")
                         .with_origin("/")
-                        .with_contents(["+ /garment/clearance"])
+                        .with_contents(["+ /garment/clearance/**"])
                         .into(),
                 ])
                 .into(),

@@ -6,8 +6,9 @@
 use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
-use super::draw::{colored_mesh, f32s, log_face_outlines};
+use super::draw::{f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
+use super::parts::{Parted, log_mesh_parts};
 use crate::collision::{AppliedRule, BodyIndex, Collision};
 use crate::session::{CollisionOutcome, CollisionPart, CollisionStage, SinkError};
 
@@ -18,7 +19,7 @@ impl RerunLogger {
     /// of [`CLEARANCE_BANDS`], and the scale as a text document beside it.
     fn clearance_map(
         &self,
-        mesh: &crate::mesh::TriMesh,
+        (mesh, parted): (&crate::mesh::TriMesh, &Parted),
         clearance: &[f64],
         near_faces: &[(u32, f64)],
     ) -> Result<(), SinkError> {
@@ -30,9 +31,8 @@ impl RerunLogger {
             }
         }
         let bands: Vec<usize> = shown.iter().map(|&d| clearance_band(d)).collect();
-        let colors = bands.iter().map(|&k| CLEARANCE_BANDS[k].1).collect();
-        rec.log("garment/clearance", &colored_mesh(mesh, colors))
-            .map_err(to_sink)?;
+        let colors: Vec<[u8; 3]> = bands.iter().map(|&k| CLEARANCE_BANDS[k].1).collect();
+        log_mesh_parts(rec, "garment/clearance", parted, &colors)?;
         let mut counts = [0usize; CLEARANCE_BANDS.len()];
         for k in bands {
             counts[k] += 1;
@@ -121,8 +121,8 @@ impl RerunLogger {
         let c = &outcome.collision;
         let g = &outcome.garment;
         let counts = self.log_response_arrows(c)?;
-        self.m0(&c.mesh, &g.face_patch, &g.edges)?;
-        self.clearance_map(&c.mesh, &c.quality.clearance, &c.quality.near_faces)?;
+        let parted = self.m0(&c.mesh, &g.face_patch, &g.edges)?;
+        self.clearance_map((&c.mesh, &parted), &c.quality.clearance, &c.quality.near_faces)?;
         let q = &c.quality;
         self.log_left_over(outcome)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {

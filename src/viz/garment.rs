@@ -4,8 +4,9 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
-use super::draw::{closed, colored_mesh, edge_paths, f32s};
+use super::draw::{closed, f32s};
 use super::logger::{RerunLogger, to_sink};
+use super::parts::{Parted, log_edge_parts, log_mesh_parts};
 use crate::garment::{Framework, GarmentRing, RingStages};
 use crate::mesh::TriMesh;
 use crate::session::{GarmentPart, RingStep, SinkError};
@@ -294,9 +295,12 @@ impl RerunLogger {
         )
     }
 
-    /// Logs a garment mesh as `garment/m0` (vertices coloured by patch) with its edges.
-    pub(super) fn m0(&self, mesh: &TriMesh, face_patch: &[u32], edges: &[[u32; 2]]) -> Result<(), SinkError> {
+    /// Logs a garment mesh as `garment/m0/mesh/<part>` (vertices coloured by patch) with its
+    /// edges at `garment/m0/edges/<part>`, only the parts that changed (see [`super::parts`]);
+    /// returns the mesh as logged, for other views of it.
+    pub(super) fn m0(&self, mesh: &TriMesh, face_patch: &[u32], edges: &[[u32; 2]]) -> Result<Parted, SinkError> {
         let rec = self.recording();
+        rec.clear_if_shown("garment/m0/muted")?;
         // Vertex colour: the patch of the first face that uses the vertex.
         let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
         let mut seen = vec![false; mesh.positions.len()];
@@ -308,14 +312,11 @@ impl RerunLogger {
                 }
             }
         }
-        rec.log("garment/m0", &colored_mesh(mesh, colors)).map_err(to_sink)?;
-        rec.log(
-            "garment/m0/edges",
-            &LineStrips3D::new(edge_paths(&mesh.positions, edges))
-                .with_radii([0.0004])
-                .with_colors([[60, 60, 70]]),
-        )
-        .map_err(to_sink)
+        let parted = Parted::new(mesh, face_patch, self.options.part_faces);
+        log_mesh_parts(rec, "garment/m0/mesh", &parted, &colors)?;
+        let edge_parts = parted.edges(&mesh.triangles, edges);
+        log_edge_parts(rec, "garment/m0/edges", (&parted, &edge_parts), (0.0004, [60, 60, 70]))?;
+        Ok(parted)
     }
 
     fn control_points(&self, fw: &Framework) -> Result<(), SinkError> {

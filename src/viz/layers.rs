@@ -46,8 +46,14 @@ impl RerunLogger {
             self.rec.set_layer((k > 0).then(|| under.clone()));
             let logged = self
                 .rec
-                .log("garment/m0", &colored_mesh(mesh, vec![MUTED; mesh.positions.len()]))
-                .and_then(|()| self.rec.log("garment/m0/edges", &Clear::flat()));
+                .log("garment/m0/mesh", &Clear::recursive())
+                .and_then(|()| self.rec.log("garment/m0/edges", &Clear::recursive()))
+                .and_then(|()| {
+                    self.rec.log(
+                        "garment/m0/muted",
+                        &colored_mesh(mesh, vec![MUTED; mesh.positions.len()]),
+                    )
+                });
             self.rec.set_layer(info.layer.clone());
             logged.map_err(to_sink)?;
         }

@@ -29,6 +29,15 @@ pub struct LogOptions {
     /// the step's logging). Off for a viewer or a server, whose flush waits on the network.
     /// Default value: false.
     pub settle: bool,
+    /// Send a garment mesh's parts (M0, its clearance map, M1, their edges) only where they
+    /// differ from what the recording shows at their entity already: the latest-at scene at
+    /// every step is the one logging every part gives. Off logs every part at every step
+    /// (to compare). Default value: true.
+    pub only_changed: bool,
+    /// The fewest faces of a part a garment mesh is logged in (consecutive patches grouped
+    /// until they have as many; see [`super::parts`]): smaller parts send less again after
+    /// a local change, and each costs a chunk of its own. Default value: 4096.
+    pub part_faces: usize,
 }
 
 impl Default for LogOptions {
@@ -38,6 +47,8 @@ impl Default for LogOptions {
             mannequin_offset_x: 1.6,
             detail: LogDetail::All,
             settle: false,
+            only_changed: true,
+            part_faces: super::parts::PART_FACES,
         }
     }
 }
@@ -61,6 +72,20 @@ impl LogOptions {
     #[must_use]
     pub fn with_settle(mut self, settle: bool) -> Self {
         self.settle = settle;
+        self
+    }
+
+    /// Sets [`Self::only_changed`].
+    #[must_use]
+    pub fn with_only_changed(mut self, only_changed: bool) -> Self {
+        self.only_changed = only_changed;
+        self
+    }
+
+    /// Sets [`Self::part_faces`].
+    #[must_use]
+    pub fn with_part_faces(mut self, part_faces: usize) -> Self {
+        self.part_faces = part_faces;
         self
     }
 
@@ -124,7 +149,7 @@ fn is_final(stage: &Stage<'_>) -> bool {
 impl RerunLogger {
     /// Logs into `rec`; sends the static scene settings (y up, series styles) first.
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
-        let rec = OrderedRecording::new(rec, options.detail == LogDetail::Metrics);
+        let rec = OrderedRecording::new(rec, options.detail == LogDetail::Metrics, options.only_changed);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
         // The mannequin's figures are one value per run: markers, polar warm and chord cool.

@@ -1,14 +1,16 @@
-//! Logging M1: the display mesh beside M0 (`garment/m1`, vertices coloured by the rule that
-//! selected their patch, grey where M0 is kept), its new vertices, its edges crossing the
+//! Logging M1: the display mesh beside M0 (`garment/m1/mesh/<part>`, vertices coloured by
+//! the rule that selected their patch, grey where M0 is kept; only the parts that changed),
+//! its edges and new vertices likewise, its edges crossing the
 //! body before and after its own collision, the cut lines on M1 and their stored form on
 //! M0, and the M1 scalars.
 
 use glam::DVec3;
-use rerun::{Clear, LineStrips3D, Points3D, TextLogLevel};
+use rerun::{Clear, LineStrips3D, TextLogLevel};
 
 use super::colors::m1_rule_color;
-use super::draw::{colored_mesh, edge_paths, f32s, log_face_outlines};
+use super::draw::{f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
+use super::parts::{Parted, log_edge_parts, log_mesh_parts, log_point_parts};
 use crate::m1::Rule;
 use crate::session::{M1Outcome, M1Stage, SinkError};
 
@@ -31,32 +33,22 @@ impl RerunLogger {
                 }
             }
         }
-        let mesh = crate::mesh::TriMesh {
-            positions: positions.clone(),
-            triangles: m1.mesh.triangles.clone(),
-        };
-        rec.log("garment/m1", &colored_mesh(&mesh, colors)).map_err(to_sink)?;
+        let parted = Parted::of(positions, &m1.mesh.triangles, &m1.face_patch, self.options.part_faces);
+        log_mesh_parts(rec, "garment/m1/mesh", &parted, &colors)?;
         let edges = m1.edges();
+        let edge_parts = parted.edges(&m1.mesh.triangles, edges);
+        log_edge_parts(rec, "garment/m1/edges", (&parted, &edge_parts), (0.0003, [70, 70, 80]))?;
+        log_point_parts(
+            rec,
+            "garment/m1/new_vertices",
+            (&parted, m1.m0_vertices),
+            (0.0015, [30, 30, 200]),
+        )?;
         let strips = |list: &[[u32; 2]], at: &[DVec3]| -> Vec<Vec<[f32; 3]>> {
             list.iter()
                 .map(|e| f32s(&[at[e[0] as usize], at[e[1] as usize]]))
                 .collect()
         };
-        rec.log(
-            "garment/m1/edges",
-            &LineStrips3D::new(edge_paths(positions, edges))
-                .with_radii([0.0003])
-                .with_colors([[70, 70, 80]]),
-        )
-        .map_err(to_sink)?;
-        let new: Vec<DVec3> = positions[m1.m0_vertices..].to_vec();
-        rec.log(
-            "garment/m1/new_vertices",
-            &Points3D::new(f32s(&new))
-                .with_radii([0.0015])
-                .with_colors([[30, 30, 200]]),
-        )
-        .map_err(to_sink)?;
         for (path, list, at) in [
             (
                 "collision/m1/crossing_before",

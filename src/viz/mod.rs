@@ -38,6 +38,7 @@ pub mod logger;
 mod m1;
 mod mannequin;
 mod nurbs;
+mod parts;
 mod patterns;
 pub mod recording;
 pub mod replay;

@@ -1,6 +1,9 @@
 //! The recording as the logger writes it: one chunk per log call in call order
 //! ([`OrderedRecording`]), and the metric paths by unit ([`metric_path`]).
 
+use std::collections::{BTreeMap, BTreeSet};
+use std::sync::Mutex;
+
 use rerun::RecordingStream;
 
 use crate::session::SinkError;
@@ -64,37 +67,58 @@ pub fn metric_path(path: &str) -> String {
 ///
 /// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
 /// a hash map: two runs of the same session would write the same chunks in different
-/// orders, which `rerun rrd compare` (plain) calls different. Flushing after each call
-/// leaves one entity per flush, so the file's chunks follow the calls.
+/// orders, which `rerun rrd compare` (plain) calls different. Each call here builds its own
+/// chunk and sends it past the batcher, so the file's chunks follow the calls (and a call
+/// costs about half what a log and a flush of the batcher do).
 ///
 /// A garment worn over another logs its entities under `layers/<name>/` (see
 /// [`Self::set_layer`]), so that each garment keeps its own.
-pub struct OrderedRecording(RecordingStream, bool, Option<String>);
+///
+/// It also remembers what each entity shows now: [`Self::log_part`] skips a part whose
+/// content is the one the entity already shows (the latest-at scene is the same without
+/// it), and any other log call at an entity, a [`rerun::Clear`] among them, forgets what it
+/// knew of that entity and of everything under it.
+pub struct OrderedRecording {
+    rec: RecordingStream,
+    metrics_only: bool,
+    layer: Option<String>,
+    only_changed: bool,
+    /// Entities that show something now, by full path, with the content of each field of
+    /// those a part was logged to (the exact words [`Self::log_part`] was given).
+    shown: Mutex<BTreeMap<String, Fields>>,
+}
+
+/// The content of each field of a part, by field name.
+type Fields = BTreeMap<&'static str, Vec<u32>>;
 
 /// The entity roots that belong to a garment (moved under `layers/<name>/` for a garment
 /// worn over another).
 const GARMENT_ROOTS: [&str; 5] = ["garment", "collision", "constraints", "sculpt", "patterns"];
 
 impl OrderedRecording {
-    /// Writes to `rec`; with `metrics_only`, only the metrics, the log and the legends.
-    pub(super) fn new(rec: RecordingStream, metrics_only: bool) -> Self {
-        Self(rec, metrics_only, None)
+    /// Writes to `rec`; with `metrics_only`, only the metrics, the log and the legends; with
+    /// `only_changed`, [`Self::log_part`] skips the parts the recording shows already.
+    pub(super) fn new(rec: RecordingStream, metrics_only: bool, only_changed: bool) -> Self {
+        Self {
+            rec,
+            metrics_only,
+            layer: None,
+            only_changed,
+            shown: Mutex::new(BTreeMap::new()),
+        }
     }
 
     /// The garment the next calls log, when it is worn over another (`None`: the innermost
     /// or only garment, at the usual entities).
     pub fn set_layer(&mut self, layer: Option<String>) {
-        self.2 = layer;
+        self.layer = layer;
     }
 
-    /// Logs `data` at `path` on the current timelines, as its own chunk.
-    pub fn log<AS: ?Sized + rerun::AsComponents>(
-        &self,
-        path: impl Into<rerun::EntityPath>,
-        data: &AS,
-    ) -> Result<(), SinkError> {
-        let mut path = path.into();
-        if let Some(layer) = &self.2
+    /// `path` where it is logged: under `layers/<name>/` for a garment worn over another;
+    /// `None` when the metrics-only filter leaves it out.
+    fn placed(&self, path: rerun::EntityPath) -> Option<rerun::EntityPath> {
+        let mut path = path;
+        if let Some(layer) = &self.layer
             && path
                 .iter()
                 .next()
@@ -104,11 +128,139 @@ impl OrderedRecording {
         }
         // With metrics only (the flag), anything but the metrics, the log and the legends
         // is left out.
-        if self.1 && !["metrics", "log", "legend"].contains(&path.iter().next().map_or("", |p| p.unescaped_str())) {
+        let root = path.iter().next().map_or("", |p| p.unescaped_str());
+        (!self.metrics_only || ["metrics", "log", "legend"].contains(&root)).then_some(path)
+    }
+
+    fn shown(&self) -> std::sync::MutexGuard<'_, BTreeMap<String, Fields>> {
+        self.shown.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Remembers `key` as showing `content`, and nothing under it.
+    fn remember(&self, key: String, content: Fields) {
+        self.forget(&key);
+        self.shown().insert(key, content);
+    }
+
+    /// Forgets `key` and everything under it.
+    fn forget(&self, key: &str) {
+        let mut shown = self.shown();
+        let under = format!("{key}/");
+        shown.remove(key);
+        let stale: Vec<String> = shown
+            .range(under.clone()..)
+            .take_while(|(k, _)| k.starts_with(&under))
+            .map(|(k, _)| k.clone())
+            .collect();
+        for k in stale {
+            shown.remove(&k);
+        }
+    }
+
+    /// Sends `data` at `path` as one chunk, at the current time on the user timelines (none:
+    /// static). The chunk goes to the sink as it is, after every chunk sent before it: no
+    /// batching, no flush, nothing reordered.
+    fn send<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: rerun::EntityPath,
+        data: &AS,
+        timepoint: rerun::TimePoint,
+    ) -> Result<(), SinkError> {
+        let batches = data.as_serialized_batches();
+        if batches.is_empty() {
             return Ok(());
         }
-        self.0.log(path, data)?;
-        self.0.flush_async()?;
+        let chunk = rerun::log::Chunk::builder(path)
+            .with_serialized_batches(rerun::log::RowId::new(), timepoint, batches)
+            .build()
+            .map_err(|e| SinkError::Backend {
+                what: "rerun chunk",
+                source: Box::new(e),
+            })?;
+        self.rec.send_chunk(chunk);
+        Ok(())
+    }
+
+    /// Logs `data` at `path` on the current timelines, as its own chunk.
+    pub fn log<AS: ?Sized + rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        data: &AS,
+    ) -> Result<(), SinkError> {
+        let Some(path) = self.placed(path.into()) else {
+            return Ok(());
+        };
+        self.remember(path.to_string(), Fields::new());
+        self.send(path, data, self.rec.now())
+    }
+
+    /// Logs a part at `path`: `fields` are the words that make each of its fields (the same
+    /// words, the same data), and `build` makes the part's data from the fields to send
+    /// (true where one is sent). When only changed parts are logged, the fields the entity
+    /// shows already are left out (Rerun's latest-at takes them from the earlier log), and
+    /// nothing is sent when none changed; else every field is sent. Returns whether
+    /// anything was sent.
+    pub fn log_part<AS: rerun::AsComponents>(
+        &self,
+        path: impl Into<rerun::EntityPath>,
+        fields: Vec<(&'static str, Vec<u32>)>,
+        build: impl FnOnce(&[bool]) -> AS,
+    ) -> Result<bool, SinkError> {
+        let Some(path) = self.placed(path.into()) else {
+            return Ok(false);
+        };
+        let key = path.to_string();
+        let changed: Vec<bool> = {
+            let shown = self.shown();
+            let before = shown.get(&key);
+            fields
+                .iter()
+                .map(|(name, words)| !self.only_changed || before.and_then(|b| b.get(name)).is_none_or(|w| w != words))
+                .collect()
+        };
+        if !changed.contains(&true) {
+            return Ok(false);
+        }
+        let data = build(&changed);
+        let mut content = self.shown().remove(&key).unwrap_or_default();
+        content.extend(fields);
+        self.remember(key, content);
+        self.send(path, &data, self.rec.now())?;
+        Ok(true)
+    }
+
+    /// Clears the entities right under `parent` that show something and whose names are
+    /// not in `keep` (the parts a mesh no longer has).
+    pub fn clear_others(&self, parent: &str, keep: &BTreeSet<String>) -> Result<(), SinkError> {
+        let Some(parent) = self.placed(parent.into()) else {
+            return Ok(());
+        };
+        let under = format!("{parent}/");
+        let gone: Vec<String> = self
+            .shown()
+            .range(under.clone()..)
+            .take_while(|(k, _)| k.starts_with(&under))
+            .map(|(k, _)| k[under.len()..].to_string())
+            .filter(|name| !name.contains('/') && !keep.contains(name))
+            .collect();
+        for name in gone {
+            let path = parent.join(&rerun::EntityPath::from(name.as_str()));
+            self.forget(&path.to_string());
+            self.send(path, &rerun::Clear::flat(), self.rec.now())?;
+        }
+        Ok(())
+    }
+
+    /// Clears `path` if it shows something.
+    pub fn clear_if_shown(&self, path: &str) -> Result<(), SinkError> {
+        let Some(path) = self.placed(path.into()) else {
+            return Ok(());
+        };
+        let key = path.to_string();
+        if self.shown().contains_key(&key) {
+            self.forget(&key);
+            self.send(path, &rerun::Clear::flat(), self.rec.now())?;
+        }
         Ok(())
     }
 
@@ -118,9 +270,7 @@ impl OrderedRecording {
         path: impl Into<rerun::EntityPath>,
         data: &AS,
     ) -> Result<(), SinkError> {
-        self.0.log_static(path, data)?;
-        self.0.flush_async()?;
-        Ok(())
+        self.send(path.into(), data, rerun::TimePoint::default())
     }
 }
 
@@ -128,6 +278,6 @@ impl std::ops::Deref for OrderedRecording {
     type Target = RecordingStream;
 
     fn deref(&self) -> &RecordingStream {
-        &self.0
+        &self.rec
     }
 }

@@ -47,7 +47,7 @@ fn region_edges(mesh: &TriMesh, region: &[bool], shift: DVec3) -> Vec<Vec<[f32; 
         .collect();
     edges.sort_unstable();
     edges.dedup();
-    edge_paths(&shifted(mesh, shift).positions, &edges)
+    edge_paths(&shifted(mesh, shift).positions_f32(), &edges)
 }
 
 fn shifted(mesh: &TriMesh, shift: DVec3) -> TriMesh {

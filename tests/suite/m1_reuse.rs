@@ -27,7 +27,7 @@ fn bits(positions: &[glam::DVec3]) -> Vec<[u64; 3]> {
 /// A random session: a tight jumpsuit with M1, its ease tightened (so that M1's collision
 /// has vertices to move), then drags of control points, dimension edits and undos drawn by
 /// `rng`.
-fn random_session(body: &std::path::Path, rng: &mut Lcg, steps: usize) -> String {
+pub(super) fn random_session(body: &std::path::Path, rng: &mut Lcg, steps: usize) -> String {
     const POINTS: [&str; 6] = [
         "waist.front_left",
         "chest.front_left",

@@ -19,6 +19,7 @@ mod landmarks;
 mod layered_session;
 mod layers;
 mod layout;
+mod log_changed;
 mod m1;
 mod m1_reuse;
 mod mannequin;

@@ -85,13 +85,19 @@ fn a_changed_value_fails_replay_with_a_report_naming_entity_component_and_index(
     let stored = flatten_messages(replay(Path::new("recordings/drag-into-body")));
     assert_eq!(first_difference(&stored, &stored.clone(), 0.0), None);
     let mut changed = stored.clone();
-    let (chunk, row) = nudge(&mut changed, "/garment/m0", "Mesh3D:vertex_positions", 7, 1e-4);
+    let (chunk, row) = nudge(
+        &mut changed,
+        "/garment/m0/mesh/p000",
+        "Mesh3D:vertex_positions",
+        7,
+        1e-4,
+    );
     let d = first_difference(&stored, &changed, 0.0).expect("the change is found");
     assert_eq!(
         (d.chunk, d.entity.as_str(), d.component.as_deref(), d.row, d.index),
         (
             chunk,
-            "/garment/m0",
+            "/garment/m0/mesh/p000",
             Some("Mesh3D:vertex_positions"),
             Some(row),
             Some(7)
@@ -99,7 +105,7 @@ fn a_changed_value_fails_replay_with_a_report_naming_entity_component_and_index(
     );
     let report = d.to_string();
     assert!(
-        report.contains("entity /garment/m0") && report.contains("index 7"),
+        report.contains("entity /garment/m0/mesh/p000") && report.contains("index 7"),
         "{report}"
     );
     assert!(d.step.is_some() && d.stage.is_some(), "{report}");

@@ -327,6 +327,11 @@ pub(crate) struct RunArgs {
     /// Also log compute timings to the recording (makes recordings differ run to run).
     #[arg(long)]
     pub(crate) log_timings: bool,
+    /// Log every patch of every garment mesh (M0, its clearance map, M1, their edges) at
+    /// every step, also those the recording shows already; by default a step sends only the
+    /// patches that changed. The scene at every step is the same either way.
+    #[arg(long)]
+    pub(crate) log_unchanged: bool,
     /// What the recording gets: every stage (all), the final meshes of each step (final), or
     /// the metrics and the log (metrics) [default: the session's `log detail=`, else all].
     #[arg(long, value_name = "DETAIL", value_parser = ["all", "final", "metrics"])]

@@ -47,6 +47,7 @@ pub(crate) fn run(args: RunArgs) -> Result<ExitCode> {
         live.rec.clone(),
         LogOptions::default()
             .with_timings(args.log_timings)
+            .with_only_changed(!args.log_unchanged)
             .with_detail(detail)
             .with_settle(args.viewer.connect.is_none() && !args.viewer.serve && !args.viewer.serve_web),
     )

@@ -1,0 +1,360 @@
+//! Garment meshes logged part by part: consecutive patches grouped into parts of at least
+//! [`PART_FACES`] faces, one entity per part (`<root>/p007`, named by its first patch), its
+//! edges likewise, and at each step only the parts, and of a part the fields, that differ
+//! from what the recording shows at that entity already (see
+//! [`OrderedRecording::log_part`]). A drag re-surfaces some patches and collides fewer; the
+//! rest of the garment is not sent again, and the viewer, which shows the latest data of
+//! each entity, still shows the whole garment.
+//!
+//! A part is a trade: each entity costs a chunk of its own (about 80 us to encode and write
+//! on one core, whatever its size), and data is sent again a part at a time.
+
+use std::collections::BTreeSet;
+
+use glam::DVec3;
+use rerun::{LineStrips3D, Mesh3D, Points3D};
+
+use super::draw::edge_paths;
+use super::recording::OrderedRecording;
+use crate::session::SinkError;
+
+/// The fewest faces a part has by default (but the last, which takes what is left): the
+/// patches are grouped in order until they have as many ([`super::LogOptions::part_faces`]).
+pub(super) const PART_FACES: usize = 4096;
+
+/// The faces of one part, its vertices numbered in the order its faces meet them.
+pub(super) struct Part {
+    /// The part's index.
+    pub part: u32,
+    /// The mesh's index of each of the part's vertices.
+    pub vertices: Vec<u32>,
+    /// The patch's faces, in the mesh's order, in the part's numbering.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The part of each face: consecutive patches (by index) grouped until a part has
+/// `min_faces` faces (a last part short of it joins the one before); with the entity name
+/// of each part, `p` and its first patch.
+pub(super) fn parts_of(face_patch: &[u32], min_faces: usize) -> (Vec<u32>, Vec<String>) {
+    let patches = face_patch.iter().max().map_or(0, |&p| p as usize + 1);
+    let mut faces = vec![0usize; patches];
+    for &p in face_patch {
+        faces[p as usize] += 1;
+    }
+    let mut part_of = vec![0u32; patches];
+    let mut names = Vec::new();
+    let mut size = min_faces;
+    for p in 0..patches {
+        if size >= min_faces && faces[p] > 0 {
+            names.push(format!("p{p:03}"));
+            size = 0;
+        }
+        part_of[p] = names.len().saturating_sub(1) as u32;
+        size += faces[p];
+    }
+    if size < min_faces && names.len() > 1 {
+        names.pop();
+        let last = names.len() as u32;
+        for k in &mut part_of {
+            *k = (*k).min(last - 1);
+        }
+    }
+    (face_patch.iter().map(|&p| part_of[p as usize]).collect(), names)
+}
+
+/// The indices `0..n` grouped by `label` (counting sort, each group in index order), with
+/// where each group starts (`start[l]..start[l + 1]`).
+fn grouped(labels: impl Iterator<Item = usize> + Clone, groups: usize) -> (Vec<usize>, Vec<u32>) {
+    let mut start = vec![0usize; groups + 1];
+    for l in labels.clone() {
+        start[l + 1] += 1;
+    }
+    for g in 0..groups {
+        start[g + 1] += start[g];
+    }
+    let mut fill = start.clone();
+    let mut order = vec![0u32; start[groups]];
+    for (i, l) in labels.enumerate() {
+        order[fill[l]] = i as u32;
+        fill[l] += 1;
+    }
+    (start, order)
+}
+
+/// Renumbers `items` (lists of mesh vertices) into a part's own numbering: the part's
+/// vertices in the order met, and the items in it. `local` is all `u32::MAX` on entry and
+/// on return.
+fn renumber<const N: usize>(items: impl Iterator<Item = [u32; N]>, local: &mut [u32]) -> (Vec<u32>, Vec<[u32; N]>) {
+    let mut vertices = Vec::new();
+    let renumbered = items
+        .map(|item| {
+            item.map(|v| {
+                let l = &mut local[v as usize];
+                if *l == u32::MAX {
+                    *l = vertices.len() as u32;
+                    vertices.push(v);
+                }
+                *l
+            })
+        })
+        .collect();
+    for &v in &vertices {
+        local[v as usize] = u32::MAX;
+    }
+    (vertices, renumbered)
+}
+
+/// The mesh of `vertex_count` vertices and `triangles` split by `face_part` into
+/// `parts` parts, those with faces, in order.
+pub(super) fn split(vertex_count: usize, triangles: &[[u32; 3]], (face_part, parts): (&[u32], usize)) -> Vec<Part> {
+    let (start, order) = grouped(face_part.iter().map(|&p| p as usize), parts);
+    let mut local = vec![u32::MAX; vertex_count];
+    (0..parts)
+        .filter(|&p| start[p] < start[p + 1])
+        .map(|p| {
+            let faces = order[start[p]..start[p + 1]].iter().map(|&f| triangles[f as usize]);
+            let (vertices, triangles) = renumber(faces, &mut local);
+            Part {
+                part: p as u32,
+                vertices,
+                triangles,
+            }
+        })
+        .collect()
+}
+
+/// The mesh's `edges` shared out among the `parts` parts, each edge to one: the later of
+/// its ends' first parts (the lowest part of a face around the vertex), so that an edge
+/// inside a part goes to that part and one along a seam to one side of it.
+pub(super) fn split_edges(
+    vertex_count: usize,
+    triangles: &[[u32; 3]],
+    (face_part, parts): (&[u32], usize),
+    edges: &[[u32; 2]],
+) -> Vec<EdgePart> {
+    if parts == 0 {
+        return Vec::new();
+    }
+    let mut first = vec![u32::MAX; vertex_count];
+    for (t, &p) in triangles.iter().zip(face_part) {
+        for &v in t {
+            first[v as usize] = first[v as usize].min(p);
+        }
+    }
+    let owner = |&[a, b]: &[u32; 2]| (first[a as usize].max(first[b as usize]) as usize).min(parts - 1);
+    let (start, order) = grouped(edges.iter().map(owner), parts);
+    let mut local = vec![u32::MAX; vertex_count];
+    (0..parts)
+        .filter(|&p| start[p] < start[p + 1])
+        .map(|p| {
+            let (vertices, edges) = renumber(
+                order[start[p]..start[p + 1]].iter().map(|&e| edges[e as usize]),
+                &mut local,
+            );
+            EdgePart {
+                part: p as u32,
+                vertices,
+                edges,
+            }
+        })
+        .collect()
+}
+
+/// The edges given to one part, in their own numbering.
+pub(super) struct EdgePart {
+    /// The part's index.
+    pub part: u32,
+    /// The mesh's index of each vertex the edges use.
+    pub vertices: Vec<u32>,
+    /// The edges, in the part's numbering.
+    pub edges: Vec<[u32; 2]>,
+}
+
+fn words_of(points: &[[f32; 3]]) -> Vec<u32> {
+    points.iter().flat_map(|p| p.map(f32::to_bits)).collect()
+}
+
+fn gather(at: &[[f32; 3]], vertices: &[u32]) -> Vec<[f32; 3]> {
+    vertices.iter().map(|&v| at[v as usize]).collect()
+}
+
+fn color_word([r, g, b]: [u8; 3]) -> u32 {
+    u32::from_le_bytes([r, g, b, 0])
+}
+
+/// The positions as Rerun takes them.
+pub(super) fn f32_points(positions: &[DVec3]) -> Vec<[f32; 3]> {
+    positions.iter().map(|p| p.as_vec3().to_array()).collect()
+}
+
+/// The smooth vertex normals of the whole mesh (so that a part's shading runs on across
+/// its seams), as Rerun takes them.
+pub(super) fn f32_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[f32; 3]> {
+    crate::mesh::trimesh::vertex_normals_of(positions, triangles)
+        .iter()
+        .map(|n| n.as_vec3().to_array())
+        .collect()
+}
+
+/// A mesh as it is logged: its points and smooth normals as Rerun takes them, split into
+/// parts.
+pub(super) struct Parted {
+    /// Positions.
+    pub points: Vec<[f32; 3]>,
+    /// Smooth vertex normals of the whole mesh.
+    pub normals: Vec<[f32; 3]>,
+    /// The part of each face.
+    pub face_part: Vec<u32>,
+    /// The entity name of each part.
+    pub names: Vec<String>,
+    /// The parts with faces.
+    pub parts: Vec<Part>,
+}
+
+impl Parted {
+    /// `mesh` split into parts of whole patches (`face_patch`), of `part_faces` faces or
+    /// more.
+    pub fn new(mesh: &crate::mesh::TriMesh, face_patch: &[u32], part_faces: usize) -> Self {
+        Self::of(&mesh.positions, &mesh.triangles, face_patch, part_faces)
+    }
+
+    /// The mesh `triangles` make over `positions`, split into parts of whole patches.
+    pub fn of(positions: &[DVec3], triangles: &[[u32; 3]], face_patch: &[u32], part_faces: usize) -> Self {
+        let (face_part, names) = parts_of(face_patch, part_faces.max(1));
+        let parts = split(positions.len(), triangles, (&face_part, names.len()));
+        Self {
+            points: f32_points(positions),
+            normals: f32_normals(positions, triangles),
+            face_part,
+            names,
+            parts,
+        }
+    }
+
+    /// `edges` of the mesh (`triangles`) shared out among its parts.
+    pub fn edges(&self, triangles: &[[u32; 3]], edges: &[[u32; 2]]) -> Vec<EdgePart> {
+        split_edges(self.points.len(), triangles, (&self.face_part, self.names.len()), edges)
+    }
+}
+
+/// Logs each part as a mesh at `<root>/<part name>`, those the entity shows already left
+/// out (and of the others, the fields it shows: a moved patch sends its positions and
+/// normals, not its triangles), and clears the parts under `root` the mesh no longer has.
+/// Returns how many were logged.
+pub(super) fn log_mesh_parts(
+    rec: &OrderedRecording,
+    root: &str,
+    parted: &Parted,
+    colors: &[[u8; 3]],
+) -> Result<usize, SinkError> {
+    let mut logged = 0;
+    let mut names = BTreeSet::new();
+    for part in &parted.parts {
+        let name = parted.names[part.part as usize].clone();
+        let points = gather(&parted.points, &part.vertices);
+        let normals = gather(&parted.normals, &part.vertices);
+        let vertex_colors: Vec<[u8; 3]> = part.vertices.iter().map(|&v| colors[v as usize]).collect();
+        let fields = vec![
+            ("positions", words_of(&points)),
+            ("normals", words_of(&normals)),
+            ("triangles", part.triangles.iter().flatten().copied().collect()),
+            ("colors", vertex_colors.iter().map(|&c| color_word(c)).collect()),
+        ];
+        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+            let mut m = Mesh3D::update_fields();
+            if changed[0] {
+                m = m.with_vertex_positions(points);
+            }
+            if changed[1] {
+                m = m.with_vertex_normals(normals);
+            }
+            if changed[2] {
+                m = m.with_triangle_indices(part.triangles.iter().copied());
+            }
+            if changed[3] {
+                m = m.with_vertex_colors(vertex_colors);
+            }
+            m
+        })?;
+        logged += usize::from(sent);
+        names.insert(name);
+    }
+    rec.clear_others(root, &names)?;
+    Ok(logged)
+}
+
+/// Logs each edge part as polylines at `<root>/<part name>` (radius and colour as given),
+/// those the entity shows already left out, and clears the parts the mesh no longer has.
+/// Returns how many were logged.
+pub(super) fn log_edge_parts(
+    rec: &OrderedRecording,
+    root: &str,
+    (parted, parts): (&Parted, &[EdgePart]),
+    (radius, color): (f32, [u8; 3]),
+) -> Result<usize, SinkError> {
+    let mut logged = 0;
+    let mut names = BTreeSet::new();
+    for part in parts {
+        let name = parted.names[part.part as usize].clone();
+        let mine = gather(&parted.points, &part.vertices);
+        let mut words = words_of(&mine);
+        words.extend(part.edges.iter().flatten());
+        let fields = vec![("strips", words), ("style", vec![radius.to_bits(), color_word(color)])];
+        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+            let mut strips = LineStrips3D::update_fields();
+            if changed[0] {
+                strips = strips.with_strips(edge_paths(&mine, &part.edges));
+            }
+            if changed[1] {
+                strips = strips.with_radii([radius]).with_colors([color]);
+            }
+            strips
+        })?;
+        logged += usize::from(sent);
+        names.insert(name);
+    }
+    rec.clear_others(root, &names)?;
+    Ok(logged)
+}
+
+/// Logs the points of each part at or after vertex `from` (M1's new vertices) at
+/// `<root>/<part name>`, as [`log_mesh_parts`] does its meshes.
+pub(super) fn log_point_parts(
+    rec: &OrderedRecording,
+    root: &str,
+    (parted, from): (&Parted, usize),
+    (radius, color): (f32, [u8; 3]),
+) -> Result<usize, SinkError> {
+    let mut logged = 0;
+    let mut names = BTreeSet::new();
+    for part in &parted.parts {
+        let mine: Vec<[f32; 3]> = part
+            .vertices
+            .iter()
+            .filter(|&&v| v as usize >= from)
+            .map(|&v| parted.points[v as usize])
+            .collect();
+        if mine.is_empty() {
+            continue;
+        }
+        let name = parted.names[part.part as usize].clone();
+        let fields = vec![
+            ("positions", words_of(&mine)),
+            ("style", vec![radius.to_bits(), color_word(color)]),
+        ];
+        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+            let mut p = Points3D::update_fields();
+            if changed[0] {
+                p = p.with_positions(mine);
+            }
+            if changed[1] {
+                p = p.with_radii([radius]).with_colors([color]);
+            }
+            p
+        })?;
+        logged += usize::from(sent);
+        names.insert(name);
+    }
+    rec.clear_others(root, &names)?;
+    Ok(logged)
+}
