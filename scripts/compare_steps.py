@@ -9,7 +9,7 @@ and prints the median of every stage's compute time (ms, from `--metrics`) for b
 
 AFTER_BINARY defaults to target/release/drape. With --log-all, both log the whole recording
 (on the same core as the compute, as a one-core user would) and a `logging` row gives the
-time of every sink call of the step. Build the "before" binary from an earlier
+time of every sink call of the step, and `whole step` the two together. Build the "before" binary from an earlier
 commit (`git checkout REV && cargo build --release && cp target/release/drape /tmp/before`).
 """
 
@@ -59,13 +59,14 @@ def main():
                             sum(v for k, v in t.items() if not k.startswith("log.")))
                         times.setdefault((name, which, "logging"), []).append(
                             sum(v for k, v in t.items() if k.startswith("log.")))
+                        times.setdefault((name, which, "whole step"), []).append(sum(t.values()))
     for name in sessions:
         print(f"\n{name}: {args.op} steps, one core, median ms over {args.runs} runs of the demo's {args.op}s\n")
         print("| stage | before | after |\n|---|---:|---:|")
-        for k in GARMENT + ["garment"] + M1 + ["M1", "compute"] + (["logging"] if args.log_all else []):
+        for k in GARMENT + ["garment"] + M1 + ["M1", "compute"] + (["logging", "whole step"] if args.log_all else []):
             a = median(times[(name, "before", k)])
             b = median(times[(name, "after", k)])
-            label = f"**{k}**" if k in ("garment", "M1", "compute") else k
+            label = f"**{k}**" if k in ("garment", "M1", "compute", "whole step") else k
             print(f"| {label} | {a:.2f} | {b:.2f} |")
 
 

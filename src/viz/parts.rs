@@ -237,6 +237,31 @@ impl Parted {
     }
 }
 
+/// The words that make each field of a part, by field name.
+type Fields = Vec<(&'static str, Vec<u32>)>;
+
+/// Logs each `(name, fields, build)` at `<root>/<name>` through
+/// [`OrderedRecording::log_part`], and clears the entities under `root` that are not among
+/// them (the parts a mesh no longer has). Returns how many were sent.
+fn log_named<AS, B>(
+    rec: &OrderedRecording,
+    root: &str,
+    items: impl Iterator<Item = (String, Fields, B)>,
+) -> Result<usize, SinkError>
+where
+    AS: rerun::AsComponents,
+    B: FnOnce(&[bool]) -> AS,
+{
+    let mut logged = 0;
+    let mut names = BTreeSet::new();
+    for (name, fields, build) in items {
+        logged += usize::from(rec.log_part(format!("{root}/{name}"), fields, build)?);
+        names.insert(name);
+    }
+    rec.clear_others(root, &names)?;
+    Ok(logged)
+}
+
 /// Logs each part as a mesh at `<root>/<part name>`, those the entity shows already left
 /// out (and of the others, the fields it shows: a moved patch sends its positions and
 /// normals, not its triangles), and clears the parts under `root` the mesh no longer has.
@@ -247,10 +272,7 @@ pub(super) fn log_mesh_parts(
     parted: &Parted,
     colors: &[[u8; 3]],
 ) -> Result<usize, SinkError> {
-    let mut logged = 0;
-    let mut names = BTreeSet::new();
-    for part in &parted.parts {
-        let name = parted.names[part.part as usize].clone();
+    let items = parted.parts.iter().map(|part| {
         let points = gather(&parted.points, &part.vertices);
         let normals = gather(&parted.normals, &part.vertices);
         let vertex_colors: Vec<[u8; 3]> = part.vertices.iter().map(|&v| colors[v as usize]).collect();
@@ -260,7 +282,7 @@ pub(super) fn log_mesh_parts(
             ("triangles", part.triangles.iter().flatten().copied().collect()),
             ("colors", vertex_colors.iter().map(|&c| color_word(c)).collect()),
         ];
-        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+        let build = move |changed: &[bool]| {
             let mut m = Mesh3D::update_fields();
             if changed[0] {
                 m = m.with_vertex_positions(points);
@@ -275,12 +297,10 @@ pub(super) fn log_mesh_parts(
                 m = m.with_vertex_colors(vertex_colors);
             }
             m
-        })?;
-        logged += usize::from(sent);
-        names.insert(name);
-    }
-    rec.clear_others(root, &names)?;
-    Ok(logged)
+        };
+        (parted.names[part.part as usize].clone(), fields, build)
+    });
+    log_named(rec, root, items)
 }
 
 /// Logs each edge part as polylines at `<root>/<part name>` (radius and colour as given),
@@ -292,15 +312,12 @@ pub(super) fn log_edge_parts(
     (parted, parts): (&Parted, &[EdgePart]),
     (radius, color): (f32, [u8; 3]),
 ) -> Result<usize, SinkError> {
-    let mut logged = 0;
-    let mut names = BTreeSet::new();
-    for part in parts {
-        let name = parted.names[part.part as usize].clone();
+    let items = parts.iter().map(|part| {
         let mine = gather(&parted.points, &part.vertices);
         let mut words = words_of(&mine);
         words.extend(part.edges.iter().flatten());
         let fields = vec![("strips", words), ("style", vec![radius.to_bits(), color_word(color)])];
-        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+        let build = move |changed: &[bool]| {
             let mut strips = LineStrips3D::update_fields();
             if changed[0] {
                 strips = strips.with_strips(edge_paths(&mine, &part.edges));
@@ -309,12 +326,10 @@ pub(super) fn log_edge_parts(
                 strips = strips.with_radii([radius]).with_colors([color]);
             }
             strips
-        })?;
-        logged += usize::from(sent);
-        names.insert(name);
-    }
-    rec.clear_others(root, &names)?;
-    Ok(logged)
+        };
+        (parted.names[part.part as usize].clone(), fields, build)
+    });
+    log_named(rec, root, items)
 }
 
 /// Logs the points of each part at or after vertex `from` (M1's new vertices) at
@@ -325,9 +340,7 @@ pub(super) fn log_point_parts(
     (parted, from): (&Parted, usize),
     (radius, color): (f32, [u8; 3]),
 ) -> Result<usize, SinkError> {
-    let mut logged = 0;
-    let mut names = BTreeSet::new();
-    for part in &parted.parts {
+    let items = parted.parts.iter().filter_map(|part| {
         let mine: Vec<[f32; 3]> = part
             .vertices
             .iter()
@@ -335,14 +348,13 @@ pub(super) fn log_point_parts(
             .map(|&v| parted.points[v as usize])
             .collect();
         if mine.is_empty() {
-            continue;
+            return None;
         }
-        let name = parted.names[part.part as usize].clone();
         let fields = vec![
             ("positions", words_of(&mine)),
             ("style", vec![radius.to_bits(), color_word(color)]),
         ];
-        let sent = rec.log_part(format!("{root}/{name}"), fields, |changed| {
+        let build = move |changed: &[bool]| {
             let mut p = Points3D::update_fields();
             if changed[0] {
                 p = p.with_positions(mine);
@@ -351,10 +363,8 @@ pub(super) fn log_point_parts(
                 p = p.with_radii([radius]).with_colors([color]);
             }
             p
-        })?;
-        logged += usize::from(sent);
-        names.insert(name);
-    }
-    rec.clear_others(root, &names)?;
-    Ok(logged)
+        };
+        Some((parted.names[part.part as usize].clone(), fields, build))
+    });
+    log_named(rec, root, items)
 }

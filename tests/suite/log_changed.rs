@@ -8,34 +8,21 @@
 
 use std::collections::BTreeMap;
 
-use drape::session::{DEMO_SESSION, RunOptions, parse_session, run_session};
-use drape::viz::{LogOptions, RerunLogger};
+use drape::session::DEMO_SESSION;
+use drape::viz::LogOptions;
 use rerun::external::arrow::array::{Array, ArrayRef, BooleanArray};
-use rerun::log::{Chunk, LogMsg};
+use rerun::log::Chunk;
 
 use super::common::{Lcg, shipped_bodies};
 
 /// Per (entity, component): the value the viewer shows.
 type Scene = BTreeMap<(String, String), ArrayRef>;
 
-/// A recording's chunks, decoded in the order they were written.
+/// A recording's chunks, decoded in the order they were written, Rerun's own entities
+/// left out.
 fn record(text: &str, options: LogOptions) -> Vec<Chunk> {
-    let (rec, storage) = drape::viz::target::memory_recording("changed").unwrap();
-    let session = parse_session(text, "changed.drape", std::path::Path::new(".")).expect("parses");
-    {
-        let mut logger = RerunLogger::new(rec, options).unwrap();
-        let report = run_session(&session, &RunOptions::default(), &mut [&mut logger]);
-        assert!(report.error.is_none(), "{:?}", report.error);
-    }
-    storage
-        .take()
+    super::snapshot::recorded_chunks(text, options)
         .into_iter()
-        .filter_map(|msg| match msg {
-            LogMsg::ArrowMsg(store, arrow) if store.kind() == rerun::StoreKind::Recording => {
-                Some(Chunk::from_arrow_msg(&arrow).expect("chunk decodes"))
-            }
-            _ => None,
-        })
         .filter(|c| !c.entity_path().to_string().starts_with("/__"))
         .collect()
 }

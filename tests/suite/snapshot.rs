@@ -261,10 +261,16 @@ fn the_demo_logs_the_same_data_twice() {
 
 /// The demo's recording as decoded chunks, in the order they were written.
 fn demo_chunks() -> Vec<Chunk> {
+    recorded_chunks(DEMO_SESSION, LogOptions::default())
+}
+
+/// The recording of the session `text` logged with `options`, as decoded chunks in the
+/// order they were written (the recording's own, not the blueprint's).
+pub fn recorded_chunks(text: &str, options: LogOptions) -> Vec<Chunk> {
     let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
-    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
+    let session = parse_session(text, "session.drape", std::path::Path::new(".")).expect("parses");
     {
-        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
+        let mut logger = RerunLogger::new(rec, options).unwrap();
         let report = run_session(&session, &RunOptions::default(), &mut [&mut logger]);
         assert!(report.error.is_none(), "{:?}", report.error);
     }
