@@ -35,7 +35,7 @@ pub struct LogOptions {
     /// (to compare). Default value: true.
     pub only_changed: bool,
     /// The fewest faces of a part a garment mesh is logged in (consecutive patches grouped
-    /// until they have as many; see [`super::parts`]): smaller parts send less again after
+    /// until they have as many; see `viz::parts`): smaller parts send less again after
     /// a local change, and each costs a chunk of its own. Default value: 4096.
     pub part_faces: usize,
 }

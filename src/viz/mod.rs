@@ -7,7 +7,10 @@
 //! `garment/curves/rings/<ring>` (the ring at its current sub-step, `/points` its samples),
 //! `garment/curves/contours/<name>`, `garment/curves/lines/<name>`,
 //! `garment/curves/straightened`, `garment/control_points` (labelled), `garment/patches`,
-//! `garment/m0` (+ `/edges`; after response at the `collision.response` stage),
+//! `garment/m0/mesh/<part>` and `garment/m0/edges/<part>` (M0 in parts of whole patches,
+//! each sent only when it changed, see the `parts` module; after response at the
+//! `collision.response` stage; `garment/m0/muted` for a garment worn under another),
+//! `garment/clearance/<part>`, `garment/m1/{mesh,edges,new_vertices}/<part>`,
 //! `garment/edit/moves`, `collision/mesh/hits/<A..G>` (+ `/depth`),
 //! `collision/response/<rule>` (arrows), `collision/mesh/remaining`,
 //! `collision/mesh/crossing_edges`, `constraints/network/{links,curves}` (green met, red
