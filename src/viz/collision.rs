@@ -19,7 +19,7 @@ impl RerunLogger {
     /// of [`CLEARANCE_BANDS`], and the scale as a text document beside it.
     fn clearance_map(
         &self,
-        (mesh, parted): (&crate::mesh::TriMesh, &Parted),
+        (mesh, parted): (&crate::mesh::TriMesh, Option<&Parted>),
         clearance: &[f64],
         near_faces: &[(u32, f64)],
     ) -> Result<(), SinkError> {
@@ -32,7 +32,9 @@ impl RerunLogger {
         }
         let bands: Vec<usize> = shown.iter().map(|&d| clearance_band(d)).collect();
         let colors: Vec<[u8; 3]> = bands.iter().map(|&k| CLEARANCE_BANDS[k].1).collect();
-        log_mesh_parts(rec, "garment/clearance", parted, &colors)?;
+        if let Some(parted) = parted {
+            log_mesh_parts(rec, "garment/clearance", parted, &colors)?;
+        }
         let mut counts = [0usize; CLEARANCE_BANDS.len()];
         for k in bands {
             counts[k] += 1;
@@ -122,7 +124,7 @@ impl RerunLogger {
         let g = &outcome.garment;
         let counts = self.log_response_arrows(c)?;
         let parted = self.m0(&c.mesh, &g.face_patch, &g.edges)?;
-        self.clearance_map((&c.mesh, &parted), &c.quality.clearance, &c.quality.near_faces)?;
+        self.clearance_map((&c.mesh, parted.as_ref()), &c.quality.clearance, &c.quality.near_faces)?;
         let q = &c.quality;
         self.log_left_over(outcome)?;
         let verify = outcome.verify.as_ref().map_or(String::new(), |v| {

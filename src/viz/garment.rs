@@ -298,8 +298,17 @@ impl RerunLogger {
     /// Logs a garment mesh as `garment/m0/mesh/<part>` (vertices coloured by patch) with its
     /// edges at `garment/m0/edges/<part>`, only the parts that changed (see [`super::parts`]);
     /// returns the mesh as logged, for other views of it.
-    pub(super) fn m0(&self, mesh: &TriMesh, face_patch: &[u32], edges: &[[u32; 2]]) -> Result<Parted, SinkError> {
+    /// `None` when the recording leaves the garment out (metrics only).
+    pub(super) fn m0(
+        &self,
+        mesh: &TriMesh,
+        face_patch: &[u32],
+        edges: &[[u32; 2]],
+    ) -> Result<Option<Parted>, SinkError> {
         let rec = self.recording();
+        if !rec.keeps("garment/m0") {
+            return Ok(None);
+        }
         rec.clear_if_shown("garment/m0/muted")?;
         // Vertex colour: the patch of the first face that uses the vertex.
         let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
@@ -316,7 +325,7 @@ impl RerunLogger {
         log_mesh_parts(rec, "garment/m0/mesh", &parted, &colors)?;
         let edge_parts = parted.edges(&mesh.triangles, edges);
         log_edge_parts(rec, "garment/m0/edges", (&parted, &edge_parts), (0.0004, [60, 60, 70]))?;
-        Ok(parted)
+        Ok(Some(parted))
     }
 
     fn control_points(&self, fw: &Framework) -> Result<(), SinkError> {

@@ -216,12 +216,8 @@ impl StageSink for RerunLogger {
             Ok(())
         };
         self.rec.set_layer(None);
-        logged?;
-        // Every log call is already its own chunk (OrderedRecording); this sends what is left.
-        self.rec.flush_async().map_err(|e| SinkError::Backend {
-            what: "rerun flush",
-            source: Box::new(e),
-        })
+        // Every log call is its own chunk, already sent (OrderedRecording): nothing to flush.
+        logged
     }
 
     fn body(&mut self, _info: &StageInfo, stage: BodyStage<'_>) -> Result<(), SinkError> {

@@ -24,26 +24,8 @@ impl RerunLogger {
         let m1 = &outcome.m1;
         let c = &outcome.collision;
         let positions = &c.positions;
-        let first: Vec<Option<Rule>> = m1.selection.rules.iter().map(|r| r.first().copied()).collect();
-        let mut colors = vec![KEPT; positions.len()];
-        for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
-            if let Some(rule) = first.get(p as usize).copied().flatten() {
-                for &v in t {
-                    colors[v as usize] = m1_rule_color(rule);
-                }
-            }
-        }
-        let parted = Parted::of(positions, &m1.mesh.triangles, &m1.face_patch, self.options.part_faces);
-        log_mesh_parts(rec, "garment/m1/mesh", &parted, &colors)?;
+        self.m1_parts(m1, positions)?;
         let edges = m1.edges();
-        let edge_parts = parted.edges(&m1.mesh.triangles, edges);
-        log_edge_parts(rec, "garment/m1/edges", (&parted, &edge_parts), (0.0003, [70, 70, 80]))?;
-        log_point_parts(
-            rec,
-            "garment/m1/new_vertices",
-            (&parted, m1.m0_vertices),
-            (0.0015, [30, 30, 200]),
-        )?;
         let strips = |list: &[[u32; 2]], at: &[DVec3]| -> Vec<Vec<[f32; 3]>> {
             list.iter()
                 .map(|e| f32s(&[at[e[0] as usize], at[e[1] as usize]]))
@@ -111,6 +93,36 @@ impl RerunLogger {
                 outcome.stored.len()
             ),
         )
+    }
+
+    /// M1's mesh (vertices coloured by the rule that selected their patch, grey where M0 is
+    /// kept), its edges and its new vertices, in parts, only what changed; nothing when the
+    /// recording leaves the garment out.
+    fn m1_parts(&self, m1: &crate::m1::M1, positions: &[DVec3]) -> Result<(), SinkError> {
+        let rec = self.recording();
+        if !rec.keeps("garment/m1") {
+            return Ok(());
+        }
+        let first: Vec<Option<Rule>> = m1.selection.rules.iter().map(|r| r.first().copied()).collect();
+        let mut colors = vec![KEPT; positions.len()];
+        for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
+            if let Some(rule) = first.get(p as usize).copied().flatten() {
+                for &v in t {
+                    colors[v as usize] = m1_rule_color(rule);
+                }
+            }
+        }
+        let parted = Parted::of(positions, &m1.mesh.triangles, &m1.face_patch, self.options.part_faces);
+        log_mesh_parts(rec, "garment/m1/mesh", &parted, &colors)?;
+        let edge_parts = parted.edges(&m1.mesh.triangles, m1.edges());
+        log_edge_parts(rec, "garment/m1/edges", (&parted, &edge_parts), (0.0003, [70, 70, 80]))?;
+        log_point_parts(
+            rec,
+            "garment/m1/new_vertices",
+            (&parted, m1.m0_vertices),
+            (0.0015, [30, 30, 200]),
+        )?;
+        Ok(())
     }
 
     /// The cut lines, drawn on M1 and in their stored form on M0 (the old ones cleared).

@@ -6,15 +6,15 @@
 //! rest of the garment is not sent again, and the viewer, which shows the latest data of
 //! each entity, still shows the whole garment.
 //!
-//! A part is a trade: each entity costs a chunk of its own (about 80 us to encode and write
-//! on one core, whatever its size), and data is sent again a part at a time.
+//! A part is a trade: each entity costs a chunk of its own (about 90 us to encode and write
+//! on one core, whatever its size: `cargo bench --bench logging`), and data is sent again a part at a time.
 
 use std::collections::BTreeSet;
 
 use glam::DVec3;
 use rerun::{LineStrips3D, Mesh3D, Points3D};
 
-use super::draw::edge_paths;
+use super::draw::{edge_paths, f32s};
 use super::recording::OrderedRecording;
 use crate::session::SinkError;
 
@@ -28,7 +28,7 @@ pub(super) struct Part {
     pub part: u32,
     /// The mesh's index of each of the part's vertices.
     pub vertices: Vec<u32>,
-    /// The patch's faces, in the mesh's order, in the part's numbering.
+    /// The part's faces, in the mesh's order, in the part's numbering.
     pub triangles: Vec<[u32; 3]>,
 }
 
@@ -182,11 +182,6 @@ fn color_word([r, g, b]: [u8; 3]) -> u32 {
     u32::from_le_bytes([r, g, b, 0])
 }
 
-/// The positions as Rerun takes them.
-pub(super) fn f32_points(positions: &[DVec3]) -> Vec<[f32; 3]> {
-    positions.iter().map(|p| p.as_vec3().to_array()).collect()
-}
-
 /// The smooth vertex normals of the whole mesh (so that a part's shading runs on across
 /// its seams), as Rerun takes them.
 pub(super) fn f32_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[f32; 3]> {
@@ -223,7 +218,7 @@ impl Parted {
         let (face_part, names) = parts_of(face_patch, part_faces.max(1));
         let parts = split(positions.len(), triangles, (&face_part, names.len()));
         Self {
-            points: f32_points(positions),
+            points: f32s(positions),
             normals: f32_normals(positions, triangles),
             face_part,
             names,

@@ -132,6 +132,12 @@ impl OrderedRecording {
         (!self.metrics_only || ["metrics", "log", "legend"].contains(&root)).then_some(path)
     }
 
+    /// Whether what is logged at `path` reaches the recording (not left out by the
+    /// metrics-only filter): a caller can skip making what would be dropped.
+    pub fn keeps(&self, path: &str) -> bool {
+        self.placed(path.into()).is_some()
+    }
+
     fn shown(&self) -> std::sync::MutexGuard<'_, BTreeMap<String, Fields>> {
         self.shown.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
     }
@@ -223,7 +229,9 @@ impl OrderedRecording {
         }
         let data = build(&changed);
         let mut content = self.shown().remove(&key).unwrap_or_default();
-        content.extend(fields);
+        if self.only_changed {
+            content.extend(fields);
+        }
         self.remember(key, content);
         self.send(path, &data, self.rec.now())?;
         Ok(true)
