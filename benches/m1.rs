@@ -155,6 +155,7 @@ fn table(path: &Path) {
                         patches,
                         standard: Some(&g.mesh.positions),
                         measured: None,
+                        edges: None,
                     };
                     m1::select(&input, index, &options.select)
                 };

@@ -3,8 +3,8 @@
 //! it differs from M0, and the style (cut) lines drawn on it, stored on M0.
 //!
 //! Data flow of one step (after M0's collision): [`select()`] (which patches, by which
-//! rule) -> [`build`] (one or two [`sqrt3_step`]s of the selected patches over the collided
-//! M0) -> [`collide_m1_patches`] (only the vertices M0 does not have, each refined patch
+//! rule) -> [`subdivide`] (one or two [`sqrt3_step`]s of the selected patches over the collided
+//! M0; the last step's shape kept when its inputs are equal, only its vertices placed again) -> [`collide_m1_patches`] (only the vertices M0 does not have, each refined patch
 //! alone, a patch whose input is unchanged taken from the step before: detection,
 //! response, edge rounds that leave M0's vertices where they are; then the exact check over
 //! all of M1) ->
@@ -13,12 +13,14 @@
 pub mod collide;
 pub mod cut;
 pub mod patches;
+pub mod reshape;
 pub mod select;
 pub mod sqrt3;
 
 pub use collide::{M0Collided, M1Collision, RefinedInput, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use patches::{M1Reuse, PatchCounts, PatchInput, collide_m1, collide_m1_patches};
+pub use reshape::{M1Shape, subdivide};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
 
@@ -83,22 +85,35 @@ impl M1 {
 /// Builds M1 from the collided M0: `steps` sqrt(3) steps over the patches `selection`
 /// refines.
 pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M1Options) -> M1 {
+    build_traced(m0, face_patch, selection, options).0
+}
+
+/// [`build`], with the corners of every new vertex in order (the face of the mesh before its
+/// step whose centroid it is; the corners' indices are M1's, earlier than its own).
+pub(crate) fn build_traced(
+    m0: &TriMesh,
+    face_patch: &[u32],
+    selection: Selection,
+    options: &M1Options,
+) -> (M1, Vec<[u32; 3]>) {
     let refine = selection.refined();
     let first = sqrt3_step(m0, face_patch, &refine, options.smoothing);
     let first_vertices = first.mesh.positions.len();
     let mut smoothed = first.smoothed.clone();
     let mut anchor: Vec<u32> = (0..m0.positions.len() as u32).collect();
-    let extend_anchor = |step: &Step, anchor: &mut Vec<u32>| {
+    let mut corners = Vec::new();
+    let mut extend = |step: &Step, anchor: &mut Vec<u32>| {
         for o in &step.origin[anchor.len()..] {
-            if let Origin::Centroid(corners) = o {
-                anchor.push(anchor[corners[0] as usize]);
+            if let Origin::Centroid(c) = o {
+                anchor.push(anchor[c[0] as usize]);
+                corners.push(*c);
             }
         }
     };
-    extend_anchor(&first, &mut anchor);
+    extend(&first, &mut anchor);
     let (mesh, patches) = if options.steps >= 2 {
         let second = sqrt3_step(&first.mesh, &first.face_patch, &refine, options.smoothing);
-        extend_anchor(&second, &mut anchor);
+        extend(&second, &mut anchor);
         smoothed.extend(
             second
                 .smoothed
@@ -112,7 +127,7 @@ pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M
     };
     smoothed.sort_unstable();
     smoothed.dedup();
-    M1 {
+    let m1 = M1 {
         edges: crate::mesh::topology::undirected_edges(&mesh),
         mesh,
         face_patch: patches,
@@ -122,5 +137,6 @@ pub fn build(m0: &TriMesh, face_patch: &[u32], selection: Selection, options: &M
         first,
         first_vertices,
         anchor,
-    }
+    };
+    (m1, corners)
 }

@@ -289,15 +289,22 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
             .map(|&e| (patch_of[free_end(e) as usize], e)),
     );
     let mut local = vec![u32::MAX; n];
+    // The patch (plus one) whose vertices were last listed, per vertex: each listed once
+    // before the sort, which then sorts a sixth of the corners.
+    let mut listed = vec![0u32; n];
     let mut out = Vec::new();
     for (p, rules) in m1.selection.rules.iter().enumerate() {
         if rules.is_empty() {
             continue;
         }
         let faces = grouped[first[p]..first[p + 1]].to_vec();
-        let mut vertices: Vec<u32> = faces.iter().flat_map(|&f| m1.mesh.triangles[f as usize]).collect();
+        let mut vertices: Vec<u32> = Vec::with_capacity(faces.len());
+        for &v in faces.iter().flat_map(|&f| &m1.mesh.triangles[f as usize]) {
+            if std::mem::replace(&mut listed[v as usize], p as u32 + 1) != p as u32 + 1 {
+                vertices.push(v);
+            }
+        }
         vertices.sort_unstable();
-        vertices.dedup();
         for (i, &v) in vertices.iter().enumerate() {
             local[v as usize] = i as u32;
         }

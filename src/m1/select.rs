@@ -14,7 +14,9 @@
 //!    over the two ends): the garment is coarser than the body beneath it, so its edges can
 //!    cut through the body's bumps.
 
+use std::borrow::Cow;
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use glam::DVec3;
 
@@ -139,6 +141,33 @@ pub struct SelectInput<'a> {
     /// The vertices' distances M0's quality check measured, if kept: rule 4 reads the
     /// nearest body triangle of a vertex still where it was measured instead of searching.
     pub measured: Option<&'a Measured>,
+    /// M0's edges with their faces, if kept from an earlier step (read only when they were
+    /// found in the same faces as `mesh`'s).
+    pub edges: Option<&'a EdgeFaces>,
+}
+
+/// M0's undirected edges, each with its faces ([`sorted_edges`]), and the faces they were
+/// found in: kept from step to step while M0's faces stay the same (a drag moves vertices,
+/// not faces).
+#[derive(Debug)]
+pub struct EdgeFaces {
+    /// The faces.
+    triangles: Vec<[u32; 3]>,
+    /// Their edges, as [`sorted_edges`] gives them.
+    records: Vec<(u32, u32, u32, u8)>,
+}
+
+impl EdgeFaces {
+    /// `previous` when it was found in `mesh`'s faces, or found anew.
+    pub fn of(mesh: &TriMesh, previous: Option<&Arc<Self>>) -> Arc<Self> {
+        match previous {
+            Some(e) if e.triangles == mesh.triangles => Arc::clone(e),
+            _ => Arc::new(Self {
+                triangles: mesh.triangles.clone(),
+                records: sorted_edges(mesh),
+            }),
+        }
+    }
 }
 
 /// Applies the rules.
@@ -148,7 +177,10 @@ pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOption
     let on = |r: Rule| options.rules.contains(&r);
     // Each undirected edge once, in order, with its faces in order (border edges count for
     // both patches).
-    let records = sorted_edges(mesh);
+    let records = match input.edges {
+        Some(e) if e.triangles == mesh.triangles => Cow::Borrowed(&e.records),
+        _ => Cow::Owned(sorted_edges(mesh)),
+    };
     let edges = records
         .chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
         .map(|group| ([group[0].0, group[0].1], group.iter().map(|r| r.2 as usize)));

@@ -32,8 +32,9 @@ pub struct RunOptions {
     pub stop: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     /// Where body indexes are kept between runs (`--index-cache`); `None`: built every run.
     pub index_cache: Option<crate::body::index_cache::IndexCache>,
-    /// Collide every refined patch of M1 at every step (`--full-m1`), none taken from the
-    /// step before: the same M1, to compare (default off).
+    /// Build M1 whole at every step (`--full-m1`): subdivide M0 again and collide every
+    /// refined patch, nothing taken from the step before: the same M1, to compare (default
+    /// off).
     pub full_m1: bool,
 }
 

@@ -112,6 +112,11 @@ pub(crate) struct GarmentState {
     /// What the last M1's collision leaves for the next, patch by patch: kept through
     /// edits (a patch whose input is unchanged takes its collision from here).
     pub(crate) m1_reuse: Option<Arc<crate::m1::M1Reuse>>,
+    /// The last M1's shape: kept through edits (an M1 over an M0 of the same faces, patches
+    /// and refinement only places its vertices again).
+    pub(crate) m1_shape: Option<Arc<crate::m1::M1Shape>>,
+    /// M0's edges with their faces, as M1's selection last found them: kept through edits.
+    pub(crate) m0_edges: Option<Arc<crate::m1::select::EdgeFaces>>,
     /// The last pattern, when the scene asks for one (or why it could not be made).
     pub(crate) patterns: Option<Result<crate::pattern::Pattern, crate::pattern::PatternError>>,
     /// The cut lines, stored on M0.
@@ -191,6 +196,8 @@ impl GarmentState {
             standard: None,
             m1: None,
             m1_reuse: None,
+            m1_shape: None,
+            m0_edges: None,
             patterns: None,
             cuts: Vec::new(),
             through_cuts: Vec::new(),
@@ -218,6 +225,8 @@ impl GarmentState {
             standard: self.standard.clone(),
             m1: None,
             m1_reuse: self.m1_reuse.clone(),
+            m1_shape: self.m1_shape.clone(),
+            m0_edges: self.m0_edges.clone(),
             patterns: self.patterns.clone(),
             cuts: self.cuts.clone(),
             through_cuts: self.through_cuts.clone(),

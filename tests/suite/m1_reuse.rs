@@ -1,8 +1,10 @@
-//! M1 made incrementally (a refined patch whose input did not change takes its collision
-//! from the step before) against M1 made whole at every step (`full_m1`): random drag and
-//! dimension sessions on every shipped body give the same M1 at every step, bit for bit
-//! (mesh, positions after the collision, every figure and list of the collision), and the
-//! incremental run really kept patches.
+//! M1 made incrementally (M1's shape kept from the step before when M0's faces, patches and
+//! refinement are the same, only its vertices placed again; M0's edges kept for the
+//! selection; a refined patch whose input did not change takes its collision from the step
+//! before) against M1 made whole at every step (`full_m1`): random drag and dimension
+//! sessions on every shipped body give the same M1 at every step, bit for bit (mesh, every
+//! field of the subdivision, positions after the collision, every figure and list of the
+//! collision), and the incremental run really kept shapes and patches.
 
 use drape::session::{M1Stage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session};
 
@@ -59,8 +61,11 @@ pub(super) fn random_session(body: &std::path::Path, rng: &mut Lcg, steps: usize
     text
 }
 
-/// Runs `text`, M1 made incrementally or whole; the M1s and each step's kept patches.
-fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, Vec<u64>) {
+/// Per step that made an M1: patches kept, and 1 when its shape was kept.
+type Kept = Vec<(u64, u64)>;
+
+/// Runs `text`, M1 made incrementally or whole; the M1s and what each step kept.
+fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, Kept) {
     let session = parse_session(text, "reuse.drape", std::path::Path::new(".")).expect("parses");
     let mut sink = M1s::default();
     let options = RunOptions {
@@ -72,7 +77,10 @@ fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, V
     let kept = report
         .steps
         .iter()
-        .filter_map(|m| m.work.get("m1.patches_kept").and_then(|v| v.as_u64()))
+        .filter_map(|m| {
+            let work = |key: &str| m.work.get(key).and_then(|v| v.as_u64());
+            Some((work("m1.patches_kept")?, work("m1.shape_kept")?))
+        })
         .collect();
     (sink.0, kept)
 }
@@ -80,15 +88,20 @@ fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, V
 #[test]
 fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_sessions_on_every_body() {
     let mut rng = Lcg(0x6d31_7265_7573_6521);
-    for body in shipped_bodies() {
-        let text = random_session(&body, &mut rng, 8);
+    // M1's settings in turn: the default, two sqrt(3) steps (new vertices from new ones),
+    // and Kobbelt's smoothing (old vertices move: the shape is never kept).
+    let settings = ["m1", "m1 steps=2", "m1 smooth=kobbelt"];
+    for (b, body) in shipped_bodies().into_iter().enumerate() {
+        let m1 = settings[b % settings.len()];
+        let text = random_session(&body, &mut rng, 8).replacen("\nm1\n", &format!("\n{m1}\n"), 1);
+        assert!(text.contains(&format!("\n{m1}\n")), "{text}");
         let (incremental, kept) = run(&text, false);
         let (whole, kept_whole) = run(&text, true);
         let moved = |m1s: &[(usize, drape::session::M1Outcome)]| {
             m1s.iter().filter(|(_, o)| !o.collision.responses.is_empty()).count()
         };
         eprintln!(
-            "{}: {} M1s, {} with moves; patches kept {kept:?}",
+            "{} ({m1}): {} M1s, {} with moves; (patches, shape) kept {kept:?}",
             body.display(),
             incremental.len(),
             moved(&incremental)
@@ -110,6 +123,12 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
                 "{at}: M1 before its collision"
             );
             assert_eq!(
+                bits(&a.m1.first.mesh.positions),
+                bits(&b.m1.first.mesh.positions),
+                "{at}: M1's first step"
+            );
+            assert_eq!(a.m1, b.m1, "{at}: the subdivision, every field");
+            assert_eq!(
                 bits(&a.collision.positions),
                 bits(&b.collision.positions),
                 "{at}: M1 after its collision"
@@ -119,10 +138,16 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
         }
         // The runs differ in what they did: the whole one kept nothing, the incremental one
         // kept patches at some step (otherwise this test compared two full builds).
-        assert!(kept_whole.iter().all(|&k| k == 0), "{}: {kept_whole:?}", body.display());
+        assert!(kept_whole.iter().all(|&k| k == (0, 0)), "{}: {kept_whole:?}", body.display());
         assert!(
-            kept.iter().any(|&k| k > 0),
+            kept.iter().any(|&(patches, _)| patches > 0),
             "{}: no patch kept {kept:?}\n{text}",
+            body.display()
+        );
+        let smoothed = m1.contains("kobbelt");
+        assert!(
+            kept.iter().any(|&(_, shape)| shape == 1) != smoothed,
+            "{}: shapes kept {kept:?}\n{text}",
             body.display()
         );
         assert!(

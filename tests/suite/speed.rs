@@ -461,10 +461,18 @@ fn the_selection_reading_the_quality_checks_nearest_triangles_selects_the_same_p
             patches: real_jumpsuit().m0.patch_names.len(),
             standard: Some(&g.mesh.positions),
             measured,
+            edges: None,
         };
         let own = select(&input(None), index, &options);
         let read = select(&input(Some(&measured)), index, &options);
         assert_eq!(own, read, "seed {seed}");
+        // M0's edges kept from a step before (the same faces) read as if found anew.
+        let kept = select::EdgeFaces::of(&c.mesh, None);
+        let with_kept = SelectInput {
+            edges: Some(&kept),
+            ..input(Some(&measured))
+        };
+        assert_eq!(own, select(&with_kept, index, &options), "seed {seed}: kept edges");
         fired += own.by_rule().get("body").copied().unwrap_or(0);
         for v in (0..c.mesh.positions.len()).step_by(37) {
             let p = c.mesh.positions[v];

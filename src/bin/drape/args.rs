@@ -350,8 +350,9 @@ pub(crate) struct RunArgs {
     /// Re-test every vertex each step (no inert points, no patch skipping), to compare.
     #[arg(long)]
     pub(crate) no_skipping: bool,
-    /// Collide every refined patch of M1 at every step, none taken from the step before
-    /// (the same M1, bit for bit, in more time), to compare.
+    /// Build M1 whole at every step: subdivide M0 again and collide every refined patch,
+    /// nothing taken from the step before (the same M1, bit for bit, in more time), to
+    /// compare.
     #[arg(long)]
     pub(crate) full_m1: bool,
     /// The quality check after each collision: `partial` measures only the vertices, edges

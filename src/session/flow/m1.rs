@@ -8,6 +8,7 @@ use serde::Serialize;
 
 use crate::body::Body;
 use crate::collision::BodyIndex;
+use crate::m1::select::EdgeFaces;
 use crate::m1::{self, M0Collided, M1Options, SelectInput, Selection, cut};
 use crate::session::emit::StepScope;
 use crate::session::options::RunOptions;
@@ -78,17 +79,24 @@ pub(in crate::session) fn build_m1(
         if m1_options.all_patches {
             Selection::all(patches)
         } else {
+            let edges = EdgeFaces::of(m0, state.m0_edges.as_ref().filter(|_| !options.full_m1));
             let input = SelectInput {
                 mesh: m0,
                 face_patch,
                 patches,
                 standard: state.standard.as_deref(),
                 measured: Some(&measured),
+                edges: Some(&edges),
             };
+            state.m0_edges = Some(edges.clone());
             m1::select(&input, index, &m1_options.select)
         }
     });
-    let built = scope.timed("m1.subdivide", || m1::build(m0, face_patch, selection, m1_options));
+    let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
+    let (built, shape, shape_kept) = scope.timed("m1.subdivide", || {
+        m1::subdivide(m0, face_patch, selection, m1_options, previous)
+    });
+    state.m1_shape = shape;
     let m0_crossing: Vec<[u32; 2]> = outcome
         .collision
         .quality
@@ -150,10 +158,12 @@ pub(in crate::session) fn build_m1(
         m1_cut_lines: state.cuts.len(),
         m1_verify: verify,
     });
-    // Refined patches collided at this step, and taken unchanged from the step before.
+    // Refined patches collided at this step, and taken unchanged from the step before; 1
+    // when M1's shape was kept from the step before (only its vertices placed again).
     for (name, count) in [
         ("m1.patches_collided", patches_collided.collided),
         ("m1.patches_kept", patches_collided.kept),
+        ("m1.shape_kept", usize::from(shape_kept)),
     ] {
         let key = scope.timing_key(name);
         scope.metrics.record_work(key, count);

@@ -1,0 +1,91 @@
+//! M1 over a moved M0 of the same shape (docs/design.md section 7): what a step keeps of
+//! the last subdivision.
+//!
+//! With the old vertices kept where they are ([`Smoothing::None`], the default), M1 is two
+//! things: its shape (faces, their patches, the flipped edges, every new vertex's origin,
+//! the edges and anchors), which depends only on M0's faces, their patches, which patches
+//! are refined and how many steps; and its positions, which are M0's followed by one
+//! centroid per split face, each `(a + b + c) / 3` of earlier vertices. A drag moves M0's
+//! vertices but mostly leaves all four inputs of the shape as they were, so [`subdivide`]
+//! keeps the shape of the last M1 whose inputs are equal and only places its vertices again,
+//! in the order and with the arithmetic of [`super::sqrt3_step`]: the same M1 as a full
+//! build, bit for bit, by construction. Any other input (a new refined patch, a dimension
+//! edit that changes M0's layout, Kobbelt's smoothing, which moves old vertices by their
+//! neighbours) builds M1 whole.
+
+use std::sync::Arc;
+
+use super::{M1, M1Options, Selection, Smoothing, build_traced};
+use crate::mesh::TriMesh;
+
+/// An M1's shape and what it was made from.
+#[derive(Debug)]
+pub struct M1Shape {
+    /// M0's faces.
+    m0_triangles: Vec<[u32; 3]>,
+    /// The patch of each of M0's faces.
+    face_patch: Vec<u32>,
+    /// Which patches are refined.
+    refined: Vec<bool>,
+    /// Whether a second sqrt(3) step was made.
+    two_steps: bool,
+    /// Corners of each new vertex, in order (indices of earlier vertices).
+    corners: Vec<[u32; 3]>,
+    /// The M1 it was taken from (its positions are placed again before use).
+    m1: M1,
+}
+
+impl M1Shape {
+    /// Whether an M1 over `m0` with these patches and this refinement has this shape.
+    fn fits(&self, m0: &TriMesh, face_patch: &[u32], refined: &[bool], options: &M1Options) -> bool {
+        options.smoothing == Smoothing::None
+            && self.two_steps == (options.steps >= 2)
+            && self.m1.m0_vertices == m0.positions.len()
+            && self.refined == refined
+            && self.face_patch == face_patch
+            && self.m0_triangles == m0.triangles
+    }
+
+    /// M1 of this shape over `m0`: M0's positions, then each centroid in order.
+    fn place(&self, m0: &TriMesh, selection: Selection) -> M1 {
+        let mut m1 = self.m1.clone();
+        let positions = &mut m1.mesh.positions;
+        positions.clear();
+        positions.extend_from_slice(&m0.positions);
+        for corners in &self.corners {
+            let [a, b, c] = corners.map(|v| positions[v as usize]);
+            positions.push((a + b + c) / 3.0);
+        }
+        m1.first.mesh.positions.clear();
+        m1.first.mesh.positions.extend_from_slice(&positions[..m1.first_vertices]);
+        m1.selection = selection;
+        m1
+    }
+}
+
+/// M1 over the collided M0 (as [`super::build`] makes it), and the shape the next step may
+/// keep: `previous`'s shape when it fits (the `bool` says so), or a new build.
+pub fn subdivide(
+    m0: &TriMesh,
+    face_patch: &[u32],
+    selection: Selection,
+    options: &M1Options,
+    previous: Option<&Arc<M1Shape>>,
+) -> (M1, Option<Arc<M1Shape>>, bool) {
+    let refined = selection.refined();
+    if let Some(shape) = previous.filter(|s| s.fits(m0, face_patch, &refined, options)) {
+        return (shape.place(m0, selection), Some(Arc::clone(shape)), true);
+    }
+    let (m1, corners) = build_traced(m0, face_patch, selection, options);
+    let shape = (options.smoothing == Smoothing::None).then(|| {
+        Arc::new(M1Shape {
+            m0_triangles: m0.triangles.clone(),
+            face_patch: face_patch.to_vec(),
+            refined,
+            two_steps: options.steps >= 2,
+            corners,
+            m1: m1.clone(),
+        })
+    });
+    (m1, shape, false)
+}
