@@ -16,7 +16,7 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::M1;
+use super::{M1, M1Shape};
 use super::collide::{Free, Kept, M0Collided, M1Collision, RefinedInput, assemble, collide_free, pinned_of};
 use crate::collision::VertexDistance;
 use crate::collision::quality::Measured;
@@ -69,6 +69,41 @@ impl PatchInput {
             && (self.mesh.positions.iter().zip(&other.mesh.positions)).all(|(a, b)| bits(a) == bits(b))
     }
 
+    /// Its shape (vertices, faces, edges, moved vertices, anchors) without its values.
+    fn shape_again(&self) -> Self {
+        Self {
+            vertices: self.vertices.clone(),
+            faces: self.faces.clone(),
+            mesh: TriMesh {
+                positions: Vec::new(),
+                triangles: self.mesh.triangles.clone(),
+            },
+            edges: self.edges.clone(),
+            base: self.base,
+            moved: self.moved.clone(),
+            anchor: self.anchor.clone(),
+            partition: Vec::new(),
+            ring_normal: Vec::new(),
+            measured: Vec::new(),
+        }
+    }
+
+    /// Its values read from `m1` and M0's collision: its vertices' positions, and M0's
+    /// partition, ring normal and measured distance at its M0 vertices.
+    fn place(&mut self, m1: &M1, m0: &M0Collided<'_>) {
+        let old = &self.vertices[..self.base];
+        self.mesh.positions = (self.vertices.iter()).map(|&v| m1.mesh.positions[v as usize]).collect();
+        self.partition = (old.iter())
+            .map(|&v| m0.partition.get(v as usize).copied().unwrap_or(0))
+            .collect();
+        self.ring_normal = (old.iter())
+            .map(|&v| m0.ring_normal.get(v as usize).copied().flatten())
+            .collect();
+        self.measured = (old.iter())
+            .map(|&v| (m0.measured).and_then(|m| m.distance(v as usize, m1.mesh.positions[v as usize])))
+            .collect();
+    }
+
     /// Its collision, alone.
     fn collide(&self, index: &BodyIndex, ease: f64, options: &CollisionOptions) -> Free {
         let refined = RefinedInput {
@@ -116,6 +151,9 @@ pub struct M1Reuse {
     settings: Option<(u64, u64, CollisionOptions)>,
     /// Per patch: its input and its collision.
     patches: Vec<Option<(PatchInput, Arc<Free>)>>,
+    /// The shape of the M1 they were found on: an M1 of the same shape (the same `Arc`)
+    /// has the same patches in the same numbering, so only their values are read again.
+    shape: Option<Arc<M1Shape>>,
 }
 
 /// How M1's collision went patch by patch: how many were collided and how many taken from
@@ -155,12 +193,13 @@ pub fn collide_m1(
     garment_ease: f64,
     options: &CollisionOptions,
 ) -> M1Collision {
-    collide_m1_patches(index, m1, m0, garment_ease, options, None).0
+    collide_m1_patches(index, m1, m0, garment_ease, options, None, None).0
 }
 
 /// Collides M1 patch by patch; with `reuse`, a refined patch whose input is the same as
-/// there takes its collision from there. Returns the collision, what to keep for the next
-/// step, and the counts.
+/// there takes its collision from there. `shape` is `m1`'s shape, if known
+/// ([`super::subdivide`]). Returns the collision, what to keep for the next step, and the
+/// counts.
 pub fn collide_m1_patches(
     index: &BodyIndex,
     m1: &M1,
@@ -168,8 +207,11 @@ pub fn collide_m1_patches(
     garment_ease: f64,
     options: &CollisionOptions,
     reuse: Option<&M1Reuse>,
+    shape: Option<&Arc<M1Shape>>,
 ) -> (M1Collision, M1Reuse, PatchCounts) {
     let settings = Some((body_key(index), garment_ease.to_bits(), options.clone()));
+    // The patches as last found, when M1 has their shape (whatever the settings).
+    let same_shape = reuse.filter(|r| matches!((&r.shape, shape), (Some(a), Some(b)) if Arc::ptr_eq(a, b)));
     let reuse = reuse.filter(|r| r.settings == settings);
     let pinned = pinned_of(&RefinedInput {
         mesh: &m1.mesh,
@@ -179,7 +221,16 @@ pub fn collide_m1_patches(
         anchor: &m1.anchor,
     });
     let kept = kept_of_m1(m1, &pinned, m0);
-    let inputs = patch_inputs(m1, &pinned, m0);
+    let inputs = match same_shape {
+        Some(before) => (before.patches.iter().enumerate())
+            .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape_again())))
+            .map(|(p, mut input)| {
+                input.place(m1, m0);
+                (p, input)
+            })
+            .collect(),
+        None => patch_inputs(m1, &pinned, m0),
+    };
     // The patches kept from before, then the others collided, shared out among the threads.
     let kept_before: Vec<Option<Arc<Free>>> = (inputs.iter())
         .map(|(p, input)| {
@@ -210,6 +261,7 @@ pub fn collide_m1_patches(
     let mut next = M1Reuse {
         settings,
         patches: vec![None; m1.selection.rules.len()],
+        shape: shape.cloned(),
     };
     for ((p, input), (free, _)) in inputs.into_iter().zip(results) {
         if let Some(slot) = next.patches.get_mut(p as usize) {
@@ -309,45 +361,30 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
             local[v as usize] = i as u32;
         }
         let at = |v: u32| local[v as usize];
-        let mesh = TriMesh {
-            positions: vertices.iter().map(|&v| m1.mesh.positions[v as usize]).collect(),
-            triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
-        };
         let base = vertices.partition_point(|&v| (v as usize) < m1.m0_vertices);
-        let old = &vertices[..base];
-        out.push((
-            p as u32,
-            PatchInput {
-                edges: edges[edge_first[p]..edge_first[p + 1]]
-                    .iter()
-                    .map(|e| e.map(at))
-                    .collect(),
-                moved: (vertices.iter().enumerate())
-                    .filter(|&(i, &v)| i < base && !pinned[v as usize])
-                    .map(|(i, _)| i as u32)
-                    .collect(),
-                anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
-                partition: old
-                    .iter()
-                    .map(|&v| m0.partition.get(v as usize).copied().unwrap_or(0))
-                    .collect(),
-                ring_normal: old
-                    .iter()
-                    .map(|&v| m0.ring_normal.get(v as usize).copied().flatten())
-                    .collect(),
-                measured: old
-                    .iter()
-                    .map(|&v| {
-                        m0.measured
-                            .and_then(|m| m.distance(v as usize, m1.mesh.positions[v as usize]))
-                    })
-                    .collect(),
-                base,
-                mesh,
-                vertices,
-                faces,
+        let mut input = PatchInput {
+            mesh: TriMesh {
+                positions: Vec::new(),
+                triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
             },
-        ));
+            edges: edges[edge_first[p]..edge_first[p + 1]]
+                .iter()
+                .map(|e| e.map(at))
+                .collect(),
+            moved: (vertices.iter().enumerate())
+                .filter(|&(i, &v)| i < base && !pinned[v as usize])
+                .map(|(i, _)| i as u32)
+                .collect(),
+            anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
+            partition: Vec::new(),
+            ring_normal: Vec::new(),
+            measured: Vec::new(),
+            base,
+            vertices,
+            faces,
+        };
+        input.place(m1, m0);
+        out.push((p as u32, input));
     }
     out
 }

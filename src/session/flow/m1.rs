@@ -115,7 +115,8 @@ pub(in crate::session) fn build_m1(
     };
     let reuse = state.m1_reuse.as_deref().filter(|_| !options.full_m1);
     let (collision, reuse, patches_collided) = scope.timed("m1.collide", || {
-        m1::collide_m1_patches(index, &built, &collided, ease, &options.collision, reuse)
+        let shape = state.m1_shape.as_ref();
+        m1::collide_m1_patches(index, &built, &collided, ease, &options.collision, reuse, shape)
     });
     state.m1_reuse = Some(std::sync::Arc::new(reuse));
     let cuts = state
