@@ -31,8 +31,9 @@ pub struct M1Shape {
     two_steps: bool,
     /// Corners of each new vertex, in order (indices of earlier vertices).
     corners: Vec<[u32; 3]>,
-    /// The M1 it was taken from (its positions are placed again before use).
-    m1: M1,
+    /// The M1 it was made for, shared with its owner (any M1 of this shape would do: a copy
+    /// of it has its positions placed again).
+    m1: Arc<M1>,
 }
 
 impl M1Shape {
@@ -48,7 +49,7 @@ impl M1Shape {
 
     /// M1 of this shape over `m0`: M0's positions, then each centroid in order.
     fn place(&self, m0: &TriMesh, selection: Selection) -> M1 {
-        let mut m1 = self.m1.clone();
+        let mut m1 = M1::clone(&self.m1);
         let positions = &mut m1.mesh.positions;
         positions.clear();
         positions.extend_from_slice(&m0.positions);
@@ -64,19 +65,21 @@ impl M1Shape {
 }
 
 /// M1 over the collided M0 (as [`super::build`] makes it), and the shape the next step may
-/// keep: `previous`'s shape when it fits (the `bool` says so), or a new build.
+/// keep: `previous`'s shape when it fits (the `bool` says so: a copy of its M1 placed over
+/// `m0`), or a new build (whose shape shares the M1, not a copy).
 pub fn subdivide(
     m0: &TriMesh,
     face_patch: &[u32],
     selection: Selection,
     options: &M1Options,
     previous: Option<&Arc<M1Shape>>,
-) -> (M1, Option<Arc<M1Shape>>, bool) {
+) -> (Arc<M1>, Option<Arc<M1Shape>>, bool) {
     let refined = selection.refined();
     if let Some(shape) = previous.filter(|s| s.fits(m0, face_patch, &refined, options)) {
-        return (shape.place(m0, selection), Some(Arc::clone(shape)), true);
+        return (Arc::new(shape.place(m0, selection)), Some(Arc::clone(shape)), true);
     }
     let (m1, corners) = build_traced(m0, face_patch, selection, options);
+    let m1 = Arc::new(m1);
     let shape = (options.smoothing == Smoothing::None).then(|| {
         Arc::new(M1Shape {
             m0_triangles: m0.triangles.clone(),
@@ -84,7 +87,7 @@ pub fn subdivide(
             refined,
             two_steps: options.steps >= 2,
             corners,
-            m1: m1.clone(),
+            m1: Arc::clone(&m1),
         })
     });
     (m1, shape, false)

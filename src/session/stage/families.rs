@@ -236,8 +236,9 @@ pub struct PatternStage<'a> {
 /// M1 and what became of it.
 #[derive(Clone, Debug)]
 pub struct M1Outcome {
-    /// M1 before its collision, with the selection.
-    pub m1: M1,
+    /// M1 before its collision, with the selection (shared with the shape the next step
+    /// may keep).
+    pub m1: std::sync::Arc<M1>,
     /// Its collision (positions after response, quality).
     pub collision: M1Collision,
     /// The cut lines as stored on M0.
