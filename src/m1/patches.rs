@@ -23,6 +23,7 @@ use crate::collision::quality::Measured;
 use crate::collision::types::NO_TRIANGLE;
 use crate::collision::{BodyIndex, CollisionOptions, Quality};
 use crate::mesh::TriMesh;
+use crate::mesh::topology::group_by_key as group;
 
 /// One refined patch of M1 in its own numbering: what its collision reads.
 #[derive(Clone, Debug, PartialEq)]
@@ -387,29 +388,6 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
         out.push((p as u32, input));
     }
     out
-}
-
-/// Items grouped by a key below `groups` (others dropped), in their order within each:
-/// where each group begins (and one past the last), and the items.
-fn group<T: Copy + Default>(groups: usize, items: impl Iterator<Item = (u32, T)> + Clone) -> (Vec<usize>, Vec<T>) {
-    let mut first = vec![0usize; groups + 1];
-    for (g, _) in items.clone() {
-        if let Some(n) = first.get_mut(g as usize + 1) {
-            *n += 1;
-        }
-    }
-    for g in 0..groups {
-        first[g + 1] += first[g];
-    }
-    let mut next = first.clone();
-    let mut out = vec![T::default(); first[groups]];
-    for (g, item) in items {
-        if (g as usize) < groups {
-            out[next[g as usize]] = item;
-            next[g as usize] += 1;
-        }
-    }
-    (first, out)
 }
 
 /// The patches' collisions joined into M1's (vertex, edge and face numbers M1's; moves in

@@ -50,6 +50,29 @@ pub fn group_by_vertex<T: Copy>(n: usize, items: &[(u32, T)]) -> (Vec<usize>, Ve
     (first, grouped)
 }
 
+/// Items grouped by a key below `groups` (others dropped), in their order within each:
+/// where each group begins (and one past the last), and the items.
+pub fn group_by_key<T: Copy + Default>(groups: usize, items: impl Iterator<Item = (u32, T)> + Clone) -> (Vec<usize>, Vec<T>) {
+    let mut first = vec![0usize; groups + 1];
+    for (g, _) in items.clone() {
+        if let Some(n) = first.get_mut(g as usize + 1) {
+            *n += 1;
+        }
+    }
+    for g in 0..groups {
+        first[g + 1] += first[g];
+    }
+    let mut next = first.clone();
+    let mut out = vec![T::default(); first[groups]];
+    for (g, item) in items {
+        if (g as usize) < groups {
+            out[next[g as usize]] = item;
+            next[g as usize] += 1;
+        }
+    }
+    (first, out)
+}
+
 /// The undirected edges of a mesh, each once, sorted: grouped by their smaller vertex,
 /// then each vertex's few larger neighbours sorted and deduplicated.
 pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
