@@ -5,7 +5,9 @@ and prints the median of every stage's compute time (ms, from `--metrics`) for b
 
     python3 scripts/compare_steps.py BEFORE_BINARY [AFTER_BINARY] [--runs N] [--op set]
 
-`--op set` times the demo's dimension edits (`set`) instead of its drags.
+`--op set` times the demo's dimension edits (`set`) instead of its drags. `--session PATH`
+times that session's steps instead of the demo's (for example
+assets/sessions/nudges.drape, sixteen small drags at resolution 24).
 
 AFTER_BINARY defaults to target/release/drape. With --log-all, both log the whole recording
 (on the same core as the compute, as a one-core user would) and a `logging` row gives the
@@ -39,6 +41,7 @@ def main():
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--log-all", action="store_true", help="log the whole recording, and time it")
     ap.add_argument("--op", default="drag", choices=["drag", "set"], help="the steps to time")
+    ap.add_argument("--session", help="time this session's steps instead of the demo's")
     args = ap.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
@@ -46,6 +49,8 @@ def main():
         fine = folder / "demo-24.drape"
         fine.write_text(demo.read_text().replace("resolution=6", "resolution=24"))
         sessions = {"resolution 6": demo, "resolution 24": fine}
+        if args.session:
+            sessions = {Path(args.session).name: Path(args.session).resolve()}
         times = {}
         for _ in range(args.runs):
             for name, session in sessions.items():
@@ -61,7 +66,7 @@ def main():
                             sum(v for k, v in t.items() if k.startswith("log.")))
                         times.setdefault((name, which, "whole step"), []).append(sum(t.values()))
     for name in sessions:
-        print(f"\n{name}: {args.op} steps, one core, median ms over {args.runs} runs of the demo's {args.op}s\n")
+        print(f"\n{name}: {args.op} steps, one core, median ms over {args.runs} runs of its {args.op}s\n")
         print("| stage | before | after |\n|---|---:|---:|")
         for k in GARMENT + ["garment"] + M1 + ["M1", "compute"] + (["logging", "whole step"] if args.log_all else []):
             a = median(times[(name, "before", k)])
