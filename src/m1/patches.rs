@@ -16,8 +16,8 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
-use super::{M1, M1Shape};
 use super::collide::{Free, Kept, M0Collided, M1Collision, RefinedInput, assemble, collide_free, pinned_of};
+use super::{M1, M1Shape};
 use crate::collision::VertexDistance;
 use crate::collision::quality::Measured;
 use crate::collision::types::NO_TRIANGLE;

@@ -15,14 +15,16 @@
 
 use std::sync::Arc;
 
+use super::select::EdgeFaces;
 use super::{M1, M1Options, Selection, Smoothing, build_traced};
 use crate::mesh::TriMesh;
 
 /// An M1's shape and what it was made from.
 #[derive(Debug)]
 pub struct M1Shape {
-    /// M0's faces.
-    m0_triangles: Vec<[u32; 3]>,
+    /// M0's faces, with their edges (the same `Arc` while M0's faces stay the same: see
+    /// [`EdgeFaces::of`]).
+    m0_edges: Arc<EdgeFaces>,
     /// The patch of each of M0's faces.
     face_patch: Vec<u32>,
     /// Which patches are refined.
@@ -38,13 +40,20 @@ pub struct M1Shape {
 
 impl M1Shape {
     /// Whether an M1 over `m0` with these patches and this refinement has this shape.
-    fn fits(&self, m0: &TriMesh, face_patch: &[u32], refined: &[bool], options: &M1Options) -> bool {
+    fn fits(
+        &self,
+        m0: &TriMesh,
+        edges: &Arc<EdgeFaces>,
+        face_patch: &[u32],
+        refined: &[bool],
+        options: &M1Options,
+    ) -> bool {
         options.smoothing == Smoothing::None
             && self.two_steps == (options.steps >= 2)
             && self.m1.m0_vertices == m0.positions.len()
             && self.refined == refined
             && self.face_patch == face_patch
-            && self.m0_triangles == m0.triangles
+            && Arc::ptr_eq(&self.m0_edges, edges)
     }
 
     /// M1 of this shape over `m0`: M0's positions, then each centroid in order.
@@ -58,7 +67,10 @@ impl M1Shape {
             positions.push((a + b + c) / 3.0);
         }
         m1.first.mesh.positions.clear();
-        m1.first.mesh.positions.extend_from_slice(&positions[..m1.first_vertices]);
+        m1.first
+            .mesh
+            .positions
+            .extend_from_slice(&positions[..m1.first_vertices]);
         m1.selection = selection;
         m1
     }
@@ -66,23 +78,25 @@ impl M1Shape {
 
 /// M1 over the collided M0 (as [`super::build`] makes it), and the shape the next step may
 /// keep: `previous`'s shape when it fits (the `bool` says so: a copy of its M1 placed over
-/// `m0`), or a new build (whose shape shares the M1, not a copy).
+/// `m0`), or a new build (whose shape shares the M1, not a copy). `edges` are M0's, as
+/// [`EdgeFaces::of`] keeps them from step to step.
 pub fn subdivide(
     m0: &TriMesh,
+    edges: &Arc<EdgeFaces>,
     face_patch: &[u32],
     selection: Selection,
     options: &M1Options,
     previous: Option<&Arc<M1Shape>>,
 ) -> (Arc<M1>, Option<Arc<M1Shape>>, bool) {
     let refined = selection.refined();
-    if let Some(shape) = previous.filter(|s| s.fits(m0, face_patch, &refined, options)) {
+    if let Some(shape) = previous.filter(|s| s.fits(m0, edges, face_patch, &refined, options)) {
         return (Arc::new(shape.place(m0, selection)), Some(Arc::clone(shape)), true);
     }
     let (m1, corners) = build_traced(m0, face_patch, selection, options);
     let m1 = Arc::new(m1);
     let shape = (options.smoothing == Smoothing::None).then(|| {
         Arc::new(M1Shape {
-            m0_triangles: m0.triangles.clone(),
+            m0_edges: Arc::clone(edges),
             face_patch: face_patch.to_vec(),
             refined,
             two_steps: options.steps >= 2,

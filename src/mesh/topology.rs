@@ -52,7 +52,10 @@ pub fn group_by_vertex<T: Copy>(n: usize, items: &[(u32, T)]) -> (Vec<usize>, Ve
 
 /// Items grouped by a key below `groups` (others dropped), in their order within each:
 /// where each group begins (and one past the last), and the items.
-pub fn group_by_key<T: Copy + Default>(groups: usize, items: impl Iterator<Item = (u32, T)> + Clone) -> (Vec<usize>, Vec<T>) {
+pub fn group_by_key<T: Copy + Default>(
+    groups: usize,
+    items: impl Iterator<Item = (u32, T)> + Clone,
+) -> (Vec<usize>, Vec<T>) {
     let mut first = vec![0usize; groups + 1];
     for (g, _) in items.clone() {
         if let Some(n) = first.get_mut(g as usize + 1) {

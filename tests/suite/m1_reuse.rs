@@ -138,7 +138,11 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
         }
         // The runs differ in what they did: the whole one kept nothing, the incremental one
         // kept patches at some step (otherwise this test compared two full builds).
-        assert!(kept_whole.iter().all(|&k| k == (0, 0)), "{}: {kept_whole:?}", body.display());
+        assert!(
+            kept_whole.iter().all(|&k| k == (0, 0)),
+            "{}: {kept_whole:?}",
+            body.display()
+        );
         assert!(
             kept.iter().any(|&(patches, _)| patches > 0),
             "{}: no patch kept {kept:?}\n{text}",

@@ -75,26 +75,22 @@ pub(in crate::session) fn build_m1(
     let patches = state.patch_count();
     // M0's distances as its quality check measured them: the selection and M1's check read them.
     let measured = outcome.collision.quality.measured(&m0.positions);
-    let selection = scope.timed("m1.select", || {
-        if m1_options.all_patches {
-            Selection::all(patches)
-        } else {
-            let edges = EdgeFaces::of(m0, state.m0_edges.as_ref().filter(|_| !options.full_m1));
-            let input = SelectInput {
-                mesh: m0,
-                face_patch,
-                patches,
-                standard: state.standard.as_deref(),
-                measured: Some(&measured),
-                edges: Some(&edges),
-            };
-            state.m0_edges = Some(edges.clone());
-            m1::select(&input, index, &m1_options.select)
-        }
+    let last_edges = state.m0_edges.clone().filter(|_| !options.full_m1);
+    let (selection, edges) = scope.timed("m1.select", || {
+        let input = SelectInput {
+            mesh: m0,
+            face_patch,
+            patches,
+            standard: state.standard.as_deref(),
+            measured: Some(&measured),
+            edges: None,
+        };
+        select_patches(input, last_edges.as_ref(), index, m1_options)
     });
+    state.m0_edges = Some(edges.clone());
     let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
     let (built, shape, shape_kept) = scope.timed("m1.subdivide", || {
-        m1::subdivide(m0, face_patch, selection, m1_options, previous)
+        m1::subdivide(m0, &edges, face_patch, selection, m1_options, previous)
     });
     state.m1_shape = shape;
     let m0_crossing: Vec<[u32; 2]> = outcome
@@ -176,6 +172,27 @@ pub(in crate::session) fn build_m1(
         cuts,
         cuts_on_m0,
     });
+}
+
+/// The patches M1 refines, and M0's edges with their faces: `last_edges` while M0's faces
+/// are those they were found in (M1's shape is kept only with the same edges).
+fn select_patches(
+    input: SelectInput<'_>,
+    last_edges: Option<&std::sync::Arc<EdgeFaces>>,
+    index: &BodyIndex,
+    m1_options: &M1Options,
+) -> (Selection, std::sync::Arc<EdgeFaces>) {
+    let edges = EdgeFaces::of(input.mesh, last_edges);
+    let selection = if m1_options.all_patches {
+        Selection::all(input.patches)
+    } else {
+        let input = SelectInput {
+            edges: Some(&edges),
+            ..input
+        };
+        m1::select(&input, index, &m1_options.select)
+    };
+    (selection, edges)
 }
 
 /// Emits the state's M1, if it has one.
