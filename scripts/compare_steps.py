@@ -22,7 +22,7 @@ from pathlib import Path
 
 from harness import ROOT, median, run_metrics
 
-GARMENT = ["constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
+GARMENT = ["garment.solve", "constraints.solve", "garment.assemble", "collision.detect", "collision.respond",
            "collision.respond_edges", "collision.quality", "collision.respond_faces",
            "collision.check_faces", "collision.face_clearance"]
 M1 = ["m1.select", "m1.subdivide", "m1.collide"]

@@ -37,6 +37,14 @@ pub struct Assembled {
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
 /// whose sides did not change are taken from it.
 pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>) -> Result<Assembled, FrameworkError> {
+    assemble_among(fw, probe, previous.as_slice())
+}
+
+/// [`assemble`], taking each unchanged patch and contour span from the first of the
+/// frameworks `previous` that has it (a dimension edit's replayed drag: the framework
+/// just before, then the garment before the edit, whose patches the drag made last time);
+/// M0's faces are kept from the first.
+pub fn assemble_among(fw: &Framework, probe: &BodyProbe, previous: &[&Framework]) -> Result<Assembled, FrameworkError> {
     let spec = template::styled(fw.template, fw.style);
     let lines = spec.lines(fw, probe)?;
     let mut s = Surfacer::new(fw, probe, previous);
@@ -50,7 +58,7 @@ pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>)
     let m0 = restitch(
         &patches,
         fw.layout.weld,
-        previous.map(|p| (p.patches.as_slice(), &p.m0)),
+        previous.first().map(|p| (p.patches.as_slice(), &p.m0)),
     );
     let measured = at_vertices(&patches, &m0, measured);
     Ok(Assembled {

@@ -2,13 +2,16 @@
 //! curves in a [`BuildCtx`] (see [`super::solve`]), then the framework is surfaced into its
 //! patches and M0.
 
-use super::assemble::assemble;
+use std::sync::Arc;
+
+use super::assemble::{Assembled, assemble};
 use super::m0::M0;
 use super::model::{Dimensions, Fit, Framework, FrameworkError, Style, TemplateKind};
 use super::probe::BodyProbe;
 use super::solve::{BuildCtx, FrameworkOptions, Parts};
 use super::template;
 use crate::body::Body;
+use crate::body::index::Nearest;
 
 /// Solves the framework of `template` on `body` with the session's dimensions.
 pub fn build_framework(
@@ -18,6 +21,37 @@ pub fn build_framework(
     dims: &Dimensions,
     options: &FrameworkOptions,
 ) -> Result<Framework, FrameworkError> {
+    rebuild_framework(body, probe, template, dims, options, None).map(|(fw, _)| fw)
+}
+
+/// What a build took from the framework before it and what it measured.
+#[derive(Clone, Debug, Default)]
+pub struct Rebuilt {
+    /// Rings built.
+    pub rings: usize,
+    /// Of those, the rings taken as the build before made them (the same inputs).
+    pub rings_kept: usize,
+    /// Patches.
+    pub patches: usize,
+    /// Of those, the patches taken from the framework before (the same sides).
+    pub patches_kept: usize,
+    /// The body's nearest point to the M0 vertices that are interior samples of the
+    /// patches surfaced anew, where they stand (see [`Assembled::measured`]).
+    pub measured: Vec<(u32, Nearest)>,
+}
+
+/// [`build_framework`], given the framework before a dimension edit: its rings are taken
+/// where their inputs are the same (as that framework's build made them, whatever drags
+/// moved them since), and its contour spans and patches where their samples are the same
+/// (as after a drag). The same framework as a build without `previous`, bit for bit.
+pub fn rebuild_framework(
+    body: &Body,
+    probe: &BodyProbe,
+    template: TemplateKind,
+    dims: &Dimensions,
+    options: &FrameworkOptions,
+    previous: Option<&Framework>,
+) -> Result<(Framework, Rebuilt), FrameworkError> {
     let height = body.mesh.height();
     let mut ctx = BuildCtx {
         body,
@@ -28,6 +62,9 @@ pub fn build_framework(
         ease: 0.0,
         mid_x: body.landmarks.mid_x,
         dimensions: Vec::new(),
+        previous: previous.map_or(&[], |p| p.built_rings.as_slice()),
+        built: Vec::new(),
+        rings_kept: 0,
     };
     ctx.ease = ctx.value(
         "ease",
@@ -44,10 +81,18 @@ pub fn build_framework(
     let spec = template::styled(template, options.style);
     let fit = spec.fit(options.fit);
     let parts = spec.curves(&mut ctx, fit)?;
-    let mut fw = finish(&ctx, (template, options.style), fit, parts)?;
+    let (mut fw, built) = finish(&ctx, (template, options.style), fit, parts, previous)?;
     fw.dimensions = std::mem::take(&mut ctx.dimensions);
     fw.dimensions.sort_by(|a, b| a.name.cmp(&b.name));
-    Ok(fw)
+    let rebuilt = Rebuilt {
+        rings: ctx.built.len(),
+        rings_kept: ctx.rings_kept,
+        patches: fw.patches.len(),
+        patches_kept: fw.patches.len() - built.resurfaced.len(),
+        measured: built.measured,
+    };
+    fw.built_rings = Arc::new(std::mem::take(&mut ctx.built));
+    Ok((fw, rebuilt))
 }
 
 /// Assembles the lines, patches and M0 from the curves (patch interiors cleared off the
@@ -57,7 +102,8 @@ fn finish(
     (template, style): (TemplateKind, Style),
     fit: Fit,
     parts: Parts,
-) -> Result<Framework, FrameworkError> {
+    previous: Option<&Framework>,
+) -> Result<(Framework, Assembled), FrameworkError> {
     let mut fw = Framework {
         template,
         style,
@@ -73,11 +119,12 @@ fn finish(
         spans: Default::default(),
         dimensions: Vec::new(),
         layout: parts.layout,
+        built_rings: Arc::default(),
     };
-    let built = assemble(&fw, ctx.probe, None)?;
-    fw.lines = built.lines;
-    fw.patches = built.patches;
-    fw.m0 = built.m0;
-    fw.spans = built.spans;
-    Ok(fw)
+    let mut built = assemble(&fw, ctx.probe, previous)?;
+    fw.lines = std::mem::take(&mut built.lines);
+    fw.patches = std::mem::take(&mut built.patches);
+    fw.m0 = std::mem::take(&mut built.m0);
+    fw.spans = std::mem::take(&mut built.spans);
+    Ok((fw, built))
 }

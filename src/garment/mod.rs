@@ -27,7 +27,7 @@ pub mod surface;
 pub mod template;
 pub mod three_sided;
 
-pub use build::build_framework;
+pub use build::{Rebuilt, build_framework, rebuild_framework};
 pub use contour::{Contour, ContourKind};
 pub use convexify::{ConvexRing, ConvexifyReport, convex_ring, convexify, convexify_open, extremes};
 pub use ease::{Ease, EaseError, deformation_centre, ease_ring};

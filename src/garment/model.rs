@@ -8,6 +8,7 @@
 //! Units: metres, world frame (y up, the body faces +z, its left is +x).
 
 use std::collections::BTreeMap;
+use std::sync::Arc;
 
 use glam::DVec3;
 use thiserror::Error;
@@ -15,7 +16,7 @@ use thiserror::Error;
 use super::contour::Contour;
 use super::m0::{M0, PatchError, PatchGrid};
 use super::open_curve::OpenCurve;
-use super::ring::{GarmentRing, RingBuildError};
+use super::ring::{BuiltRing, GarmentRing, RingBuildError};
 use crate::geom::{Plane, SplineError};
 
 /// The garments drape can build.
@@ -282,6 +283,9 @@ pub struct Framework {
     pub dimensions: Vec<DimensionValue>,
     /// Sample counts of the patches and lines (fixed for the garment's life).
     pub layout: Layout,
+    /// The rings as its build made them from their inputs, before any edit moved them:
+    /// what a build with a changed dimension takes again where the inputs are the same.
+    pub built_rings: Arc<Vec<BuiltRing>>,
 }
 
 impl Framework {
@@ -305,6 +309,7 @@ impl Framework {
             spans: Spans::new(),
             dimensions: self.dimensions.clone(),
             layout: self.layout.clone(),
+            built_rings: self.built_rings.clone(),
         }
     }
 

@@ -99,13 +99,13 @@ pub fn line<'l>(lines: &'l [FeatureLine], name: &str) -> Result<&'l [DVec3], Fra
         .ok_or_else(|| missing(name, "line missing"))
 }
 
-/// The patch-surfacing context: clearance for contour spans, and the previous framework
+/// The patch-surfacing context: clearance for contour spans, and the frameworks before
 /// whose unchanged patches are kept.
 pub struct Surfacer<'a> {
     fw: &'a Framework,
     probe: &'a BodyProbe,
     layout: &'a Layout,
-    previous: Option<&'a Framework>,
+    previous: &'a [&'a Framework],
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
     /// Patches surfaced anew whose interior the clearing moved: (index, the clearing of
@@ -133,9 +133,9 @@ pub struct Surfaced {
 }
 
 impl<'a> Surfacer<'a> {
-    /// Surfaces `fw`; with `previous`, patches and spans whose samples did not change are
-    /// taken from it.
-    pub fn new(fw: &'a Framework, probe: &'a BodyProbe, previous: Option<&'a Framework>) -> Self {
+    /// Surfaces `fw`; patches and spans whose samples are those of one of the frameworks
+    /// `previous` are taken from the first such.
+    pub fn new(fw: &'a Framework, probe: &'a BodyProbe, previous: &'a [&'a Framework]) -> Self {
         Self {
             fw,
             probe,
@@ -201,7 +201,7 @@ impl<'a> Surfacer<'a> {
             return Ok(span.cleared.clone());
         }
         let raw = c.span(key.1, n, None);
-        let kept = self.previous.and_then(|old| {
+        let kept = self.previous.iter().find_map(|old| {
             let same = old.layout.clearance == self.layout.clearance;
             same.then(|| old.spans.get(&key)).flatten().filter(|s| s.raw == raw)
         });
@@ -251,19 +251,19 @@ impl<'a> Surfacer<'a> {
         Ok(())
     }
 
-    /// Keeps the previous framework's patch `name` when the clearance, its curves and its
-    /// sides (`same_sides`) are the same; whether it did.
+    /// Keeps the patch `name` of the first framework before whose clearance, and whose
+    /// patch's curves and sides (`same_sides`), are the same; whether it did.
     fn keep(&mut self, name: &str, curves: &[CurveRef], same_sides: impl Fn(&PatchGrid) -> bool) -> bool {
-        if let Some(old) = self.previous
-            && old.layout.clearance == self.layout.clearance
-            && let Some(p) = old.patches.iter().find(|p| p.name == name)
-            && p.curves == curves
-            && same_sides(p)
-        {
+        let kept = self.previous.iter().find_map(|old| {
+            let same = old.layout.clearance == self.layout.clearance;
+            same.then(|| old.patches.iter().find(|p| p.name == name))
+                .flatten()
+                .filter(|p| p.curves == curves && same_sides(p))
+        });
+        if let Some(p) = kept {
             self.patches.push(p.clone());
-            return true;
         }
-        false
+        kept.is_some()
     }
 
     /// Clears a new patch's interior off the body and keeps it.

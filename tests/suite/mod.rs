@@ -31,6 +31,7 @@ mod nurbs_collision;
 mod obj_errors;
 mod offset_garment;
 mod patterns;
+mod rebuild;
 mod refusals;
 mod remote;
 mod replay;

@@ -4,6 +4,9 @@
 //! uniform extra ease (secant iteration on the fitted spline's length).
 
 mod build;
+mod kept;
+
+pub use kept::{BuiltRing, build_or_keep};
 
 use glam::DVec3;
 use thiserror::Error;

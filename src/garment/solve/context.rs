@@ -9,7 +9,7 @@ use crate::garment::anchors::AnchorSpec;
 use crate::garment::ease::Ease;
 use crate::garment::model::{Counts, DimensionValue, Dimensions, FrameworkError, Layout, NamedPlane};
 use crate::garment::probe::BodyProbe;
-use crate::garment::ring::{GarmentRing, RingInput};
+use crate::garment::ring::{BuiltRing, GarmentRing, RingInput, build_or_keep};
 use crate::geom::{Plane, polygon, section_mesh};
 
 /// What a template's solve works with: the body, its probe, the dimensions the session set,
@@ -32,6 +32,12 @@ pub struct BuildCtx<'a> {
     pub mid_x: f64,
     /// Dimensions reached so far.
     pub dimensions: Vec<DimensionValue>,
+    /// The rings the build before made, each taken again where its inputs are the same.
+    pub previous: &'a [BuiltRing],
+    /// The rings built (or taken) so far, with their inputs.
+    pub built: Vec<BuiltRing>,
+    /// How many of those were taken from `previous`.
+    pub rings_kept: usize,
 }
 
 impl BuildCtx<'_> {
@@ -135,18 +141,19 @@ impl BuildCtx<'_> {
             .dims
             .get(&key)
             .or_else(|| shared.iter().find_map(|k| self.dims.get(k)));
-        let ring = GarmentRing::build(
-            &RingInput {
-                name,
-                plane,
-                raw,
-                anchors,
-                mid_x: self.mid_x,
-                ease,
-                target,
-            },
-            &self.options.ring,
-        )?;
+        let input = RingInput {
+            name,
+            plane,
+            raw,
+            anchors,
+            mid_x: self.mid_x,
+            ease,
+            target,
+        };
+        let (built, kept) = build_or_keep(input, &self.options.ring, self.previous)?;
+        let ring = built.ring.clone();
+        self.built.push(built);
+        self.rings_kept += usize::from(kept);
         self.dimensions.push(DimensionValue {
             name: key,
             value: ring.girth,

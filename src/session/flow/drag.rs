@@ -2,7 +2,7 @@
 //! garment's drags again on its re-solved framework.
 
 use crate::constraint::{self, ConstraintNet, Edit, Solution, SolverOptions};
-use crate::garment::assemble::assemble;
+use crate::garment::assemble::assemble_among;
 use crate::garment::{BodyProbe, Framework};
 use crate::session::emit::StepScope;
 use crate::session::error::{DragRefusal, StepError};
@@ -93,11 +93,14 @@ struct ReplayFigures {
 }
 
 /// Solves a drag on `before` (the framework of `state`) and re-surfaces the changed
-/// patches. The state is not touched; the new state is returned with the solution.
+/// patches, taking the others from `before` or else from `earlier` (a replayed drag: the
+/// garment before the dimension edit, which this drag left as it leaves the new one where
+/// the edit did not reach). The state is not touched; the new state is returned with the
+/// solution.
 pub(in crate::session) fn drag(
     scope: &mut StepScope<'_, '_, '_>,
     state: &GarmentState,
-    before: &Framework,
+    (before, earlier): (&Framework, Option<&Framework>),
     net: &ConstraintNet,
     edit: &Edit,
     probe: &BodyProbe,
@@ -106,9 +109,10 @@ pub(in crate::session) fn drag(
     let solution = scope.timed("constraints.solve", || {
         constraint::solve(before, net, edit, probe, solver)
     })?;
+    let previous: Vec<&Framework> = std::iter::once(before).chain(earlier).collect();
     let built = scope
         .timed("garment.assemble", || {
-            assemble(&solution.framework, probe, Some(before))
+            assemble_among(&solution.framework, probe, &previous)
         })
         .map_err(|e| unmet(net, &solution).unwrap_or(DragRefusal::Surface(e)))?;
     let mut after = solution.framework.clone();
@@ -132,11 +136,12 @@ pub(in crate::session) fn drag(
 }
 
 /// Makes the drags of `state` again on its re-solved framework (after a dimension
-/// change), recording the last one's figures.
+/// change), recording the last one's figures. `earlier` is the garment's framework before
+/// the change: the patches the change did not reach are taken from there.
 pub(in crate::session) fn replay_edits(
     scope: &mut StepScope<'_, '_, '_>,
     mut state: GarmentState,
-    probe: Option<&BodyProbe>,
+    (probe, earlier): (Option<&BodyProbe>, Option<&Framework>),
     solver: &SolverOptions,
 ) -> Result<GarmentState, StepError> {
     let edits = std::mem::take(&mut state.edits);
@@ -145,7 +150,7 @@ pub(in crate::session) fn replay_edits(
     };
     for (k, edit) in edits.iter().enumerate() {
         let replayed = match (&state.framework, &state.net) {
-            (Some(before), Some(net)) => drag(scope, &state, before, net, edit, probe, solver),
+            (Some(before), Some(net)) => drag(scope, &state, (before, earlier), net, edit, probe, solver),
             _ => return Err(StepError::NoGarment { verb: "drag" }),
         };
         let (next, _) = replayed.map_err(|source| StepError::Replay {

@@ -5,7 +5,7 @@
 use crate::body::Body;
 use crate::collision::BodyIndex;
 use crate::constraint::{ConstraintNet, NetworkOptions};
-use crate::garment::{BodyProbe, DimensionValue, StitchReport, build_framework};
+use crate::garment::{BodyProbe, DimensionValue, Framework, StitchReport, rebuild_framework};
 use crate::session::emit::StepScope;
 use crate::session::error::StepError;
 use crate::session::options::StepContext;
@@ -29,6 +29,10 @@ struct FrameworkFigures<'a> {
     m0_edges: usize,
     /// Coons patches.
     patches: usize,
+    /// Rings and patches taken from the framework before a dimension edit (their inputs the
+    /// same), not built again.
+    rings_kept: usize,
+    patches_kept: usize,
     /// What welding did.
     stitch: StitchReport,
     /// Each ring's girth against its target and the body's tape girth.
@@ -52,22 +56,35 @@ struct Girth<'a> {
 }
 
 /// Solves the framework of `garment` and builds its constraint network, recording the
-/// figures. The body's index is built on first use.
+/// figures. The body's index is built on first use. Given the framework `previous` (a
+/// dimension edit), what its inputs did not change is taken from it.
 pub(in crate::session) fn solve_garment(
     scope: &mut StepScope<'_, '_, '_>,
     body: &Body,
     probe: &mut Option<BodyProbe>,
     cx: &StepContext<'_>,
     mut garment: GarmentState,
+    previous: Option<&Framework>,
 ) -> Result<GarmentState, StepError> {
     let probe = body_probe(scope, body, probe, cx);
     let Some(template) = garment.template else {
         // A garment from a file is never solved: nothing to do.
         return Ok(garment);
     };
-    let fw = scope.timed("garment.solve", || {
-        build_framework(body, probe, template, &garment.dims, &garment.options)
+    let (fw, rebuilt) = scope.timed("garment.solve", || {
+        rebuild_framework(body, probe, template, &garment.dims, &garment.options, previous)
     })?;
+    // The assembly measured the new patches' samples: the collision need not again.
+    garment
+        .detect
+        .remember_nearest(probe.index(), &fw.m0.mesh.positions, &rebuilt.measured);
+    for (name, count) in [
+        ("garment.rings_kept", rebuilt.rings_kept),
+        ("garment.patches_kept", rebuilt.patches_kept),
+    ] {
+        let key = scope.timing_key(name);
+        scope.metrics.record_work(key, count);
+    }
     let net = scope.timed("constraints.network", || {
         ConstraintNet::for_framework(&fw, probe, &NetworkOptions::default())
     });
@@ -80,6 +97,8 @@ pub(in crate::session) fn solve_garment(
         m0_faces: fw.m0.mesh.triangles.len(),
         m0_edges: fw.m0.edges.len(),
         patches: fw.patches.len(),
+        rings_kept: rebuilt.rings_kept,
+        patches_kept: rebuilt.patches_kept,
         stitch: fw.m0.report,
         girths: fw
             .rings

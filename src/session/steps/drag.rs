@@ -31,7 +31,15 @@ pub(super) fn run(
     let (Some(before), Some(net)) = (&current.framework, &current.net) else {
         return Err(StepError::NoGarment { verb: "drag" });
     };
-    match drag(scope, current, before, net, edit, probe, &cx.session.scene.solver) {
+    match drag(
+        scope,
+        current,
+        (before, None),
+        net,
+        edit,
+        probe,
+        &cx.session.scene.solver,
+    ) {
         Ok((mut next, solution)) => {
             if let Some(after) = &next.framework {
                 scope.emit(

@@ -21,7 +21,7 @@ pub(super) fn run(
     state.history.clear();
     let mut garment = GarmentState::new(template, options);
     garment.label = label;
-    let mut next = solve_garment(scope, &state.body, &mut state.probe, cx, garment)?;
+    let mut next = solve_garment(scope, &state.body, &mut state.probe, cx, garment, None)?;
     if let (Some(fw), Some(net)) = (&next.framework, &next.net) {
         for part in GarmentPart::all() {
             scope.emit(part.stage_name(), Stage::Garment(GarmentStage::Part(fw, part)));

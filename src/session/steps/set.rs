@@ -71,8 +71,14 @@ pub(super) fn run(
     });
     let mut next = current_state.unsolved();
     next.dims.values.insert(name.to_string(), value);
-    let solved = solve_garment(scope, &state.body, &mut state.probe, cx, next)
-        .and_then(|next| replay_edits(scope, next, state.probe.as_ref(), &cx.session.scene.solver));
+    let solved = solve_garment(scope, &state.body, &mut state.probe, cx, next, Some(before)).and_then(|next| {
+        replay_edits(
+            scope,
+            next,
+            (state.probe.as_ref(), Some(before)),
+            &cx.session.scene.solver,
+        )
+    });
     let mut next = match solved {
         Ok(next) => next,
         Err(e) if refuses(&e) => {
