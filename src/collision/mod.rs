@@ -89,8 +89,8 @@ impl GarmentMesh {
     pub fn from_framework(fw: &Framework, height: f64) -> Self {
         let m0 = &fw.m0;
         let n = m0.mesh.positions.len();
-        // Openings: the ends of edges with a face on one side only.
-        let boundary = crate::mesh::topology::boundary_vertices(&m0.mesh);
+        // Openings: the ends of edges with a face on one side only (found with M0's faces).
+        let boundary = m0.boundary.clone();
         let tol = 1e-9 * height;
         let ring_normal = m0
             .mesh

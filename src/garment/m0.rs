@@ -12,7 +12,7 @@ use glam::DVec3;
 
 use crate::geom::{CoonsPatch, CornerMismatch, triangle_grid};
 use crate::mesh::TriMesh;
-use crate::mesh::topology::{repeated_triangles, undirected_edges};
+use crate::mesh::topology::{boundary_vertices, repeated_triangles, undirected_edges};
 
 /// One patch sampled on its grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -196,6 +196,9 @@ pub struct M0 {
     pub report: StitchReport,
     /// The vertex each patch sample became (the patches' samples in order).
     pub welds: Vec<u32>,
+    /// Whether each vertex is on the boundary (an opening: an end of an edge with one
+    /// face), as [`boundary_vertices`] finds it; kept with the faces.
+    pub boundary: Vec<bool>,
 }
 
 /// `x` as an unsigned key in the order [`f64::total_cmp`] gives (negatives, by their bits
@@ -334,6 +337,7 @@ pub fn restitch(patches: &[PatchGrid], threshold: f64, before: Option<(&[PatchGr
         .collect();
     let mesh = TriMesh { positions, triangles };
     let edges = undirected_edges(&mesh);
+    let boundary = boundary_vertices(&mesh);
     M0 {
         mesh,
         face_patch,
@@ -342,6 +346,7 @@ pub fn restitch(patches: &[PatchGrid], threshold: f64, before: Option<(&[PatchGr
         edges,
         report,
         welds: map,
+        boundary,
     }
 }
 
@@ -356,6 +361,7 @@ impl M0 {
             edges: self.edges.clone(),
             report: self.report,
             welds: Vec::new(),
+            boundary: self.boundary.clone(),
         }
     }
 }

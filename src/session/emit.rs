@@ -37,6 +37,7 @@ impl<'k, 's> Emitter<'k, 's> {
             metrics: StepMetrics::new(step, op),
             shortfalls: Vec::new(),
             layer: None,
+            started: Instant::now(),
         }
     }
 }
@@ -56,6 +57,8 @@ pub(crate) struct StepScope<'e, 'k, 's> {
     /// The garment the step is working on when it is worn over another: its stages are
     /// marked with it, its figures and timings go under its name.
     pub(crate) layer: Option<String>,
+    /// When the step began.
+    started: Instant,
 }
 
 /// A promise a step could not keep; the session goes on, `--strict` makes the run fail.
@@ -146,8 +149,14 @@ impl StepScope<'_, '_, '_> {
         }
     }
 
-    /// Ends the step: its `done` stage, then its metrics and shortfalls.
+    /// Ends the step: its `done` stage, then its metrics and shortfalls. The step's wall
+    /// time outside its timed stages and sinks (copies of the garment's state, the
+    /// collision's view of M0, ...) is recorded as `step.other`, so that the timings add up
+    /// to the whole step.
     pub(crate) fn done(mut self) -> (StepMetrics, Vec<Shortfall>) {
+        let timed: f64 = self.metrics.timings_ms.values().sum();
+        let other = (self.started.elapsed().as_secs_f64() * 1e3 - timed).max(0.0);
+        self.metrics.timings_ms.insert("step.other".to_string(), other);
         let done = self.metrics.clone();
         self.emit("done", Stage::Step(StepEnd::Done(&done)));
         (self.metrics, self.shortfalls)

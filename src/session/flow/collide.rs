@@ -276,7 +276,8 @@ fn collide_garment(
     cx: &StepContext<'_>,
 ) -> Result<(), crate::layers::LayerError> {
     let (options, m1, below) = (cx.options, cx.session.scene.m1.as_ref(), cx.below);
-    let (Some(garment), Some(ease)) = (state.collision_mesh(index.height), state.ease()) else {
+    let garment = scope.timed("collision.mesh", || state.collision_mesh(index.height));
+    let (Some(garment), Some(ease)) = (garment, state.ease()) else {
         return Ok(());
     };
     let mut collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect);

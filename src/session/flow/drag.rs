@@ -115,22 +115,26 @@ pub(in crate::session) fn drag(
             assemble_among(&solution.framework, probe, &previous)
         })
         .map_err(|e| unmet(net, &solution).unwrap_or(DragRefusal::Surface(e)))?;
-    let mut after = solution.framework.clone();
-    after.lines = built.lines;
-    after.patches = built.patches;
-    after.m0 = built.m0;
-    after.spans = built.spans;
     scope.record(&SolveFigures::new(
         net,
         &solution,
         built.resurfaced.len(),
-        after.patches.len(),
+        built.patches.len(),
     ));
-    let mut next = state.on_framework(after);
-    if let Some(fw) = &next.framework {
-        next.detect
-            .remember_nearest(probe.index(), &fw.m0.mesh.positions, &built.measured);
-    }
+    let next = scope.timed("garment.state", || {
+        let mut after = solution.framework.clone();
+        after.lines = built.lines;
+        after.patches = built.patches;
+        after.m0 = built.m0;
+        after.spans = built.spans;
+        let mut next = state.on_framework(after);
+        if let Some(fw) = &next.framework {
+            next.detect
+                .remember_nearest(probe.index(), &fw.m0.mesh.positions, &built.measured);
+        }
+        next
+    });
+    let mut next = next;
     next.edits.push(edit.clone());
     Ok((next, solution))
 }

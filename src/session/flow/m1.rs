@@ -73,10 +73,11 @@ pub(in crate::session) fn build_m1(
     let m0 = &outcome.collision.mesh;
     let face_patch = &outcome.garment.face_patch;
     let patches = state.patch_count();
-    // M0's distances as its quality check measured them: the selection and M1's check read them.
-    let measured = outcome.collision.quality.measured(&m0.positions);
     let last_edges = state.m0_edges.clone().filter(|_| !options.full_m1);
-    let (selection, edges) = scope.timed("m1.select", || {
+    let (measured, selection, edges) = scope.timed("m1.select", || {
+        // M0's distances as its quality check measured them: the selection and M1's check
+        // read them.
+        let measured = outcome.collision.quality.measured(&m0.positions);
         let input = SelectInput {
             mesh: m0,
             face_patch,
@@ -85,7 +86,8 @@ pub(in crate::session) fn build_m1(
             measured: Some(&measured),
             edges: None,
         };
-        select_patches(input, last_edges.as_ref(), index, m1_options)
+        let (selection, edges) = select_patches(input, last_edges.as_ref(), index, m1_options);
+        (measured, selection, edges)
     });
     state.m0_edges = Some(edges.clone());
     let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
@@ -115,16 +117,19 @@ pub(in crate::session) fn build_m1(
         m1::collide_m1_patches(index, &built, &collided, ease, &options.collision, reuse, shape)
     });
     state.m1_reuse = Some(std::sync::Arc::new(reuse));
-    let cuts = state
-        .cuts
-        .iter()
-        .map(|c| cut::rebuild(Some(&built), &m0.triangles, &collision.positions, c))
-        .collect();
-    let cuts_on_m0 = state
-        .cuts
-        .iter()
-        .map(|c| cut::rebuild(None, &m0.triangles, &m0.positions, c))
-        .collect();
+    let (cuts, cuts_on_m0) = scope.timed("m1.cuts", || {
+        let on_m1 = state
+            .cuts
+            .iter()
+            .map(|c| cut::rebuild(Some(&built), &m0.triangles, &collision.positions, c))
+            .collect();
+        let on_m0 = state
+            .cuts
+            .iter()
+            .map(|c| cut::rebuild(None, &m0.triangles, &m0.positions, c))
+            .collect();
+        (on_m1, on_m0)
+    });
     let verify = options.verify.then(|| {
         scope.timed("m1.verify", || {
             let truth = crate::collision::ground_truth(&body.mesh.mesh, &collision.positions, built.edges())
