@@ -34,6 +34,18 @@ pub struct Assembled {
     pub spans: Spans,
 }
 
+impl Assembled {
+    /// Moves its lines, patches, M0 and spans onto `fw` (the framework it was assembled
+    /// from), leaving here what else it found (the patches surfaced anew, their
+    /// measurements).
+    pub fn place_on(&mut self, fw: &mut Framework) {
+        fw.lines = std::mem::take(&mut self.lines);
+        fw.patches = std::mem::take(&mut self.patches);
+        fw.m0 = std::mem::take(&mut self.m0);
+        fw.spans = std::mem::take(&mut self.spans);
+    }
+}
+
 /// Builds the lines, patches and M0 of `fw` from its curves. With `previous`, patches
 /// whose sides did not change are taken from it.
 pub fn assemble(fw: &Framework, probe: &BodyProbe, previous: Option<&Framework>) -> Result<Assembled, FrameworkError> {

@@ -27,13 +27,9 @@ pub fn build_framework(
 /// What a build took from the framework before it and what it measured.
 #[derive(Clone, Debug, Default)]
 pub struct Rebuilt {
-    /// Rings built.
-    pub rings: usize,
-    /// Of those, the rings taken as the build before made them (the same inputs).
+    /// The rings taken as the build before made them (the same inputs).
     pub rings_kept: usize,
-    /// Patches.
-    pub patches: usize,
-    /// Of those, the patches taken from the framework before (the same sides).
+    /// The patches taken from the framework before (the same sides).
     pub patches_kept: usize,
     /// The body's nearest point to the M0 vertices that are interior samples of the
     /// patches surfaced anew, where they stand (see [`Assembled::measured`]).
@@ -85,9 +81,7 @@ pub fn rebuild_framework(
     fw.dimensions = std::mem::take(&mut ctx.dimensions);
     fw.dimensions.sort_by(|a, b| a.name.cmp(&b.name));
     let rebuilt = Rebuilt {
-        rings: ctx.built.len(),
         rings_kept: ctx.rings_kept,
-        patches: fw.patches.len(),
         patches_kept: fw.patches.len() - built.resurfaced.len(),
         measured: built.measured,
     };
@@ -122,9 +116,6 @@ fn finish(
         built_rings: Arc::default(),
     };
     let mut built = assemble(&fw, ctx.probe, previous)?;
-    fw.lines = std::mem::take(&mut built.lines);
-    fw.patches = std::mem::take(&mut built.patches);
-    fw.m0 = std::mem::take(&mut built.m0);
-    fw.spans = std::mem::take(&mut built.spans);
+    built.place_on(&mut fw);
     Ok((fw, built))
 }

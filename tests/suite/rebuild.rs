@@ -74,12 +74,9 @@ fn random_drag(rng: &mut Lcg) -> Edit {
 fn dragged(fw: &Framework, edit: &Edit, probe: &BodyProbe, previous: &[&Framework]) -> Option<Framework> {
     let net = ConstraintNet::for_framework(fw, probe, &NetworkOptions::default());
     let solution = solve(fw, &net, edit, probe, &SolverOptions::default()).ok()?;
-    let built = assemble_among(&solution.framework, probe, previous).ok()?;
+    let mut built = assemble_among(&solution.framework, probe, previous).ok()?;
     let mut after = solution.framework;
-    after.lines = built.lines;
-    after.patches = built.patches;
-    after.m0 = built.m0;
-    after.spans = built.spans;
+    built.place_on(&mut after);
     Some(after)
 }
 

@@ -110,7 +110,7 @@ pub(in crate::session) fn drag(
         constraint::solve(before, net, edit, probe, solver)
     })?;
     let previous: Vec<&Framework> = std::iter::once(before).chain(earlier).collect();
-    let built = scope
+    let mut built = scope
         .timed("garment.assemble", || {
             assemble_among(&solution.framework, probe, &previous)
         })
@@ -121,12 +121,9 @@ pub(in crate::session) fn drag(
         built.resurfaced.len(),
         built.patches.len(),
     ));
-    let next = scope.timed("garment.state", || {
+    let mut next = scope.timed("garment.state", || {
         let mut after = solution.framework.clone();
-        after.lines = built.lines;
-        after.patches = built.patches;
-        after.m0 = built.m0;
-        after.spans = built.spans;
+        built.place_on(&mut after);
         let mut next = state.on_framework(after);
         if let Some(fw) = &next.framework {
             next.detect
@@ -134,7 +131,6 @@ pub(in crate::session) fn drag(
         }
         next
     });
-    let mut next = next;
     next.edits.push(edit.clone());
     Ok((next, solution))
 }
