@@ -24,12 +24,11 @@ use std::hint::black_box;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use drape::bench::{answers_differing, demo_jumpsuit, signed_distances};
 use drape::body::index_cache::{CacheOutcome, IndexCache};
 use drape::body::{Body, BodyMesh, LandmarkOptions, PartitionOptions};
-use drape::collision::{
-    BodyIndex, CollisionOptions, DetectOptions, DetectState, GarmentMesh, collide, detect, quality,
-};
-use drape::garment::{BodyProbe, Dimensions, FrameworkOptions, TemplateKind, build_framework};
+use drape::collision::{BodyIndex, CollisionOptions, DetectOptions, DetectState, collide, detect, quality};
+use drape::garment::BodyProbe;
 use drape::m1::{self, M1Options, Selection};
 use drape::mesh::TriMesh;
 use glam::DVec3;
@@ -40,25 +39,6 @@ use serde_json::json;
 #[path = "timing.rs"]
 mod timing;
 use timing::median_ms;
-
-/// The demo's tight jumpsuit at `resolution` (waist +4 cm, ease 4 mm) as detection sees it.
-fn jumpsuit(body: &Body, probe: &BodyProbe, resolution: usize) -> (GarmentMesh, f64) {
-    let mut dims = Dimensions::default();
-    dims.values.insert("waist_girth".into(), 0.8096);
-    dims.values.insert("ease".into(), 0.004);
-    let options = FrameworkOptions::default().with_resolution(resolution);
-    let fw = build_framework(body, probe, TemplateKind::Jumpsuit, &dims, &options).expect("the jumpsuit builds");
-    (GarmentMesh::from_framework(&fw, probe.index().height), fw.ease())
-}
-
-/// Exact signed distance of every point over the whole body (on the worker threads).
-fn signed(index: &BodyIndex, points: &[DVec3]) -> Vec<f64> {
-    let reach = f64::INFINITY;
-    drape::par::par_map(points.len(), |k| {
-        let p = points[k];
-        index.nearest(p, reach).map_or(f64::INFINITY, |n| n.signed(p))
-    })
-}
 
 /// parry3d's own query: `project_point` on its oriented `TriMesh` (f32), inside by
 /// pseudo-normals.
@@ -174,7 +154,7 @@ fn main() {
     let mut rows = Vec::new();
     let mut garments = Vec::new();
     for resolution in [3, 6, 12, 24] {
-        let (g, ease) = jumpsuit(&body, &probe, resolution);
+        let (g, ease) = demo_jumpsuit(&body, &probe, resolution).expect("the jumpsuit builds");
         garments.push((
             format!("M0 resolution {resolution}"),
             g.mesh.positions.clone(),
@@ -184,7 +164,7 @@ fn main() {
     }
     // M1 over every patch of the collided resolution-6 M0.
     {
-        let (g, ease) = jumpsuit(&body, &probe, 6);
+        let (g, ease) = demo_jumpsuit(&body, &probe, 6).expect("the jumpsuit builds");
         let c = collide(
             index,
             &g,
@@ -217,7 +197,7 @@ fn main() {
             ms * 1e3 / n as f64
         });
         let mut exact = Vec::new();
-        let exact_us = median_ms(runs, || exact = signed(index, points)) * 1e3 / n as f64;
+        let exact_us = median_ms(runs, || exact = signed_distances(index, points)) * 1e3 / n as f64;
         let quality_ms = median_ms(runs.min(5), || {
             black_box(quality(index, points, points, edges, &[]));
         });
@@ -266,13 +246,8 @@ fn main() {
         let flat = BodyIndex::from_mesh(&scaled).expect("the split body is manifold");
         let build_ms = start.elapsed().as_secs_f64() * 1e3;
         let mut answers = Vec::new();
-        let us = median_ms(runs, || answers = signed(&flat, points)) * 1e3 / points.len() as f64;
-        let differ = base.as_ref().map_or(0, |b| {
-            b.iter()
-                .zip(&answers)
-                .filter(|(a, b)| (**a < 0.0) != (**b < 0.0) || (**a - **b).abs() > 1e-9)
-                .count()
-        });
+        let us = median_ms(runs, || answers = signed_distances(&flat, points)) * 1e3 / points.len() as f64;
+        let differ = base.as_ref().map_or(0, |b| answers_differing(b, &answers));
         base.get_or_insert(answers);
         println!("| {} | {build_ms:.1} | {us:.3} | {differ} |", scaled.triangles.len());
         scaling.push(json!({"triangles": scaled.triangles.len(), "build_ms": build_ms, "exact_signed_us": us, "differing": differ}));

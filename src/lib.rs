@@ -28,6 +28,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bench;
 pub mod body;
 pub mod collision;
 pub mod constraint;

@@ -106,6 +106,13 @@ pub(crate) enum Command {
     /// changed, every other line as it was.
     #[command(after_help = crate::check_garment::EXIT_CODES)]
     CheckGarment(crate::check_garment::CheckGarmentArgs),
+    /// Measure the whole edit step a user waits for: the demo session at resolutions 3, 6,
+    /// 12 and 24, per stage, on one core and on every core; cold detection beside FCPW,
+    /// Open3D and libigl asked the same question on the same points in the same run; and
+    /// the growth against the garment's vertices and the body's triangles (the body split 4x
+    /// and 16x). A few minutes; prints Markdown (--write puts it into a page).
+    #[command(after_help = EXIT_CODES)]
+    Bench(crate::bench::BenchArgs),
 }
 
 pub(crate) fn parse_axis(text: &str) -> Result<drape::body::Axis, String> {

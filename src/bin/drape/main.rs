@@ -2,6 +2,7 @@
 //! the mannequin refinements.
 
 mod args;
+mod bench;
 mod check_garment;
 mod edit;
 mod failure;
@@ -57,6 +58,7 @@ fn main() -> ExitCode {
         Some(Command::Edit(args)) => edit::edit(&args),
         Some(Command::Flatten(args)) => flatten::flatten(&args),
         Some(Command::CheckGarment(args)) => check_garment::check_garment(&args),
+        Some(Command::Bench(args)) => bench::bench(&args).map(|()| ExitCode::SUCCESS).internal(),
     };
     match result {
         Ok(code) => code,
