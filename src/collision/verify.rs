@@ -1,8 +1,10 @@
 //! The brute-force ground truth (\[collide\] 4.2: "the most exact test intersects every
 //! primitive of both"): every garment vertex against every body triangle by the
-//! generalized winding number (inside above one half), every garment edge against
-//! every body triangle, and every body edge against every garment face. No partitions, no BVH, no pseudo-normals: slow, independent,
-//! and what the fast tests are checked against (`--verify`, tests, the benchmark).
+//! generalized winding number (inside above one half; the verdict of the sum over every
+//! triangle, reached through [`WindingTree`]'s bounded far-field terms where they decide
+//! it), every garment edge against every body triangle, and every body edge against every
+//! garment face. No partitions, no body index, no pseudo-normals: independent, and what the
+//! fast tests are checked against (`--verify`, tests, the benchmark).
 
 use glam::DVec3;
 
@@ -10,8 +12,8 @@ use super::detect::Detection;
 use super::quality::Quality;
 use crate::body::DetectionMethod;
 use crate::geom::closest::closest_on_triangle;
-use crate::geom::inside::winding_number;
 use crate::geom::predicates::segment_crosses_triangle;
+use crate::geom::winding_tree::WindingTree;
 use crate::mesh::TriMesh;
 use crate::par::par_map as parallel;
 
@@ -75,8 +77,9 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
     let skin = super::types::SKIN * height;
     let off_skin =
         |p: DVec3| (0..body.triangles.len()).all(|t| closest_on_triangle(p, body.corners(t)).0.distance(p) > skin);
+    let tree = WindingTree::new(body);
     let inside = parallel(positions.len(), |v| {
-        winding_number(body, positions[v]) > 0.5 && off_skin(positions[v])
+        tree.is_inside(positions[v]) && off_skin(positions[v])
     });
     // Every edge against every triangle; a box overlap test first only saves time.
     let boxes: Vec<(DVec3, DVec3)> = (0..body.triangles.len())

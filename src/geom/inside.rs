@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::mesh::TriMesh;
 
 /// Solid angle of triangle `abc` seen from `p`, over 4 pi (signed by orientation).
-fn solid_angle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
+pub(crate) fn solid_angle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> f64 {
     let (a, b, c) = (a - p, b - p, c - p);
     let (la, lb, lc) = (a.length(), b.length(), c.length());
     let det = a.dot(b.cross(c));

@@ -13,6 +13,7 @@ pub mod ray;
 pub mod section;
 pub mod spline;
 pub mod triangle_patch;
+pub mod winding_tree;
 
 pub use chord_spline::{ChordSpline3, CurveEnds};
 pub use coons::{CoonsPatch, CornerMismatch, ParametricCurve};

@@ -47,3 +47,4 @@ mod spline_properties;
 mod splines;
 mod stress;
 mod units;
+mod winding;
