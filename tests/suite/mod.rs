@@ -1,3 +1,4 @@
+mod bench;
 mod bodies;
 mod capture;
 mod collision;

@@ -105,6 +105,9 @@ pub(crate) fn bench(args: &BenchArgs) -> anyhow::Result<()> {
     if resolutions.is_empty() {
         bail!("--resolutions is empty");
     }
+    if let Some(page) = &args.write {
+        report::check_page(page, "bench")?;
+    }
     let taskset = which("taskset")
         .context("drape bench pins its one-core runs with taskset (util-linux), which is not on the PATH")?;
     let python = if args.no_peers {

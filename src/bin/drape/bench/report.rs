@@ -333,19 +333,30 @@ pub(crate) fn json(m: &Measured) -> Value {
            "queries": m.queries.values().collect::<Vec<_>>(), "peers": peers})
 }
 
-/// Writes `body` into `page` between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`.
-pub(crate) fn splice(page: &Path, name: &str, body: &str) -> anyhow::Result<()> {
+/// Where `page`'s section `name` begins and ends (the byte ranges of its two markers' ends).
+fn section(page: &Path, name: &str) -> anyhow::Result<(String, usize, usize)> {
     let text = std::fs::read_to_string(page).with_context(|| format!("cannot read {}", page.display()))?;
     let (open, close) = (
         format!("<!-- figures:{name} -->\n"),
         format!("<!-- /figures:{name} -->"),
     );
     let (Some(a), Some(b)) = (text.find(&open), text.find(&close)) else {
-        bail!("{} has no section {open}...{close}", page.display());
+        bail!("{} has no section {}...{close}", page.display(), open.trim_end());
     };
     if b < a {
-        bail!("{}: {close} comes before {open}", page.display());
+        bail!("{}: {close} comes before {}", page.display(), open.trim_end());
     }
-    let new = format!("{}{open}{}\n{}", &text[..a], body.trim_matches('\n'), &text[b..]);
+    Ok((text, a + open.len(), b))
+}
+
+/// Checks that `page` can take the section `name` (before a long measurement).
+pub(crate) fn check_page(page: &Path, name: &str) -> anyhow::Result<()> {
+    section(page, name).map(|_| ())
+}
+
+/// Writes `body` into `page` between `<!-- figures:NAME -->` and `<!-- /figures:NAME -->`.
+pub(crate) fn splice(page: &Path, name: &str, body: &str) -> anyhow::Result<()> {
+    let (text, start, end) = section(page, name)?;
+    let new = format!("{}{}\n{}", &text[..start], body.trim_matches('\n'), &text[end..]);
     crate::files::write_atomic(page, new.as_bytes())
 }
