@@ -57,11 +57,13 @@ impl GroundTruth {
         edges.sort_unstable();
         edges.dedup();
         let segments: Vec<[DVec3; 2]> = edges.iter().map(|e| e.map(|v| body.positions[v as usize])).collect();
+        let boxes = SortedBoxes::new(segments.iter().map(|&[p, q]| (p.min(q), p.max(q))));
         self.pierced = parallel(triangles.len(), |f| {
             let tri = triangles[f].map(|v| positions[v as usize]);
             let (lo, hi) = (tri[0].min(tri[1]).min(tri[2]), tri[0].max(tri[1]).max(tri[2]));
-            segments.iter().any(|&[p, q]| {
-                p.min(q).cmple(hi).all() && p.max(q).cmpge(lo).all() && segment_crosses_triangle(p, q, tri)
+            boxes.overlapping(lo, hi).any(|s| {
+                let [p, q] = segments[s];
+                segment_crosses_triangle(p, q, tri)
             })
         });
         self
@@ -81,25 +83,52 @@ pub fn ground_truth(body: &TriMesh, positions: &[DVec3], edges: &[[u32; 2]]) -> 
     let inside = parallel(positions.len(), |v| {
         tree.is_inside(positions[v]) && off_skin(positions[v])
     });
-    // Every edge against every triangle; a box overlap test first only saves time.
-    let boxes: Vec<(DVec3, DVec3)> = (0..body.triangles.len())
-        .map(|t| {
-            let [a, b, c] = body.corners(t);
-            (a.min(b).min(c), a.max(b).max(c))
-        })
-        .collect();
+    // Every edge against every triangle whose box meets its own (the others cannot meet it).
+    let boxes = SortedBoxes::new((0..body.triangles.len()).map(|t| {
+        let [a, b, c] = body.corners(t);
+        (a.min(b).min(c), a.max(b).max(c))
+    }));
     let crossing = parallel(edges.len(), |e| {
         let [a, b] = edges[e];
         let (a, b) = (positions[a as usize], positions[b as usize]);
-        let (lo, hi) = (a.min(b), a.max(b));
-        boxes.iter().enumerate().any(|(t, (tlo, thi))| {
-            tlo.cmple(hi).all() && thi.cmpge(lo).all() && segment_crosses_triangle(a, b, body.corners(t))
-        })
+        boxes
+            .overlapping(a.min(b), a.max(b))
+            .any(|t| segment_crosses_triangle(a, b, body.corners(t)))
     });
     GroundTruth {
         inside,
         crossing,
         pierced: Vec::new(),
+    }
+}
+
+/// Boxes sorted by their least `x`, to list the boxes that meet a query box without
+/// reading the others: every box whose `x` range can meet the query's lies in one run of
+/// the order (its least `x` at most the query's greatest, and at least the query's least
+/// less the widest box's width).
+struct SortedBoxes {
+    /// `(least corner, greatest corner, index)`, by least `x`.
+    boxes: Vec<(DVec3, DVec3, usize)>,
+    widest: f64,
+}
+
+impl SortedBoxes {
+    fn new(boxes: impl Iterator<Item = (DVec3, DVec3)>) -> Self {
+        let mut boxes: Vec<(DVec3, DVec3, usize)> = boxes.enumerate().map(|(i, (lo, hi))| (lo, hi, i)).collect();
+        boxes.sort_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.2.cmp(&b.2)));
+        let widest = boxes.iter().map(|b| b.1.x - b.0.x).fold(0.0, f64::max);
+        Self { boxes, widest }
+    }
+
+    /// The indices of the boxes that meet `[lo, hi]` (closed boxes), in `x` order.
+    fn overlapping(&self, lo: DVec3, hi: DVec3) -> impl Iterator<Item = usize> + '_ {
+        // Twice the widest, so that no rounding of the subtraction drops a box.
+        let from = self.boxes.partition_point(|b| b.0.x < lo.x - 2.0 * self.widest);
+        let to = self.boxes.partition_point(|b| b.0.x <= hi.x);
+        self.boxes[from..to.max(from)]
+            .iter()
+            .filter(move |b| b.0.cmple(hi).all() && b.1.cmpge(lo).all())
+            .map(|b| b.2)
     }
 }
 
@@ -243,4 +272,40 @@ pub fn changed_verdicts(a: &Detection, b: &Detection) -> usize {
     let (a, b) = (hits(a), hits(b));
     let common = a.iter().filter(|v| b.binary_search(v).is_ok()).count();
     a.len() + b.len() - 2 * common
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::SortedBoxes;
+
+    /// The boxes listed for a query are exactly those a scan of every box finds meeting it.
+    #[test]
+    fn sorted_boxes_list_exactly_the_boxes_a_scan_finds() {
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut random_box = |size: f64| {
+            let lo = DVec3::new(next(), next(), next());
+            (lo, lo + size * DVec3::new(next(), next(), next()))
+        };
+        let boxes: Vec<(DVec3, DVec3)> = (0..500)
+            .map(|k| random_box(if k % 50 == 0 { 0.5 } else { 0.05 }))
+            .collect();
+        let sorted = SortedBoxes::new(boxes.iter().copied());
+        for k in 0..300 {
+            let (lo, hi) = random_box(if k % 3 == 0 { 0.0 } else { 0.1 });
+            let mut listed: Vec<usize> = sorted.overlapping(lo, hi).collect();
+            listed.sort_unstable();
+            let scan: Vec<usize> = (0..boxes.len())
+                .filter(|&b| boxes[b].0.cmple(hi).all() && boxes[b].1.cmpge(lo).all())
+                .collect();
+            assert_eq!(listed, scan, "query {lo} .. {hi}");
+        }
+    }
 }
