@@ -93,7 +93,10 @@ pub(crate) struct Measured {
 
 /// `drape bench`.
 pub(crate) fn bench(args: &BenchArgs) -> anyhow::Result<()> {
-    let resolutions: Vec<usize> = args.resolutions.iter().map(|&r| r as usize).collect();
+    // In increasing order, each once: the growth tables read the last as the largest.
+    let mut resolutions: Vec<usize> = args.resolutions.iter().map(|&r| r as usize).collect();
+    resolutions.sort_unstable();
+    resolutions.dedup();
     let runs = args.runs as usize;
     if let Some(out) = &args.queries_json {
         let export = args.export_to.as_deref().context("--queries-json needs --export-to")?;
@@ -126,7 +129,7 @@ pub(crate) fn bench(args: &BenchArgs) -> anyhow::Result<()> {
     let threads: Vec<usize> = if cores > 1 { vec![1, cores] } else { vec![1] };
     let result = measure(args, &runner, (&resolutions, &threads), python.as_deref(), runs);
     let _ = std::fs::remove_dir_all(&folder);
-    let measured = Measured { cores, ..result? };
+    let measured = result?;
     let text = report::markdown(&measured, &resolutions);
     println!("{text}");
     if let Some(page) = &args.write {
@@ -166,7 +169,7 @@ fn measure(
     }
     let body_resolution = resolutions.iter().copied().max().unwrap_or(6);
     let session = folder.join(format!("demo-{body_resolution}.drape"));
-    let base = queries::builtin_mesh()?;
+    let base = queries::builtin_body()?.mesh;
     let mut bodies = Vec::new();
     for &factor in &args.body_factors {
         let mesh = queries::split_by(&base, factor);
@@ -222,7 +225,7 @@ fn measure(
     }
     Ok(Measured {
         runs,
-        cores: 1,
+        cores: *threads.last().unwrap_or(&1),
         sessions,
         bodies,
         body_resolution,

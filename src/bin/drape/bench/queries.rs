@@ -48,26 +48,27 @@ pub(crate) struct Queries {
     pub(crate) bodies: Vec<BodyQueries>,
 }
 
-/// The built-in body's mesh as its file holds it.
-pub(crate) fn builtin_mesh() -> anyhow::Result<TriMesh> {
-    Ok(BodyMesh::from_obj_text(BUILTIN_BODY_OBJ, "builtin", 1.0)
-        .map_err(|e| anyhow!("the built-in body: {e}"))?
-        .mesh)
+/// The built-in body as its file holds it.
+pub(crate) fn builtin_body() -> anyhow::Result<BodyMesh> {
+    BodyMesh::from_obj_text(BUILTIN_BODY_OBJ, "builtin", 1.0).map_err(|e| anyhow!("the built-in body: {e}"))
 }
 
-fn write_le<T: Copy>(path: &Path, values: impl Iterator<Item = T>, bytes: impl Fn(T) -> Vec<u8>) -> anyhow::Result<()> {
-    let out: Vec<u8> = values.flat_map(bytes).collect();
+/// Writes `values` (each already in little-endian bytes) to `path`.
+fn write_le<const N: usize>(path: &Path, values: impl Iterator<Item = [u8; N]>) -> anyhow::Result<()> {
+    let out: Vec<u8> = values.flatten().collect();
     std::fs::write(path, out).with_context(|| format!("cannot write {}", path.display()))
 }
 
 /// Measures (each figure the median of `runs`), writes the peers' inputs into `export`
-/// (body.vertices.f64, body.triangles.u32, resN.points.f64, resN.signed.f64,
-/// resN.inside.u8) and returns the figures.
+/// (body.vertices.f64, body.triangles.u32, resN.points.f64, resN.signed.f64) and returns
+/// the figures.
 pub(crate) fn measure(resolutions: &[usize], factors: &[usize], runs: usize, export: &Path) -> anyhow::Result<Queries> {
-    let mesh =
-        BodyMesh::from_obj_text(BUILTIN_BODY_OBJ, "builtin", 1.0).map_err(|e| anyhow!("the built-in body: {e}"))?;
-    let body = Body::analyse(mesh, &LandmarkOptions::default(), &PartitionOptions::default())
-        .map_err(|e| anyhow!("the built-in body: {e}"))?;
+    let body = Body::analyse(
+        builtin_body()?,
+        &LandmarkOptions::default(),
+        &PartitionOptions::default(),
+    )
+    .map_err(|e| anyhow!("the built-in body: {e}"))?;
     let mut built = None;
     let index_ms = median_ms(runs.min(5), || {
         built = Some(BodyIndex::new(&body, &SliceOptions::default()))
@@ -78,13 +79,15 @@ pub(crate) fn measure(resolutions: &[usize], factors: &[usize], runs: usize, exp
     std::fs::create_dir_all(export).with_context(|| format!("cannot create {}", export.display()))?;
     write_le(
         &export.join("body.vertices.f64"),
-        body_mesh.positions.iter().flat_map(|p| p.to_array()),
-        |v: f64| v.to_le_bytes().to_vec(),
+        body_mesh
+            .positions
+            .iter()
+            .flat_map(|p| p.to_array())
+            .map(f64::to_le_bytes),
     )?;
     write_le(
         &export.join("body.triangles.u32"),
-        body_mesh.triangles.iter().flatten().copied(),
-        |v: u32| v.to_le_bytes().to_vec(),
+        body_mesh.triangles.iter().flatten().map(|v| v.to_le_bytes()),
     )?;
     let mut garments = Vec::new();
     let mut ease = 0.0;
@@ -97,13 +100,9 @@ pub(crate) fn measure(resolutions: &[usize], factors: &[usize], runs: usize, exp
         let n = points.len().max(1) as f64;
         let input = g.input();
         let options = DetectOptions::default();
-        let mut inside = vec![0u8; points.len()];
+        let mut hits = 0;
         let detect_us = median_ms(runs, || {
-            let d = detect(index, &input, &options, &mut DetectState::default());
-            inside.iter_mut().for_each(|i| *i = 0);
-            for h in &d.hits {
-                inside[h.vertex as usize] = 1;
-            }
+            hits = detect(index, &input, &options, &mut DetectState::default()).hits.len();
         }) * 1e3
             / n;
         let mut signed = Vec::new();
@@ -111,25 +110,18 @@ pub(crate) fn measure(resolutions: &[usize], factors: &[usize], runs: usize, exp
         let tag = format!("res{resolution}");
         write_le(
             &export.join(format!("{tag}.points.f64")),
-            points.iter().flat_map(|p| p.to_array()),
-            |v: f64| v.to_le_bytes().to_vec(),
+            points.iter().flat_map(|p| p.to_array()).map(f64::to_le_bytes),
         )?;
         write_le(
             &export.join(format!("{tag}.signed.f64")),
-            signed.iter().copied(),
-            |v: f64| v.to_le_bytes().to_vec(),
-        )?;
-        write_le(
-            &export.join(format!("{tag}.inside.u8")),
-            inside.iter().copied(),
-            |v: u8| vec![v],
+            signed.iter().map(|v| v.to_le_bytes()),
         )?;
         garments.push(GarmentQueries {
             resolution,
             vertices: points.len(),
             detect_us,
             signed_us,
-            inside: inside.iter().filter(|&&i| i == 1).count(),
+            inside: hits,
         });
         largest = points.clone();
     }

@@ -39,8 +39,14 @@ fn step(runs: &[SessionRun], op: Op) -> StepTimes {
     StepTimes::median(&all)
 }
 
+/// M1's stages of a step (select, subdivide, collide).
 fn m1_ms(s: &StepTimes) -> f64 {
-    s.stages[3] + s.stages[4] + s.stages[5]
+    STAGES
+        .iter()
+        .zip(&s.stages)
+        .filter(|((name, _), _)| name.starts_with("M1"))
+        .map(|(_, ms)| ms)
+        .sum()
 }
 
 /// The report, Markdown.

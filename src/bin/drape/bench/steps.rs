@@ -69,13 +69,13 @@ impl StepTimes {
 }
 
 /// What one run of a session gave: its drags' and `set`s' times (the steps that made an
-/// M1), the garment's M0 and M1 vertices, and the body's load (analysis and index, every `body.` stage), ms.
+/// M1), the garment's M0 vertices, and the body's load (analysis and index, every `body.`
+/// stage), ms.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct SessionRun {
     pub(crate) drags: Vec<StepTimes>,
     pub(crate) sets: Vec<StepTimes>,
     pub(crate) m0_vertices: usize,
-    pub(crate) m1_vertices: usize,
     pub(crate) body_ms: f64,
 }
 
@@ -140,9 +140,6 @@ fn read_run(steps: &[Value]) -> SessionRun {
         let count = |k: &str| step.get(k).and_then(Value::as_u64).map(|v| v as usize);
         if let Some(n) = count("m0_vertices") {
             out.m0_vertices = out.m0_vertices.max(n);
-        }
-        if let Some(n) = count("m1_vertices") {
-            out.m1_vertices = out.m1_vertices.max(n);
         }
         out.body_ms += timings
             .iter()
