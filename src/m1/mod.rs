@@ -12,6 +12,7 @@
 
 pub mod collide;
 pub mod cut;
+pub mod every_patch;
 pub mod patches;
 pub mod reshape;
 pub mod select;
@@ -20,7 +21,7 @@ pub mod sqrt3;
 pub use collide::{M0Collided, M1Collision, RefinedInput, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use patches::{M1Reuse, PatchCounts, PatchInput, collide_m1, collide_m1_patches};
-pub use reshape::{M1Shape, subdivide};
+pub use reshape::{M1Shape, Made, subdivide};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
 
@@ -98,9 +99,22 @@ pub(crate) fn build_traced(
 ) -> (M1, Vec<[u32; 3]>) {
     let refine = selection.refined();
     let first = sqrt3_step(m0, face_patch, &refine, options.smoothing);
+    let second = (options.steps >= 2).then(|| sqrt3_step(&first.mesh, &first.face_patch, &refine, options.smoothing));
+    let edges = crate::mesh::topology::undirected_edges(second.as_ref().map_or(&first.mesh, |s| &s.mesh));
+    of_steps(m0.positions.len(), (first, second), edges, selection)
+}
+
+/// M1 of its sqrt(3) steps over M0 of `m0_vertices` vertices, with its `edges`; and the
+/// corners of every new vertex in order.
+pub(crate) fn of_steps(
+    m0_vertices: usize,
+    (first, second): (Step, Option<Step>),
+    edges: Vec<[u32; 2]>,
+    selection: Selection,
+) -> (M1, Vec<[u32; 3]>) {
     let first_vertices = first.mesh.positions.len();
     let mut smoothed = first.smoothed.clone();
-    let mut anchor: Vec<u32> = (0..m0.positions.len() as u32).collect();
+    let mut anchor: Vec<u32> = (0..m0_vertices as u32).collect();
     let mut corners = Vec::new();
     let mut extend = |step: &Step, anchor: &mut Vec<u32>| {
         for o in &step.origin[anchor.len()..] {
@@ -111,28 +125,22 @@ pub(crate) fn build_traced(
         }
     };
     extend(&first, &mut anchor);
-    let (mesh, patches) = if options.steps >= 2 {
-        let second = sqrt3_step(&first.mesh, &first.face_patch, &refine, options.smoothing);
-        extend(&second, &mut anchor);
-        smoothed.extend(
-            second
-                .smoothed
-                .iter()
-                .copied()
-                .filter(|&v| (v as usize) < m0.positions.len()),
-        );
-        (second.mesh, second.face_patch)
-    } else {
-        (first.mesh.clone(), first.face_patch.clone())
+    let (mesh, patches) = match second {
+        Some(second) => {
+            extend(&second, &mut anchor);
+            smoothed.extend(second.smoothed.iter().copied().filter(|&v| (v as usize) < m0_vertices));
+            (second.mesh, second.face_patch)
+        }
+        None => (first.mesh.clone(), first.face_patch.clone()),
     };
     smoothed.sort_unstable();
     smoothed.dedup();
     let m1 = M1 {
-        edges: crate::mesh::topology::undirected_edges(&mesh),
+        edges,
         mesh,
         face_patch: patches,
         selection,
-        m0_vertices: m0.positions.len(),
+        m0_vertices,
         smoothed,
         first,
         first_vertices,

@@ -9,14 +9,18 @@
 //! vertices but mostly leaves all four inputs of the shape as they were, so [`subdivide`]
 //! keeps the shape of the last M1 whose inputs are equal and only places its vertices again,
 //! in the order and with the arithmetic of [`super::sqrt3_step`]: the same M1 as a full
-//! build, bit for bit, by construction. Any other input (a new refined patch, a dimension
-//! edit that changes M0's layout, Kobbelt's smoothing, which moves old vertices by their
+//! build, bit for bit, by construction. When only the refined patches differ (a drag that
+//! refines a patch more or less), M1 is read from one step over every patch
+//! ([`EveryPatch`], made the first time the refinement changes over the same M0 faces and
+//! kept while they stay), with no sort. Any other input (a dimension edit that changes M0's
+//! layout, two sqrt(3) steps, Kobbelt's smoothing, which moves old vertices by their
 //! neighbours) builds M1 whole.
 
 use std::sync::Arc;
 
+use super::every_patch::EveryPatch;
 use super::select::EdgeFaces;
-use super::{M1, M1Options, Selection, Smoothing, build_traced};
+use super::{M1, M1Options, Selection, Smoothing, build_traced, of_steps};
 use crate::mesh::TriMesh;
 
 /// An M1's shape and what it was made from.
@@ -36,6 +40,20 @@ pub struct M1Shape {
     /// The M1 it was made for, shared with its owner (any M1 of this shape would do: a copy
     /// of it has its positions placed again).
     m1: Arc<M1>,
+    /// One step over every patch of these M0 faces, once the refinement has changed over
+    /// them.
+    every: Option<Arc<EveryPatch>>,
+}
+
+/// How [`subdivide`] made M1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Made {
+    /// The last M1's shape, its vertices placed again.
+    ShapeKept,
+    /// Read from one step over every patch (the refinement changed, M0's faces did not).
+    EveryPatch,
+    /// Built whole.
+    Whole,
 }
 
 impl M1Shape {
@@ -77,9 +95,10 @@ impl M1Shape {
 }
 
 /// M1 over the collided M0 (as [`super::build`] makes it), and the shape the next step may
-/// keep: `previous`'s shape when it fits (the `bool` says so: a copy of its M1 placed over
-/// `m0`), or a new build (whose shape shares the M1, not a copy). `edges` are M0's, as
-/// [`EdgeFaces::of`] keeps them from step to step.
+/// keep: `previous`'s shape when it fits (a copy of its M1 placed over `m0`), M1 read from
+/// one step over every patch when only the refinement changed, or a new build (whose shape
+/// shares the M1, not a copy). `edges` are M0's, as [`EdgeFaces::of`] keeps them from step
+/// to step.
 pub fn subdivide(
     m0: &TriMesh,
     edges: &Arc<EdgeFaces>,
@@ -87,12 +106,34 @@ pub fn subdivide(
     selection: Selection,
     options: &M1Options,
     previous: Option<&Arc<M1Shape>>,
-) -> (Arc<M1>, Option<Arc<M1Shape>>, bool) {
+) -> (Arc<M1>, Option<Arc<M1Shape>>, Made) {
     let refined = selection.refined();
     if let Some(shape) = previous.filter(|s| s.fits(m0, edges, face_patch, &refined, options)) {
-        return (Arc::new(shape.place(m0, selection)), Some(Arc::clone(shape)), true);
+        return (
+            Arc::new(shape.place(m0, selection)),
+            Some(Arc::clone(shape)),
+            Made::ShapeKept,
+        );
     }
-    let (m1, corners) = build_traced(m0, face_patch, selection, options);
+    let one_step = options.smoothing == Smoothing::None && options.steps < 2;
+    // The step over every patch, kept, or made when the last M1 was over the same faces.
+    let every = previous.filter(|_| one_step).and_then(|s| match &s.every {
+        Some(every) if every.fits(m0, edges, face_patch) => Some(Arc::clone(every)),
+        _ if Arc::ptr_eq(&s.m0_edges, edges) && s.face_patch == face_patch => {
+            Some(Arc::new(EveryPatch::new(m0, edges, face_patch)))
+        }
+        _ => None,
+    });
+    let (made, (m1, corners)) = match &every {
+        Some(every) => {
+            let (first, m1_edges) = every.step(m0, &refined);
+            (
+                Made::EveryPatch,
+                of_steps(m0.positions.len(), (first, None), m1_edges, selection),
+            )
+        }
+        None => (Made::Whole, build_traced(m0, face_patch, selection, options)),
+    };
     let m1 = Arc::new(m1);
     let shape = (options.smoothing == Smoothing::None).then(|| {
         Arc::new(M1Shape {
@@ -102,7 +143,8 @@ pub fn subdivide(
             two_steps: options.steps >= 2,
             corners,
             m1: Arc::clone(&m1),
+            every,
         })
     });
-    (m1, shape, false)
+    (m1, shape, made)
 }

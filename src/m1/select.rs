@@ -168,6 +168,11 @@ impl EdgeFaces {
             }),
         }
     }
+
+    /// Its edge records `(min vertex, max vertex, face, local edge)`, sorted.
+    pub(crate) fn records(&self) -> &[(u32, u32, u32, u8)] {
+        &self.records
+    }
 }
 
 /// Applies the rules.

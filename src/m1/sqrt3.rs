@@ -99,15 +99,71 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
             origin.push(Origin::Centroid(*t));
         }
     }
-    // The face across the directed edge b -> c, when the edge flips (both split, same patch).
-    let flips_with = |f: usize, b: u32, c: u32| -> Option<usize> {
-        let g = directed.get(c, b)?;
-        (split(f) && split(g) && face_patch[f] == face_patch[g]).then_some(g)
-    };
+    let split_faces = split_faces(mesh, face_patch, &split, &directed, &centroid_of);
+    let mut flips = split_faces.flips;
+    keep_last_flip_of_each_edge(&mut flips);
+    let mut smoothed = Vec::new();
+    if smoothing == Smoothing::Kobbelt {
+        let flips_with = |f: usize, b: u32, c: u32| flips_with(face_patch, &split, &directed, (f, b, c));
+        let moved = smooth_old(mesh, &directed, &split, &flips_with);
+        for (v, p) in moved {
+            positions[v as usize] = p;
+            smoothed.push(v);
+        }
+    }
+    Step {
+        mesh: TriMesh {
+            positions,
+            triangles: split_faces.triangles,
+        },
+        face_patch: split_faces.patches,
+        origin,
+        centroid_of,
+        flips,
+        smoothed,
+    }
+}
+
+/// The faces one step makes, each face's in turn.
+pub(super) struct SplitFaces {
+    /// The faces, those of face `f` of the mesh before the step at `start[f]..start[f + 1]`.
+    pub triangles: Vec<[u32; 3]>,
+    /// Patch of each.
+    pub patches: Vec<u32>,
+    /// Where each face's faces begin, and one past the last.
+    pub start: Vec<u32>,
+    /// The flipped edges as met (see [`Step::flips`]), sorted by edge (stably: an edge met
+    /// twice keeps both, in the order met).
+    pub flips: Vec<([u32; 2], [u32; 2])>,
+}
+
+/// The face across the directed edge `b -> c` of face `f`, when the edge flips: both faces
+/// split, in the same patch.
+fn flips_with(
+    face_patch: &[u32],
+    split: &dyn Fn(usize) -> bool,
+    directed: &Directed,
+    (f, b, c): (usize, u32, u32),
+) -> Option<usize> {
+    let g = directed.get(c, b)?;
+    (split(f) && split(g) && face_patch[f] == face_patch[g]).then_some(g)
+}
+
+/// The faces of one step: a face not split stays, a split one makes three faces round its
+/// centroid (`centroid_of`), and an edge between two split faces of the same patch flips.
+pub(super) fn split_faces(
+    mesh: &TriMesh,
+    face_patch: &[u32],
+    split: &dyn Fn(usize) -> bool,
+    directed: &Directed,
+    centroid_of: &[Option<u32>],
+) -> SplitFaces {
     let mut triangles = Vec::with_capacity(mesh.triangles.len() * 3);
     let mut patches = Vec::with_capacity(mesh.triangles.len() * 3);
+    let mut start = Vec::with_capacity(mesh.triangles.len() + 1);
     let mut flips = Vec::new();
     for (f, t) in mesh.triangles.iter().enumerate() {
+        start.push(triangles.len() as u32);
         let patch = face_patch[f];
         let Some(m1) = centroid_of[f] else {
             triangles.push(*t);
@@ -116,7 +172,7 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
         };
         for k in 0..3 {
             let (b, c) = (t[k], t[(k + 1) % 3]);
-            match flips_with(f, b, c) {
+            match flips_with(face_patch, split, directed, (f, b, c)) {
                 // Each flipped edge once, from the face with the lower index.
                 Some(g) if f < g => {
                     let m2 = centroid_of[g].unwrap_or(m1);
@@ -141,34 +197,28 @@ pub fn sqrt3_step(mesh: &TriMesh, face_patch: &[u32], refine: &[bool], smoothing
             }
         }
     }
-    // By edge; an edge given twice (only where the mesh is not manifold) keeps its last
-    // faces, as a map would.
+    start.push(triangles.len() as u32);
     flips.sort_by_key(|&(edge, _)| edge);
+    SplitFaces {
+        triangles,
+        patches,
+        start,
+        flips,
+    }
+}
+
+/// Of flips sorted by edge, the last of each edge (an edge given twice, only where the mesh
+/// is not manifold, keeps its last faces, as a map would).
+pub(super) fn keep_last_flip_of_each_edge(flips: &mut Vec<([u32; 2], [u32; 2])>) {
     flips.reverse();
     flips.dedup_by_key(|(edge, _)| *edge);
     flips.reverse();
-    let mut smoothed = Vec::new();
-    if smoothing == Smoothing::Kobbelt {
-        let moved = smooth_old(mesh, &directed, &split, &flips_with);
-        for (v, p) in moved {
-            positions[v as usize] = p;
-            smoothed.push(v);
-        }
-    }
-    Step {
-        mesh: TriMesh { positions, triangles },
-        face_patch: patches,
-        origin,
-        centroid_of,
-        flips,
-        smoothed,
-    }
 }
 
 /// Directed edge -> face: the directed edges of a mesh sorted by start vertex, then end
 /// vertex, with where each start vertex's run begins. Where a directed edge repeats (two
 /// faces running the same way, a mesh folded over itself) the later face counts.
-struct Directed {
+pub(super) struct Directed {
     /// Per vertex, and one past the last: where its run of edges begins.
     first: Vec<usize>,
     /// End vertex and face of each edge.
@@ -176,7 +226,7 @@ struct Directed {
 }
 
 impl Directed {
-    fn new(mesh: &TriMesh) -> Self {
+    pub(super) fn new(mesh: &TriMesh) -> Self {
         let n = mesh.positions.len();
         let records: Vec<(u32, (u32, u32))> = (mesh.triangles.iter().enumerate())
             .flat_map(|(f, t)| (0..3).map(move |k| (t[k], (t[(k + 1) % 3], f as u32))))

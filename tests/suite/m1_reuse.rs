@@ -61,8 +61,9 @@ pub(super) fn random_session(body: &std::path::Path, rng: &mut Lcg, steps: usize
     text
 }
 
-/// Per step that made an M1: patches kept, and 1 when its shape was kept.
-type Kept = Vec<(u64, u64)>;
+/// Per step that made an M1: patches kept, 1 when its shape was kept, and 1 when it was read
+/// from the step over every patch.
+type Kept = Vec<(u64, u64, u64)>;
 
 /// Runs `text`, M1 made incrementally or whole; the M1s and what each step kept.
 fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, Kept) {
@@ -79,7 +80,11 @@ fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, K
         .iter()
         .filter_map(|m| {
             let work = |key: &str| m.work.get(key).and_then(|v| v.as_u64());
-            Some((work("m1.patches_kept")?, work("m1.shape_kept")?))
+            Some((
+                work("m1.patches_kept")?,
+                work("m1.shape_kept")?,
+                work("m1.every_patch")?,
+            ))
         })
         .collect();
     (sink.0, kept)
@@ -139,19 +144,26 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
         // The runs differ in what they did: the whole one kept nothing, the incremental one
         // kept patches at some step (otherwise this test compared two full builds).
         assert!(
-            kept_whole.iter().all(|&k| k == (0, 0)),
+            kept_whole.iter().all(|&k| k == (0, 0, 0)),
             "{}: {kept_whole:?}",
             body.display()
         );
         assert!(
-            kept.iter().any(|&(patches, _)| patches > 0),
+            kept.iter().any(|&(patches, _, _)| patches > 0),
             "{}: no patch kept {kept:?}\n{text}",
             body.display()
         );
         let smoothed = m1.contains("kobbelt");
         assert!(
-            kept.iter().any(|&(_, shape)| shape == 1) != smoothed,
+            kept.iter().any(|&(_, shape, _)| shape == 1) != smoothed,
             "{}: shapes kept {kept:?}\n{text}",
+            body.display()
+        );
+        // With one step and no smoothing, a change of the refined patches over the same M0
+        // faces reads M1 from the step over every patch.
+        assert!(
+            kept.iter().any(|&(_, _, every)| every == 1) == (m1 == "m1"),
+            "{}: M1 read from every patch {kept:?}\n{text}",
             body.display()
         );
         assert!(

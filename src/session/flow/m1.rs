@@ -91,7 +91,7 @@ pub(in crate::session) fn build_m1(
     });
     state.m0_edges = Some(edges.clone());
     let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
-    let (built, shape, shape_kept) = scope.timed("m1.subdivide", || {
+    let (built, shape, made) = scope.timed("m1.subdivide", || {
         m1::subdivide(m0, &edges, face_patch, selection, m1_options, previous)
     });
     state.m1_shape = shape;
@@ -165,7 +165,8 @@ pub(in crate::session) fn build_m1(
     for (name, count) in [
         ("m1.patches_collided", patches_collided.collided),
         ("m1.patches_kept", patches_collided.kept),
-        ("m1.shape_kept", usize::from(shape_kept)),
+        ("m1.shape_kept", usize::from(made == m1::Made::ShapeKept)),
+        ("m1.every_patch", usize::from(made == m1::Made::EveryPatch)),
     ] {
         let key = scope.timing_key(name);
         scope.metrics.record_work(key, count);
