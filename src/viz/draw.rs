@@ -20,7 +20,33 @@ pub(super) fn colored_mesh(mesh: &crate::mesh::TriMesh, colors: Vec<[u8; 3]>) ->
 /// reaches a vertex with none left. The same segments as one two-point strip per edge, in
 /// about half the points and far fewer strips; deterministic.
 pub(super) fn edge_paths(positions: &[[f32; 3]], edges: &[[u32; 2]]) -> Vec<Vec<[f32; 3]>> {
-    let n = positions.len();
+    edge_walks(positions.len(), edges).along(positions)
+}
+
+/// The walks of [`edge_paths`], as the vertices they pass, one after another.
+pub(super) struct Walks {
+    /// Where each walk begins in `vertices`, and one past the last.
+    start: Vec<u32>,
+    /// The vertices of every walk.
+    vertices: Vec<u32>,
+}
+
+impl Walks {
+    /// The points of each walk.
+    pub(super) fn along(&self, positions: &[[f32; 3]]) -> Vec<Vec<[f32; 3]>> {
+        self.start
+            .windows(2)
+            .map(|w| {
+                (self.vertices[w[0] as usize..w[1] as usize].iter())
+                    .map(|&v| positions[v as usize])
+                    .collect()
+            })
+            .collect()
+    }
+}
+
+/// The walks of [`edge_paths`] over `n` vertices.
+pub(super) fn edge_walks(n: usize, edges: &[[u32; 2]]) -> Walks {
     // Incident edges of every vertex, by edge order (counting sort).
     let mut start = vec![0usize; n + 1];
     for &[a, b] in edges {
@@ -50,26 +76,28 @@ pub(super) fn edge_paths(positions: &[[f32; 3]], edges: &[[u32; 2]]) -> Vec<Vec<
         }
         None
     };
-    let point = |v: usize| positions[v];
-    let mut paths = Vec::new();
+    let mut walks = Walks {
+        start: vec![0],
+        vertices: Vec::with_capacity(2 * edges.len()),
+    };
     for v in 0..n {
         while let Some(e) = unused_at(v, &used) {
-            let mut path = vec![point(v)];
+            walks.vertices.push(v as u32);
             let (mut at, mut edge) = (v, e);
             loop {
                 used[edge as usize] = true;
                 let [a, b] = edges[edge as usize];
                 at = if a as usize == at { b as usize } else { a as usize };
-                path.push(point(at));
+                walks.vertices.push(at as u32);
                 match unused_at(at, &used) {
                     Some(e) => edge = e,
                     None => break,
                 }
             }
-            paths.push(path);
+            walks.start.push(walks.vertices.len() as u32);
         }
     }
-    paths
+    walks
 }
 
 pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {

@@ -321,10 +321,9 @@ impl RerunLogger {
                 }
             }
         }
-        let parted = Parted::new(mesh, face_patch, self.options.part_faces);
+        let parted = self.parted("garment/m0", (&mesh.positions, &mesh.triangles), face_patch, edges);
         log_mesh_parts(rec, "garment/m0/mesh", &parted, &colors)?;
-        let edge_parts = parted.edges(&mesh.triangles, edges);
-        log_edge_parts(rec, "garment/m0/edges", (&parted, &edge_parts), (0.0004, [60, 60, 70]))?;
+        log_edge_parts(rec, "garment/m0/edges", &parted, (0.0004, [60, 60, 70]))?;
         Ok(Some(parted))
     }
 

@@ -2,6 +2,7 @@
 
 use rerun::{RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, ViewCoordinates};
 
+use super::parts::{Layout, Parted};
 use super::recording::{OrderedRecording, metric_path};
 use crate::mannequin::{MannequinResult, Region};
 use crate::session::{
@@ -104,6 +105,8 @@ pub struct RerunLogger {
     iter: i64,
     /// The garments worn over others logged so far (the layout names them).
     pub(super) layered: Vec<String>,
+    /// The last layout of each mesh logged in parts, by entity root.
+    layouts: std::sync::Mutex<std::collections::BTreeMap<&'static str, std::sync::Arc<Layout>>>,
 }
 
 impl From<rerun::RecordingStreamError> for SinkError {
@@ -176,12 +179,36 @@ impl RerunLogger {
             options,
             iter: 0,
             layered: Vec::new(),
+            layouts: Default::default(),
         })
     }
 
     /// The recording.
     pub fn recording(&self) -> &OrderedRecording {
         &self.rec
+    }
+
+    /// The mesh at `root` (`triangles` over `positions`, its faces' patches and its edges)
+    /// as it is logged in parts, its layout kept from the last mesh logged there when its
+    /// faces, patches and edges are the same.
+    pub(super) fn parted(
+        &self,
+        root: &'static str,
+        (positions, triangles): (&[glam::DVec3], &[[u32; 3]]),
+        face_patch: &[u32],
+        edges: &[[u32; 2]],
+    ) -> Parted {
+        let part_faces = self.options.part_faces;
+        let mut layouts = self.layouts.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        let layout = match layouts.get(root) {
+            Some(l) if l.fits((positions.len(), triangles), face_patch, edges, part_faces) => std::sync::Arc::clone(l),
+            _ => {
+                let made = std::sync::Arc::new(Layout::new(positions.len(), triangles, face_patch, edges, part_faces));
+                layouts.insert(root, std::sync::Arc::clone(&made));
+                made
+            }
+        };
+        Parted::of(positions, layout)
     }
 
     /// The next value of the `iter` timeline (solver iterations, counted over the session).

@@ -10,7 +10,7 @@ use rerun::{Clear, LineStrips3D, TextLogLevel};
 use super::colors::m1_rule_color;
 use super::draw::{f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
-use super::parts::{Parted, log_edge_parts, log_mesh_parts, log_point_parts};
+use super::parts::{log_edge_parts, log_mesh_parts, log_point_parts};
 use crate::m1::Rule;
 use crate::session::{M1Outcome, M1Stage, SinkError};
 
@@ -112,10 +112,14 @@ impl RerunLogger {
                 }
             }
         }
-        let parted = Parted::of(positions, &m1.mesh.triangles, &m1.face_patch, self.options.part_faces);
+        let parted = self.parted(
+            "garment/m1",
+            (positions, &m1.mesh.triangles),
+            &m1.face_patch,
+            m1.edges(),
+        );
         log_mesh_parts(rec, "garment/m1/mesh", &parted, &colors)?;
-        let edge_parts = parted.edges(&m1.mesh.triangles, m1.edges());
-        log_edge_parts(rec, "garment/m1/edges", (&parted, &edge_parts), (0.0003, [70, 70, 80]))?;
+        log_edge_parts(rec, "garment/m1/edges", &parted, (0.0003, [70, 70, 80]))?;
         log_point_parts(
             rec,
             "garment/m1/new_vertices",

@@ -6,15 +6,21 @@
 //! rest of the garment is not sent again, and the viewer, which shows the latest data of
 //! each entity, still shows the whole garment.
 //!
+//! How a mesh is split ([`Layout`]: its parts, their vertices and faces, its edges shared
+//! out and drawn as few polylines) depends on its faces, their patches and its edges alone;
+//! the logger keeps the last layout of each mesh and makes a new one only when these
+//! change, so a drag that moves vertices only gathers their points again.
+//!
 //! A part is a trade: each entity costs a chunk of its own (about 90 us to encode and write
 //! on one core, whatever its size: `cargo bench --bench logging`), and data is sent again a part at a time.
 
 use std::collections::BTreeSet;
+use std::sync::{Arc, OnceLock};
 
 use glam::DVec3;
 use rerun::{LineStrips3D, Mesh3D, Points3D};
 
-use super::draw::{edge_paths, f32s};
+use super::draw::{Walks, edge_walks, f32s};
 use super::recording::OrderedRecording;
 use crate::session::SinkError;
 
@@ -153,6 +159,7 @@ pub(super) fn split_edges(
             );
             EdgePart {
                 part: p as u32,
+                walks: OnceLock::new(),
                 vertices,
                 edges,
             }
@@ -168,6 +175,16 @@ pub(super) struct EdgePart {
     pub vertices: Vec<u32>,
     /// The edges, in the part's numbering.
     pub edges: Vec<[u32; 2]>,
+    /// The edges as few polylines ([`super::draw::edge_paths`]), in the part's numbering,
+    /// found the first time the part is sent.
+    walks: OnceLock<Walks>,
+}
+
+impl EdgePart {
+    /// The edges as few polylines through `points` (the part's vertices' points).
+    pub fn paths(&self, points: &[[f32; 3]]) -> Vec<Vec<[f32; 3]>> {
+        (self.walks.get_or_init(|| edge_walks(self.vertices.len(), &self.edges))).along(points)
+    }
 }
 
 fn words_of(points: &[[f32; 3]]) -> Vec<u32> {
@@ -191,44 +208,85 @@ pub(super) fn f32_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[f
         .collect()
 }
 
-/// A mesh as it is logged: its points and smooth normals as Rerun takes them, split into
-/// parts.
+/// How a mesh is split into parts, with its edges: a function of its faces, their patches
+/// and its edges alone, kept from step to step while they stay the same (a drag moves
+/// vertices, not faces).
+pub(super) struct Layout {
+    /// The vertex count, faces, their patches, the edges and the fewest faces of a part it
+    /// was made for.
+    vertex_count: usize,
+    triangles: Vec<[u32; 3]>,
+    face_patch: Vec<u32>,
+    edges: Vec<[u32; 2]>,
+    part_faces: usize,
+    /// The entity name of each part.
+    pub names: Vec<String>,
+    /// The parts with faces.
+    pub parts: Vec<Part>,
+    /// The edges shared out among the parts.
+    pub edge_parts: Vec<EdgePart>,
+}
+
+impl Layout {
+    /// The mesh of `vertex_count` vertices and `triangles` (of patches `face_patch`) split into
+    /// parts of whole patches of `part_faces` faces or more, its `edges` shared out among them.
+    pub fn new(
+        vertex_count: usize,
+        triangles: &[[u32; 3]],
+        face_patch: &[u32],
+        edges: &[[u32; 2]],
+        part_faces: usize,
+    ) -> Self {
+        let (face_part, names) = parts_of(face_patch, part_faces.max(1));
+        let parts = split(vertex_count, triangles, (&face_part, names.len()));
+        let edge_parts = split_edges(vertex_count, triangles, (&face_part, names.len()), edges);
+        Self {
+            vertex_count,
+            triangles: triangles.to_vec(),
+            face_patch: face_patch.to_vec(),
+            edges: edges.to_vec(),
+            part_faces,
+            names,
+            parts,
+            edge_parts,
+        }
+    }
+
+    /// Whether it is the layout of this mesh.
+    pub fn fits(
+        &self,
+        (vertex_count, triangles): (usize, &[[u32; 3]]),
+        face_patch: &[u32],
+        edges: &[[u32; 2]],
+        part_faces: usize,
+    ) -> bool {
+        self.vertex_count == vertex_count
+            && self.part_faces == part_faces
+            && self.triangles == triangles
+            && self.face_patch == face_patch
+            && self.edges == edges
+    }
+}
+
+/// A mesh as it is logged: its points and smooth normals as Rerun takes them, and its
+/// layout.
 pub(super) struct Parted {
     /// Positions.
     pub points: Vec<[f32; 3]>,
     /// Smooth vertex normals of the whole mesh.
     pub normals: Vec<[f32; 3]>,
-    /// The part of each face.
-    pub face_part: Vec<u32>,
-    /// The entity name of each part.
-    pub names: Vec<String>,
-    /// The parts with faces.
-    pub parts: Vec<Part>,
+    /// How it is split into parts.
+    pub layout: Arc<Layout>,
 }
 
 impl Parted {
-    /// `mesh` split into parts of whole patches (`face_patch`), of `part_faces` faces or
-    /// more.
-    pub fn new(mesh: &crate::mesh::TriMesh, face_patch: &[u32], part_faces: usize) -> Self {
-        Self::of(&mesh.positions, &mesh.triangles, face_patch, part_faces)
-    }
-
-    /// The mesh `triangles` make over `positions`, split into parts of whole patches.
-    pub fn of(positions: &[DVec3], triangles: &[[u32; 3]], face_patch: &[u32], part_faces: usize) -> Self {
-        let (face_part, names) = parts_of(face_patch, part_faces.max(1));
-        let parts = split(positions.len(), triangles, (&face_part, names.len()));
+    /// The mesh `layout` was made for, at `positions`.
+    pub fn of(positions: &[DVec3], layout: Arc<Layout>) -> Self {
         Self {
             points: f32s(positions),
-            normals: f32_normals(positions, triangles),
-            face_part,
-            names,
-            parts,
+            normals: f32_normals(positions, &layout.triangles),
+            layout,
         }
-    }
-
-    /// `edges` of the mesh (`triangles`) shared out among its parts.
-    pub fn edges(&self, triangles: &[[u32; 3]], edges: &[[u32; 2]]) -> Vec<EdgePart> {
-        split_edges(self.points.len(), triangles, (&self.face_part, self.names.len()), edges)
     }
 }
 
@@ -267,7 +325,8 @@ pub(super) fn log_mesh_parts(
     parted: &Parted,
     colors: &[[u8; 3]],
 ) -> Result<usize, SinkError> {
-    let items = parted.parts.iter().map(|part| {
+    let layout = &parted.layout;
+    let items = layout.parts.iter().map(|part| {
         let points = gather(&parted.points, &part.vertices);
         let normals = gather(&parted.normals, &part.vertices);
         let vertex_colors: Vec<[u8; 3]> = part.vertices.iter().map(|&v| colors[v as usize]).collect();
@@ -293,7 +352,7 @@ pub(super) fn log_mesh_parts(
             }
             m
         };
-        (parted.names[part.part as usize].clone(), fields, build)
+        (layout.names[part.part as usize].clone(), fields, build)
     });
     log_named(rec, root, items)
 }
@@ -304,10 +363,11 @@ pub(super) fn log_mesh_parts(
 pub(super) fn log_edge_parts(
     rec: &OrderedRecording,
     root: &str,
-    (parted, parts): (&Parted, &[EdgePart]),
+    parted: &Parted,
     (radius, color): (f32, [u8; 3]),
 ) -> Result<usize, SinkError> {
-    let items = parts.iter().map(|part| {
+    let layout = &parted.layout;
+    let items = layout.edge_parts.iter().map(|part| {
         let mine = gather(&parted.points, &part.vertices);
         let mut words = words_of(&mine);
         words.extend(part.edges.iter().flatten());
@@ -315,14 +375,14 @@ pub(super) fn log_edge_parts(
         let build = move |changed: &[bool]| {
             let mut strips = LineStrips3D::update_fields();
             if changed[0] {
-                strips = strips.with_strips(edge_paths(&mine, &part.edges));
+                strips = strips.with_strips(part.paths(&mine));
             }
             if changed[1] {
                 strips = strips.with_radii([radius]).with_colors([color]);
             }
             strips
         };
-        (parted.names[part.part as usize].clone(), fields, build)
+        (layout.names[part.part as usize].clone(), fields, build)
     });
     log_named(rec, root, items)
 }
@@ -335,7 +395,8 @@ pub(super) fn log_point_parts(
     (parted, from): (&Parted, usize),
     (radius, color): (f32, [u8; 3]),
 ) -> Result<usize, SinkError> {
-    let items = parted.parts.iter().filter_map(|part| {
+    let layout = &parted.layout;
+    let items = layout.parts.iter().filter_map(|part| {
         let mine: Vec<[f32; 3]> = part
             .vertices
             .iter()
@@ -359,7 +420,7 @@ pub(super) fn log_point_parts(
             }
             p
         };
-        Some((parted.names[part.part as usize].clone(), fields, build))
+        Some((layout.names[part.part as usize].clone(), fields, build))
     });
     log_named(rec, root, items)
 }
