@@ -76,6 +76,27 @@ pub fn group_by_key<T: Copy + Default>(
     (first, out)
 }
 
+/// [`group_by_vertex`] with each vertex's group sorted and its repeats dropped: a sorted
+/// set of pairs, as where each vertex's group begins (and one past the last) and the groups.
+pub fn sorted_sets_by_vertex(n: usize, pairs: &[(u32, u32)]) -> (Vec<usize>, Vec<u32>) {
+    let (mut first, mut grouped) = group_by_vertex(n, pairs);
+    let mut kept = 0;
+    for v in 0..n {
+        let (from, to) = (first[v], first[v + 1]);
+        first[v] = kept;
+        grouped[from..to].sort_unstable();
+        for i in from..to {
+            if i == from || grouped[i] != grouped[i - 1] {
+                grouped[kept] = grouped[i];
+                kept += 1;
+            }
+        }
+    }
+    first[n] = kept;
+    grouped.truncate(kept);
+    (first, grouped)
+}
+
 /// The undirected edges of a mesh, each once, sorted: grouped by their smaller vertex,
 /// then each vertex's few larger neighbours sorted and deduplicated.
 pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
@@ -83,15 +104,10 @@ pub fn undirected_edges(mesh: &TriMesh) -> Vec<[u32; 2]> {
         .flat_map(|t| (0..3).map(move |k| (t[k].min(t[(k + 1) % 3]), t[k].max(t[(k + 1) % 3]))))
         .collect();
     let n = ends.iter().map(|e| e.0 as usize + 1).max().unwrap_or(0);
-    let (first, mut larger) = group_by_vertex(n, &ends);
-    let mut edges = Vec::with_capacity(larger.len() / 2 + 1);
-    for v in 0..n {
-        let run = &mut larger[first[v]..first[v + 1]];
-        run.sort_unstable();
-        edges.extend(run.iter().map(|&w| [v as u32, w]));
-    }
-    edges.dedup();
-    edges
+    let (first, larger) = sorted_sets_by_vertex(n, &ends);
+    (0..n)
+        .flat_map(|v| larger[first[v]..first[v + 1]].iter().map(move |&w| [v as u32, w]))
+        .collect()
 }
 
 /// For each triangle, whether an earlier triangle has the same three corners (in any

@@ -4,7 +4,8 @@
 //! before) against M1 made whole at every step (`full_m1`): random drag and dimension
 //! sessions on every shipped body give the same M1 at every step, bit for bit (mesh, every
 //! field of the subdivision, positions after the collision, every figure and list of the
-//! collision), and the incremental run really kept shapes and patches.
+//! collision), and the incremental run really kept shapes and patches, and read M1 from its
+//! step over every patch when only the refined patches changed.
 
 use drape::session::{M1Stage, RunOptions, SinkError, StageInfo, StageSink, parse_session, run_session};
 
