@@ -165,6 +165,8 @@ pub struct PatchCounts {
     pub collided: usize,
     /// Refined patches whose collision was taken from an earlier step.
     pub kept: usize,
+    /// Vertices tested in the patches collided at this step.
+    pub tested: usize,
 }
 
 /// A hash of the body the collision runs against.
@@ -257,6 +259,7 @@ pub fn collide_m1_patches(
     let counts = PatchCounts {
         collided: results.iter().filter(|r| !r.1).count(),
         kept: results.iter().filter(|r| r.1).count(),
+        tested: results.iter().filter(|r| !r.1).map(|r| r.0.tested).sum(),
     };
     let collision = join(m1, &inputs, results.iter().map(|r| &*r.0), kept);
     let mut next = M1Reuse {

@@ -21,7 +21,7 @@ use glam::DVec3;
 use rerun::{LineStrips3D, Mesh3D, Points3D};
 
 use super::draw::{Walks, edge_walks, f32s};
-use super::recording::OrderedRecording;
+use super::recording::{OrderedRecording, Words};
 use crate::session::SinkError;
 
 /// The fewest faces a part has by default (but the last, which takes what is left): the
@@ -34,8 +34,9 @@ pub(super) struct Part {
     pub part: u32,
     /// The mesh's index of each of the part's vertices.
     pub vertices: Vec<u32>,
-    /// The part's faces, in the mesh's order, in the part's numbering.
-    pub triangles: Vec<[u32; 3]>,
+    /// The part's faces, in the mesh's order, in the part's numbering, three words each
+    /// (shared with every step that logs the part in this layout).
+    pub triangles: Words,
 }
 
 /// The part of each face: consecutive patches (by index) grouped until a part has
@@ -123,7 +124,7 @@ pub(super) fn split(vertex_count: usize, triangles: &[[u32; 3]], (face_part, par
             Part {
                 part: p as u32,
                 vertices,
-                triangles,
+                triangles: Arc::new(triangles.into_flattened()),
             }
         })
         .collect()
@@ -161,7 +162,7 @@ pub(super) fn split_edges(
                 part: p as u32,
                 walks: OnceLock::new(),
                 vertices,
-                edges,
+                edges: Arc::new(edges.into_flattened()),
             }
         })
         .collect()
@@ -173,8 +174,8 @@ pub(super) struct EdgePart {
     pub part: u32,
     /// The mesh's index of each vertex the edges use.
     pub vertices: Vec<u32>,
-    /// The edges, in the part's numbering.
-    pub edges: Vec<[u32; 2]>,
+    /// The edges, in the part's numbering, two words each (shared like a part's faces).
+    pub edges: Words,
     /// The edges as few polylines ([`super::draw::edge_paths`]), in the part's numbering,
     /// found the first time the part is sent.
     walks: OnceLock<Walks>,
@@ -183,16 +184,26 @@ pub(super) struct EdgePart {
 impl EdgePart {
     /// The edges as few polylines through `points` (the part's vertices' points).
     pub fn paths(&self, points: &[[f32; 3]]) -> Vec<Vec<[f32; 3]>> {
-        (self.walks.get_or_init(|| edge_walks(self.vertices.len(), &self.edges))).along(points)
+        (self
+            .walks
+            .get_or_init(|| edge_walks(self.vertices.len(), self.edges.as_chunks::<2>().0)))
+        .along(points)
     }
 }
 
-fn words_of(points: &[[f32; 3]]) -> Vec<u32> {
-    points.iter().flat_map(|p| p.map(f32::to_bits)).collect()
+/// The points `at` of `vertices`, as words (their bits).
+fn gathered_words(at: &[[f32; 3]], vertices: &[u32]) -> Words {
+    Arc::new(
+        vertices
+            .iter()
+            .flat_map(|&v| at[v as usize].map(f32::to_bits))
+            .collect(),
+    )
 }
 
-fn gather(at: &[[f32; 3]], vertices: &[u32]) -> Vec<[f32; 3]> {
-    vertices.iter().map(|&v| at[v as usize]).collect()
+/// Points from their words.
+fn f32s_of(words: &[u32]) -> Vec<[f32; 3]> {
+    words.as_chunks::<3>().0.iter().map(|w| w.map(f32::from_bits)).collect()
 }
 
 fn color_word([r, g, b]: [u8; 3]) -> u32 {
@@ -291,7 +302,7 @@ impl Parted {
 }
 
 /// The words that make each field of a part, by field name.
-type Fields = Vec<(&'static str, Vec<u32>)>;
+type Fields = Vec<(&'static str, Words)>;
 
 /// Logs each `(name, fields, build)` at `<root>/<name>` through
 /// [`OrderedRecording::log_part`], and clears the entities under `root` that are not among
@@ -327,28 +338,28 @@ pub(super) fn log_mesh_parts(
 ) -> Result<usize, SinkError> {
     let layout = &parted.layout;
     let items = layout.parts.iter().map(|part| {
-        let points = gather(&parted.points, &part.vertices);
-        let normals = gather(&parted.normals, &part.vertices);
-        let vertex_colors: Vec<[u8; 3]> = part.vertices.iter().map(|&v| colors[v as usize]).collect();
+        let points = gathered_words(&parted.points, &part.vertices);
+        let normals = gathered_words(&parted.normals, &part.vertices);
+        let vertex_colors: Vec<u32> = part.vertices.iter().map(|&v| color_word(colors[v as usize])).collect();
         let fields = vec![
-            ("positions", words_of(&points)),
-            ("normals", words_of(&normals)),
-            ("triangles", part.triangles.iter().flatten().copied().collect()),
-            ("colors", vertex_colors.iter().map(|&c| color_word(c)).collect()),
+            ("positions", Arc::clone(&points)),
+            ("normals", Arc::clone(&normals)),
+            ("triangles", Arc::clone(&part.triangles)),
+            ("colors", Arc::new(vertex_colors)),
         ];
         let build = move |changed: &[bool]| {
             let mut m = Mesh3D::update_fields();
             if changed[0] {
-                m = m.with_vertex_positions(points);
+                m = m.with_vertex_positions(f32s_of(&points));
             }
             if changed[1] {
-                m = m.with_vertex_normals(normals);
+                m = m.with_vertex_normals(f32s_of(&normals));
             }
             if changed[2] {
-                m = m.with_triangle_indices(part.triangles.iter().copied());
+                m = m.with_triangle_indices(part.triangles.as_chunks::<3>().0.iter().copied());
             }
             if changed[3] {
-                m = m.with_vertex_colors(vertex_colors);
+                m = m.with_vertex_colors(part.vertices.iter().map(|&v| colors[v as usize]));
             }
             m
         };
@@ -368,16 +379,18 @@ pub(super) fn log_edge_parts(
 ) -> Result<usize, SinkError> {
     let layout = &parted.layout;
     let items = layout.edge_parts.iter().map(|part| {
-        let mine = gather(&parted.points, &part.vertices);
-        let mut words = words_of(&mine);
-        words.extend(part.edges.iter().flatten());
-        let fields = vec![("strips", words), ("style", vec![radius.to_bits(), color_word(color)])];
+        let mine = gathered_words(&parted.points, &part.vertices);
+        let fields = vec![
+            ("points", Arc::clone(&mine)),
+            ("edges", Arc::clone(&part.edges)),
+            ("style", Arc::new(vec![radius.to_bits(), color_word(color)])),
+        ];
         let build = move |changed: &[bool]| {
             let mut strips = LineStrips3D::update_fields();
-            if changed[0] {
-                strips = strips.with_strips(part.paths(&mine));
+            if changed[0] || changed[1] {
+                strips = strips.with_strips(part.paths(&f32s_of(&mine)));
             }
-            if changed[1] {
+            if changed[2] {
                 strips = strips.with_radii([radius]).with_colors([color]);
             }
             strips
@@ -397,23 +410,22 @@ pub(super) fn log_point_parts(
 ) -> Result<usize, SinkError> {
     let layout = &parted.layout;
     let items = layout.parts.iter().filter_map(|part| {
-        let mine: Vec<[f32; 3]> = part
-            .vertices
-            .iter()
+        let mine: Vec<u32> = (part.vertices.iter())
             .filter(|&&v| v as usize >= from)
-            .map(|&v| parted.points[v as usize])
+            .flat_map(|&v| parted.points[v as usize].map(f32::to_bits))
             .collect();
         if mine.is_empty() {
             return None;
         }
+        let mine = Arc::new(mine);
         let fields = vec![
-            ("positions", words_of(&mine)),
-            ("style", vec![radius.to_bits(), color_word(color)]),
+            ("positions", Arc::clone(&mine)),
+            ("style", Arc::new(vec![radius.to_bits(), color_word(color)])),
         ];
         let build = move |changed: &[bool]| {
             let mut p = Points3D::update_fields();
             if changed[0] {
-                p = p.with_positions(mine);
+                p = p.with_positions(f32s_of(&mine));
             }
             if changed[1] {
                 p = p.with_radii([radius]).with_colors([color]);

@@ -2,7 +2,7 @@
 //! ([`OrderedRecording`]), and the metric paths by unit ([`metric_path`]).
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::sync::Mutex;
+use std::sync::{Arc, Mutex};
 
 use rerun::RecordingStream;
 
@@ -88,8 +88,12 @@ pub struct OrderedRecording {
     shown: Mutex<BTreeMap<String, Fields>>,
 }
 
+/// The words that make a field of a part. A layout's fields (a part's faces, its edges)
+/// are shared from step to step: the same `Arc` is the same content without a look.
+pub type Words = Arc<Vec<u32>>;
+
 /// The content of each field of a part, by field name.
-type Fields = BTreeMap<&'static str, Vec<u32>>;
+type Fields = BTreeMap<&'static str, Words>;
 
 /// The entity roots that belong to a garment (moved under `layers/<name>/` for a garment
 /// worn over another).
@@ -209,7 +213,7 @@ impl OrderedRecording {
     pub fn log_part<AS: rerun::AsComponents>(
         &self,
         path: impl Into<rerun::EntityPath>,
-        fields: Vec<(&'static str, Vec<u32>)>,
+        fields: Vec<(&'static str, Words)>,
         build: impl FnOnce(&[bool]) -> AS,
     ) -> Result<bool, SinkError> {
         let Some(path) = self.placed(path.into()) else {
@@ -221,7 +225,12 @@ impl OrderedRecording {
             let before = shown.get(&key);
             fields
                 .iter()
-                .map(|(name, words)| !self.only_changed || before.and_then(|b| b.get(name)).is_none_or(|w| w != words))
+                .map(|(name, words)| {
+                    !self.only_changed
+                        || before
+                            .and_then(|b| b.get(name))
+                            .is_none_or(|w| !Arc::ptr_eq(w, words) && w != words)
+                })
                 .collect()
         };
         if !changed.contains(&true) {

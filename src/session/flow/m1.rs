@@ -160,11 +160,13 @@ pub(in crate::session) fn build_m1(
         m1_cut_lines: state.cuts.len(),
         m1_verify: verify,
     });
-    // Refined patches collided at this step, and taken unchanged from the step before; 1
+    // Refined patches collided at this step (and the vertices they tested), and taken
+    // unchanged from the step before; 1
     // when M1's shape was kept from the step before (only its vertices placed again).
     for (name, count) in [
         ("m1.patches_collided", patches_collided.collided),
         ("m1.patches_kept", patches_collided.kept),
+        ("m1.vertices_collided", patches_collided.tested),
         ("m1.shape_kept", usize::from(made == m1::Made::ShapeKept)),
         ("m1.every_patch", usize::from(made == m1::Made::EveryPatch)),
     ] {
