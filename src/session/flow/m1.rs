@@ -160,9 +160,21 @@ pub(in crate::session) fn build_m1(
         m1_cut_lines: state.cuts.len(),
         m1_verify: verify,
     });
-    // Refined patches collided at this step (and the vertices they tested), and taken
-    // unchanged from the step before; 1
-    // when M1's shape was kept from the step before (only its vertices placed again).
+    record_m1_work(scope, patches_collided, made);
+    state.m1 = Some(M1Outcome {
+        m1: built,
+        collision,
+        stored: state.cuts.clone(),
+        cuts,
+        cuts_on_m0,
+    });
+}
+
+/// The metrics' `work` of M1's build: the refined patches collided at this step (and the
+/// vertices they tested) and those taken unchanged from the step before; 1 when M1's shape
+/// was kept from the step before (only its vertices placed again), 1 when it was read from
+/// the step over every patch.
+fn record_m1_work(scope: &mut StepScope<'_, '_, '_>, patches_collided: m1::PatchCounts, made: m1::Made) {
     for (name, count) in [
         ("m1.patches_collided", patches_collided.collided),
         ("m1.patches_kept", patches_collided.kept),
@@ -173,13 +185,6 @@ pub(in crate::session) fn build_m1(
         let key = scope.timing_key(name);
         scope.metrics.record_work(key, count);
     }
-    state.m1 = Some(M1Outcome {
-        m1: built,
-        collision,
-        stored: state.cuts.clone(),
-        cuts,
-        cuts_on_m0,
-    });
 }
 
 /// The patches M1 refines, and M0's edges with their faces: `last_edges` while M0's faces
