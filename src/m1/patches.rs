@@ -169,21 +169,32 @@ pub struct PatchCounts {
     pub tested: usize,
 }
 
-/// A hash of the body the collision runs against.
+/// A hash of the body the collision runs against: xxh64 of its positions' bits, its
+/// triangles and its height, little-endian, streamed through a small buffer.
 fn body_key(index: &BodyIndex) -> u64 {
-    let mut bytes: Vec<u8> = Vec::with_capacity(24 * index.positions.len() + 12 * index.triangles.len() + 8);
+    const BLOCK: usize = 1 << 15;
+    let mut hasher = xxhash_rust::xxh64::Xxh64::new(0);
+    let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 24);
+    let mut put = |word: &[u8], bytes: &mut Vec<u8>| {
+        bytes.extend_from_slice(word);
+        if bytes.len() >= BLOCK {
+            hasher.update(bytes);
+            bytes.clear();
+        }
+    };
     for p in &index.positions {
         for x in p.to_array() {
-            bytes.extend(x.to_bits().to_le_bytes());
+            put(&x.to_bits().to_le_bytes(), &mut bytes);
         }
     }
     for t in &index.triangles {
         for v in t {
-            bytes.extend(v.to_le_bytes());
+            put(&v.to_le_bytes(), &mut bytes);
         }
     }
-    bytes.extend(index.height.to_bits().to_le_bytes());
-    xxhash_rust::xxh64::xxh64(&bytes, 0)
+    put(&index.height.to_bits().to_le_bytes(), &mut bytes);
+    hasher.update(&bytes);
+    hasher.digest()
 }
 
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
