@@ -3,7 +3,7 @@
 //! edge rounds lifted (orange, where they crossed), M0 after response, what is left inside
 //! or crossing, and the collision scalars.
 
-use rerun::{Arrows3D, Clear, LineStrips3D, Points3D, TextDocument, TextLogLevel};
+use rerun::{Arrows3D, LineStrips3D, Points3D, TextDocument, TextLogLevel};
 
 use super::colors::{CLEARANCE_BANDS, clearance_band, partition_color, rule_color};
 use super::draw::{f32s, log_face_outlines};
@@ -66,7 +66,7 @@ impl RerunLogger {
             let path = format!("collision/mesh/hits/{}", p.id.letter());
             let hits: Vec<_> = d.hits.iter().filter(|h| h.partition == k).collect();
             if hits.is_empty() {
-                rec.log(path.as_str(), &Clear::recursive()).map_err(to_sink)?;
+                rec.clear_tree(&path)?;
                 continue;
             }
             let points: Vec<_> = hits.iter().map(|h| positions[h.vertex as usize]).collect();
@@ -177,7 +177,7 @@ impl RerunLogger {
             let path = format!("collision/response/{}", rule.name());
             let moved: Vec<_> = c.responses.iter().filter(|r| r.rule == rule).collect();
             if moved.is_empty() {
-                rec.log(path.as_str(), &Clear::flat()).map_err(to_sink)?;
+                rec.clear(&path)?;
                 continue;
             }
             counts.push(format!("{} {}", rule.name(), moved.len()));
@@ -204,8 +204,7 @@ impl RerunLogger {
         // The edges that crossed after the vertex response, where they stood then (M0 as
         // built with the penetrating vertices moved): what the edge rounds lifted.
         if c.crossing_before_rounds.is_empty() {
-            rec.log("collision/mesh/crossing_before_rounds", &Clear::flat())
-                .map_err(to_sink)?;
+            rec.clear("collision/mesh/crossing_before_rounds")?;
         } else {
             let mut then = g.mesh.positions.clone();
             for r in c.responses.iter().filter(|r| r.edge_round == 0) {
@@ -225,7 +224,7 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         if q.inside.is_empty() {
-            rec.log("collision/mesh/remaining", &Clear::flat()).map_err(to_sink)?;
+            rec.clear("collision/mesh/remaining")?;
         } else {
             let pts: Vec<_> = q.inside.iter().map(|&v| c.mesh.positions[v as usize]).collect();
             rec.log(
@@ -235,8 +234,7 @@ impl RerunLogger {
             .map_err(to_sink)?;
         }
         if q.crossing.is_empty() {
-            rec.log("collision/mesh/crossing_edges", &Clear::flat())
-                .map_err(to_sink)?;
+            rec.clear("collision/mesh/crossing_edges")?;
         } else {
             let lines: Vec<Vec<[f32; 3]>> = q
                 .crossing
@@ -274,7 +272,7 @@ impl RerunLogger {
         let (c, g) = (&outcome.collision, &outcome.garment);
         let q = &c.quality;
         if q.is_clear() {
-            rec.log("collision/guarantee", &Clear::flat()).map_err(to_sink)?;
+            rec.clear("collision/guarantee")?;
         } else {
             let mut spots: Vec<_> = q.inside.iter().map(|&v| c.mesh.positions[v as usize]).collect();
             spots.extend(q.crossing.iter().map(|&e| {

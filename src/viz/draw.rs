@@ -114,7 +114,7 @@ pub(super) fn log_face_outlines(
     (radius, colour): (f32, [u8; 3]),
 ) -> Result<(), SinkError> {
     if faces.is_empty() {
-        return rec.log(path, &rerun::Clear::flat());
+        return rec.clear(path);
     }
     let outlines: Vec<Vec<[f32; 3]>> = faces
         .iter()

@@ -268,7 +268,7 @@ impl RerunLogger {
     fn log_mesh(&self, fw: &Framework) -> Result<(), SinkError> {
         let rec = self.recording();
         let m0 = &fw.m0;
-        rec.log("garment/patches", &Clear::flat()).map_err(to_sink)?;
+        rec.clear("garment/patches")?;
         self.m0(&m0.mesh, &m0.face_patch, &m0.edges)?;
         let worst = fw
             .rings

@@ -44,7 +44,7 @@ impl RerunLogger {
             ),
         ] {
             if list.is_empty() {
-                rec.log(path, &Clear::flat()).map_err(to_sink)?;
+                rec.clear(path)?;
             } else {
                 rec.log(
                     path,

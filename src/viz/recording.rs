@@ -86,6 +86,10 @@ pub struct OrderedRecording {
     /// Entities that show something now, by full path, with the content of each field of
     /// those a part was logged to (the exact words [`Self::log_part`] was given).
     shown: Mutex<BTreeMap<String, Fields>>,
+    /// Entities that may show something: every path data was sent to since it was last
+    /// cleared (by [`Self::clear`] or [`Self::clear_tree`], which alone take paths out).
+    /// Unlike `shown`, a log at a parent leaves its children here: they still show.
+    maybe: Mutex<BTreeSet<String>>,
 }
 
 /// The words that make a field of a part. A layout's fields (a part's faces, its edges)
@@ -109,6 +113,7 @@ impl OrderedRecording {
             layer: None,
             only_changed,
             shown: Mutex::new(BTreeMap::new()),
+            maybe: Mutex::new(BTreeSet::new()),
         }
     }
 
@@ -180,6 +185,7 @@ impl OrderedRecording {
         if batches.is_empty() {
             return Ok(());
         }
+        self.maybe().insert(path.to_string());
         let chunk = rerun::log::Chunk::builder(path)
             .with_serialized_batches(rerun::log::RowId::new(), timepoint, batches)
             .build()
@@ -264,6 +270,53 @@ impl OrderedRecording {
             let path = parent.join(&rerun::EntityPath::from(name.as_str()));
             self.forget(&path.to_string());
             self.send(path, &rerun::Clear::flat(), self.rec.now())?;
+        }
+        Ok(())
+    }
+
+    fn maybe(&self) -> std::sync::MutexGuard<'_, BTreeSet<String>> {
+        self.maybe.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Clears what `path` shows (not its children). When only changed parts are logged, an
+    /// entity that shows nothing (never logged, or cleared since its last data) is left as
+    /// it is: the latest-at scene is the same without a second `Clear`.
+    pub fn clear(&self, path: &str) -> Result<(), SinkError> {
+        self.clear_where(path, false)
+    }
+
+    /// Clears `path` and everything under it, as [`Self::clear`] does one entity: nothing is
+    /// sent when none of them may show something.
+    pub fn clear_tree(&self, path: &str) -> Result<(), SinkError> {
+        self.clear_where(path, true)
+    }
+
+    fn clear_where(&self, path: &str, tree: bool) -> Result<(), SinkError> {
+        let Some(path) = self.placed(path.into()) else {
+            return Ok(());
+        };
+        let key = path.to_string();
+        let under = format!("{key}/");
+        let cleared: Vec<String> = {
+            let maybe = self.maybe();
+            let below = maybe
+                .range(under.clone()..)
+                .take_while(|k| tree && k.starts_with(&under));
+            maybe.get(&key).into_iter().chain(below).cloned().collect()
+        };
+        if self.only_changed && cleared.is_empty() {
+            return Ok(());
+        }
+        let clear = if tree {
+            rerun::Clear::recursive()
+        } else {
+            rerun::Clear::flat()
+        };
+        self.send(path, &clear, self.rec.now())?;
+        self.forget(&key);
+        let mut maybe = self.maybe();
+        for k in cleared.iter().chain([&key]) {
+            maybe.remove(k);
         }
         Ok(())
     }
