@@ -168,25 +168,18 @@ impl RerunLogger {
     /// The contours, the seams and junctions, and the loose fit's straightening.
     fn log_curves(&self, fw: &Framework) -> Result<(), SinkError> {
         let rec = self.recording();
+        // A curve the step did not move is not sent again (the recording shows it already).
         for c in &fw.contours {
-            rec.log(
-                format!("garment/curves/contours/{}", c.name),
-                &LineStrips3D::new([f32s(&c.polyline())])
-                    .with_radii([0.0018])
-                    .with_colors([[40, 200, 120]])
-                    .with_labels([c.name.clone()])
-                    .with_show_labels(false),
-            )
-            .map_err(to_sink)?;
+            let label = Some(c.name.as_str());
+            log_curve(
+                rec,
+                &format!("garment/curves/contours/{}", c.name),
+                &c.polyline(),
+                label,
+            )?;
         }
         for l in &fw.lines {
-            rec.log(
-                format!("garment/curves/lines/{}", l.name),
-                &LineStrips3D::new([f32s(&l.points)])
-                    .with_radii([0.0018])
-                    .with_colors([[40, 200, 120]]),
-            )
-            .map_err(to_sink)?;
+            log_curve(rec, &format!("garment/curves/lines/{}", l.name), &l.points, None)?;
         }
         let (mut origins, mut vectors) = (Vec::new(), Vec::new());
         for s in &fw.straightened {
@@ -377,4 +370,37 @@ impl RerunLogger {
             ),
         )
     }
+}
+
+/// Logs a framework curve at `path` (with its hidden `label`, if any) through
+/// [`super::recording::OrderedRecording::log_part`]: its points when they moved, its style
+/// the first time.
+fn log_curve(
+    rec: &super::recording::OrderedRecording,
+    path: &str,
+    points: &[DVec3],
+    label: Option<&str>,
+) -> Result<(), SinkError> {
+    const RADIUS: f32 = 0.0018;
+    const COLOR: [u8; 3] = [40, 200, 120];
+    let strip = f32s(points);
+    let words: Vec<u32> = strip.iter().flat_map(|p| p.map(f32::to_bits)).collect();
+    let fields = vec![
+        ("points", std::sync::Arc::new(words)),
+        ("style", std::sync::Arc::new(vec![RADIUS.to_bits()])),
+    ];
+    rec.log_part(path, fields, |changed: &[bool]| {
+        let mut strips = LineStrips3D::update_fields();
+        if changed[0] {
+            strips = strips.with_strips([strip]);
+        }
+        if changed[1] {
+            strips = strips.with_radii([RADIUS]).with_colors([COLOR]);
+            if let Some(label) = label {
+                strips = strips.with_labels([label]).with_show_labels(false);
+            }
+        }
+        strips
+    })?;
+    Ok(())
 }
