@@ -334,8 +334,9 @@ pub(crate) struct RunArgs {
     /// Also log compute timings to the recording (makes recordings differ run to run).
     #[arg(long)]
     pub(crate) log_timings: bool,
-    /// Log every patch of every garment mesh (M0, its clearance map, M1, their edges) at
-    /// every step, also those the recording shows already, and clear what is already clear;
+    /// Log every patch of every garment mesh (M0, its clearance map, M1, their edges) and
+    /// every curve at every step, also those the recording shows already, and clear what is
+    /// already clear;
     /// by default a step sends only the patches that changed. The scene at every step is the
     /// same either way.
     #[arg(long)]
