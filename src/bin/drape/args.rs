@@ -336,9 +336,8 @@ pub(crate) struct RunArgs {
     pub(crate) log_timings: bool,
     /// Log every patch of every garment mesh (M0, its clearance map, M1, their edges) and
     /// every curve at every step, also those the recording shows already, and clear what is
-    /// already clear;
-    /// by default a step sends only the patches that changed. The scene at every step is the
-    /// same either way.
+    /// already clear; by default a step sends only the patches and curves that changed. The
+    /// scene at every step is the same either way.
     #[arg(long)]
     pub(crate) log_unchanged: bool,
     /// What the recording gets: every stage (all), the final meshes of each step (final), or
