@@ -174,25 +174,21 @@ pub struct PatchCounts {
 fn body_key(index: &BodyIndex) -> u64 {
     const BLOCK: usize = 1 << 15;
     let mut hasher = xxhash_rust::xxh64::Xxh64::new(0);
-    let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 24);
-    let mut put = |word: &[u8], bytes: &mut Vec<u8>| {
+    let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 8);
+    let mut put = |word: &[u8]| {
         bytes.extend_from_slice(word);
         if bytes.len() >= BLOCK {
-            hasher.update(bytes);
+            hasher.update(&bytes);
             bytes.clear();
         }
     };
     for p in &index.positions {
-        for x in p.to_array() {
-            put(&x.to_bits().to_le_bytes(), &mut bytes);
-        }
+        p.to_array().iter().for_each(|x| put(&x.to_bits().to_le_bytes()));
     }
     for t in &index.triangles {
-        for v in t {
-            put(&v.to_le_bytes(), &mut bytes);
-        }
+        t.iter().for_each(|v| put(&v.to_le_bytes()));
     }
-    put(&index.height.to_bits().to_le_bytes(), &mut bytes);
+    put(&index.height.to_bits().to_le_bytes());
     hasher.update(&bytes);
     hasher.digest()
 }

@@ -302,7 +302,7 @@ impl RerunLogger {
         if !rec.keeps("garment/m0") {
             return Ok(None);
         }
-        rec.clear_if_shown("garment/m0/muted")?;
+        rec.clear("garment/m0/muted")?;
         // Vertex colour: the patch of the first face that uses the vertex.
         let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
         let mut seen = vec![false; mesh.positions.len()];

@@ -185,7 +185,13 @@ impl OrderedRecording {
         if batches.is_empty() {
             return Ok(());
         }
-        self.maybe().insert(path.to_string());
+        {
+            let key = path.to_string();
+            let mut maybe = self.maybe();
+            if !maybe.contains(&key) {
+                maybe.insert(key);
+            }
+        }
         let chunk = rerun::log::Chunk::builder(path)
             .with_serialized_batches(rerun::log::RowId::new(), timepoint, batches)
             .build()
@@ -267,9 +273,7 @@ impl OrderedRecording {
             .filter(|name| !name.contains('/') && !keep.contains(name))
             .collect();
         for name in gone {
-            let path = parent.join(&rerun::EntityPath::from(name.as_str()));
-            self.forget(&path.to_string());
-            self.send(path, &rerun::Clear::flat(), self.rec.now())?;
+            self.clear_placed(parent.join(&rerun::EntityPath::from(name.as_str())), false)?;
         }
         Ok(())
     }
@@ -292,9 +296,14 @@ impl OrderedRecording {
     }
 
     fn clear_where(&self, path: &str, tree: bool) -> Result<(), SinkError> {
-        let Some(path) = self.placed(path.into()) else {
-            return Ok(());
-        };
+        match self.placed(path.into()) {
+            Some(path) => self.clear_placed(path, tree),
+            None => Ok(()),
+        }
+    }
+
+    /// [`Self::clear`] (or, with `tree`, [`Self::clear_tree`]) of a path already placed.
+    fn clear_placed(&self, path: rerun::EntityPath, tree: bool) -> Result<(), SinkError> {
         let key = path.to_string();
         let under = format!("{key}/");
         let cleared: Vec<String> = {
@@ -317,19 +326,6 @@ impl OrderedRecording {
         let mut maybe = self.maybe();
         for k in cleared.iter().chain([&key]) {
             maybe.remove(k);
-        }
-        Ok(())
-    }
-
-    /// Clears `path` if it shows something.
-    pub fn clear_if_shown(&self, path: &str) -> Result<(), SinkError> {
-        let Some(path) = self.placed(path.into()) else {
-            return Ok(());
-        };
-        let key = path.to_string();
-        if self.shown().contains_key(&key) {
-            self.forget(&key);
-            self.send(path, &rerun::Clear::flat(), self.rec.now())?;
         }
         Ok(())
     }
