@@ -1,4 +1,5 @@
-//! The recording as the logger writes it: one chunk per log call in call order
+//! The recording as the logger writes it: one chunk per log call in call order (or per
+//! entity, for rows held together)
 //! ([`OrderedRecording`]), and the metric paths by unit ([`metric_path`]).
 
 use std::collections::{BTreeMap, BTreeSet};
@@ -63,7 +64,8 @@ pub fn metric_path(path: &str) -> String {
     format!("metrics/{unit}/{rest}")
 }
 
-/// A recording stream that makes every log call its own chunk, written in call order.
+/// A recording stream that makes every log call its own chunk, written in call order
+/// (rows logged between [`Self::hold`] and [`Self::release`] go out as one chunk per entity).
 ///
 /// Rerun's batcher turns the rows of one flush into one chunk per entity, in the order of
 /// a hash map: two runs of the same session would write the same chunks in different
@@ -90,7 +92,20 @@ pub struct OrderedRecording {
     /// cleared (by [`Self::clear`] or [`Self::clear_tree`], which alone take paths out).
     /// Unlike `shown`, a log at a parent leaves its children here: they still show.
     maybe: Mutex<BTreeSet<String>>,
+    /// While rows are held ([`Self::hold`]): each entity's rows in call order, the entities
+    /// in the order of their first row.
+    held: Mutex<Option<Vec<HeldRows>>>,
 }
+
+/// One row of a chunk: its id, its time and its data.
+type Row = (
+    rerun::log::RowId,
+    rerun::TimePoint,
+    Vec<rerun::SerializedComponentBatch>,
+);
+
+/// The rows held for one entity.
+type HeldRows = (rerun::EntityPath, Vec<Row>);
 
 /// The words that make a field of a part. A layout's fields (a part's faces, its edges)
 /// are shared from step to step: the same `Arc` is the same content without a look.
@@ -114,6 +129,7 @@ impl OrderedRecording {
             only_changed,
             shown: Mutex::new(BTreeMap::new()),
             maybe: Mutex::new(BTreeSet::new()),
+            held: Mutex::new(None),
         }
     }
 
@@ -192,14 +208,52 @@ impl OrderedRecording {
                 maybe.insert(key);
             }
         }
-        let chunk = rerun::log::Chunk::builder(path)
-            .with_serialized_batches(rerun::log::RowId::new(), timepoint, batches)
-            .build()
-            .map_err(|e| SinkError::Backend {
-                what: "rerun chunk",
-                source: Box::new(e),
-            })?;
+        let row = rerun::log::RowId::new();
+        if let Some(held) = self.held().as_mut() {
+            // Held: one more row of the entity's chunk, sent by `release`.
+            match held.iter_mut().find(|(p, _)| *p == path) {
+                Some((_, rows)) => rows.push((row, timepoint, batches)),
+                None => held.push((path, vec![(row, timepoint, batches)])),
+            }
+            return Ok(());
+        }
+        self.send_rows(path, vec![(row, timepoint, batches)])
+    }
+
+    /// Sends `rows` of `path` as one chunk.
+    fn send_rows(&self, path: rerun::EntityPath, rows: Vec<Row>) -> Result<(), SinkError> {
+        let mut builder = rerun::log::Chunk::builder(path);
+        for (row, timepoint, batches) in rows {
+            builder = builder.with_serialized_batches(row, timepoint, batches);
+        }
+        let chunk = builder.build().map_err(|e| SinkError::Backend {
+            what: "rerun chunk",
+            source: Box::new(e),
+        })?;
         self.rec.send_chunk(chunk);
+        Ok(())
+    }
+
+    fn held(&self) -> std::sync::MutexGuard<'_, Option<Vec<HeldRows>>> {
+        self.held.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+
+    /// Holds what is logged from now on until [`Self::release`], which sends each entity's
+    /// rows as one chunk. For a run of rows that only a timeline of their own tells apart (a
+    /// solver's iterations): the rows, their times and their order within each entity are
+    /// those of logging them one by one, in a chunk each entity, where each would cost a
+    /// chunk of its own. Every row held must be on the same timelines.
+    pub fn hold(&self) {
+        self.held().get_or_insert_with(Vec::new);
+    }
+
+    /// Sends the rows held since [`Self::hold`], one chunk per entity, the entities in the
+    /// order of their first row, and stops holding.
+    pub fn release(&self) -> Result<(), SinkError> {
+        let held = self.held().take().unwrap_or_default();
+        for (path, rows) in held {
+            self.send_rows(path, rows)?;
+        }
         Ok(())
     }
 

@@ -34,9 +34,11 @@ fn scenes(chunks: &[Chunk]) -> (Vec<(i64, Scene)>, usize) {
     let mut out: Vec<(i64, Scene)> = Vec::new();
     let mut current: Option<i64> = None;
     let mut bytes = 0;
-    for chunk in chunks {
-        assert_eq!(chunk.num_rows(), 1, "one row per chunk");
-        let stage = chunk.timelines().get(&"stage".into()).map_or(-1, |t| t.times_raw()[0]);
+    for (chunk, row) in chunks.iter().flat_map(|c| (0..c.num_rows()).map(move |r| (c, r))) {
+        let stage = chunk
+            .timelines()
+            .get(&"stage".into())
+            .map_or(-1, |t| t.times_raw()[row]);
         if stage >= 0 && current != Some(stage) {
             if let Some(done) = current {
                 assert!(stage > done, "stages in order");
@@ -47,10 +49,10 @@ fn scenes(chunks: &[Chunk]) -> (Vec<(i64, Scene)>, usize) {
         let entity = chunk.entity_path().to_string();
         for descriptor in chunk.component_descriptors() {
             let component = descriptor.component.to_string();
-            let Some(array) = chunk.component_batch_raw(descriptor.component, 0) else {
+            let Some(array) = chunk.component_batch_raw(descriptor.component, row) else {
                 continue;
             };
-            let array = array.expect("row 0");
+            let array = array.expect("a row of the chunk");
             if component == "Clear:is_recursive" {
                 let recursive = array
                     .as_any()
@@ -137,5 +139,69 @@ fn random_sessions_logged_only_where_they_changed_show_the_scene_logging_everyth
         let (changed, whole) = same_scene(&text, 128);
         println!("{}: {changed} of {whole} bytes", body.display());
         assert!(changed < whole, "{}: {changed} against {whole} bytes", body.display());
+    }
+}
+
+/// A solve's iterations go out as one chunk per entity with a row per iteration: at each
+/// step of the demo whose solver ran, `constraints/solve/curve`, `constraints/solve/control`
+/// and `metrics/m/solver/max_residual_touched` each have one chunk, with as many rows as the
+/// solver's own count of its iterations (`solver_iterations` in the step's figures), at
+/// consecutive `iter` times that go on from the step before, all at one stage. (That the rows
+/// are those logged one by one shows in the demo's snapshot, which summarizes row by row and
+/// did not change when the iterations were held.)
+#[test]
+fn a_solves_iterations_go_out_as_one_chunk_per_entity_with_a_row_per_iteration() {
+    use drape::session::{RunOptions, parse_session, run_session};
+    use drape::viz::RerunLogger;
+    use rerun::log::LogMsg;
+    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
+    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
+    let report = {
+        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
+        run_session(&session, &RunOptions::default(), &mut [&mut logger])
+    };
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let truth: Vec<(i64, usize)> = (report.steps.iter())
+        .filter_map(|m| {
+            let n = m.figures.get("solver_iterations")?.as_u64()?;
+            Some((m.step as i64, n as usize))
+        })
+        .collect();
+    assert!(truth.len() >= 3 && truth.iter().any(|&(_, n)| n >= 5), "{truth:?}");
+    let chunks: Vec<Chunk> = (storage.take().into_iter())
+        .filter_map(|msg| match msg {
+            LogMsg::ArrowMsg(store, arrow) if store.kind() == rerun::StoreKind::Recording => {
+                Some(Chunk::from_arrow_msg(&arrow).expect("chunk decodes"))
+            }
+            _ => None,
+        })
+        .collect();
+    fn times(c: &Chunk, timeline: &'static str) -> Vec<i64> {
+        c.timelines()
+            .get(&timeline.into())
+            .map_or(Vec::new(), |t| t.times_raw().to_vec())
+    }
+    for entity in [
+        "/constraints/solve/curve",
+        "/constraints/solve/control",
+        "/metrics/m/solver/max_residual_touched",
+    ] {
+        let mine: Vec<&Chunk> = chunks
+            .iter()
+            .filter(|c| c.entity_path().to_string() == entity)
+            .collect();
+        let mut by_step: Vec<(i64, usize)> = Vec::new();
+        let mut next_iter = 1;
+        for c in &mine {
+            let (steps, stages, iters) = (times(c, "step"), times(c, "stage"), times(c, "iter"));
+            assert_eq!(steps.len(), c.num_rows(), "{entity}: a step for every row");
+            assert!(steps.iter().all(|&s| s == steps[0]), "{entity}: one step per chunk");
+            assert!(stages.iter().all(|&s| s == stages[0]), "{entity}: one stage per chunk");
+            let expected: Vec<i64> = (next_iter..next_iter + c.num_rows() as i64).collect();
+            assert_eq!(iters, expected, "{entity} at step {}: consecutive iterations", steps[0]);
+            next_iter += c.num_rows() as i64;
+            by_step.push((steps[0], c.num_rows()));
+        }
+        assert_eq!(by_step, truth, "{entity}: (step, rows) against the solver's iterations");
     }
 }
