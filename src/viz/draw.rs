@@ -32,6 +32,16 @@ pub(super) struct Walks {
 }
 
 impl Walks {
+    /// Where each walk begins in [`Self::vertices`], and one past the last.
+    pub(super) fn start(&self) -> &[u32] {
+        &self.start
+    }
+
+    /// The vertices of every walk, one walk after another.
+    pub(super) fn vertices(&self) -> &[u32] {
+        &self.vertices
+    }
+
     /// The points of each walk.
     pub(super) fn along(&self, positions: &[[f32; 3]]) -> Vec<Vec<[f32; 3]>> {
         self.start

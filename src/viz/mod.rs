@@ -32,6 +32,7 @@ pub mod blueprint;
 mod body;
 mod collision;
 pub mod colors;
+mod columns;
 mod constraints;
 mod draw;
 mod figures;

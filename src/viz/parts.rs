@@ -20,6 +20,7 @@ use std::sync::{Arc, OnceLock};
 use glam::DVec3;
 use rerun::{LineStrips3D, Mesh3D, Points3D};
 
+use super::columns::{strips, triangles, vec3s};
 use super::draw::{Walks, edge_walks, f32s};
 use super::recording::{OrderedRecording, Words};
 use crate::session::SinkError;
@@ -182,12 +183,11 @@ pub(super) struct EdgePart {
 }
 
 impl EdgePart {
-    /// The edges as few polylines through `points` (the part's vertices' points).
-    pub fn paths(&self, points: &[[f32; 3]]) -> Vec<Vec<[f32; 3]>> {
-        (self
-            .walks
-            .get_or_init(|| edge_walks(self.vertices.len(), self.edges.as_chunks::<2>().0)))
-        .along(points)
+    /// The edges as few polylines (Rerun's strips, `descriptor`) through `points` (the
+    /// words of the part's vertices' points).
+    pub fn paths(&self, descriptor: rerun::ComponentDescriptor, points: &[u32]) -> rerun::SerializedComponentBatch {
+        let walks = (self.walks).get_or_init(|| edge_walks(self.vertices.len(), self.edges.as_chunks::<2>().0));
+        strips(descriptor, (walks.start(), walks.vertices()), points)
     }
 }
 
@@ -199,11 +199,6 @@ fn gathered_words(at: &[[f32; 3]], vertices: &[u32]) -> Words {
             .flat_map(|&v| at[v as usize].map(f32::to_bits))
             .collect(),
     )
-}
-
-/// Points from their words.
-fn f32s_of(words: &[u32]) -> Vec<[f32; 3]> {
-    words.as_chunks::<3>().0.iter().map(|w| w.map(f32::from_bits)).collect()
 }
 
 fn color_word([r, g, b]: [u8; 3]) -> u32 {
@@ -350,13 +345,13 @@ pub(super) fn log_mesh_parts(
         let build = move |changed: &[bool]| {
             let mut m = Mesh3D::update_fields();
             if changed[0] {
-                m = m.with_vertex_positions(f32s_of(&points));
+                m.vertex_positions = Some(vec3s(Mesh3D::descriptor_vertex_positions(), &points));
             }
             if changed[1] {
-                m = m.with_vertex_normals(f32s_of(&normals));
+                m.vertex_normals = Some(vec3s(Mesh3D::descriptor_vertex_normals(), &normals));
             }
             if changed[2] {
-                m = m.with_triangle_indices(part.triangles.as_chunks::<3>().0.iter().copied());
+                m.triangle_indices = Some(triangles(Mesh3D::descriptor_triangle_indices(), &part.triangles));
             }
             if changed[3] {
                 m = m.with_vertex_colors(part.vertices.iter().map(|&v| colors[v as usize]));
@@ -388,7 +383,7 @@ pub(super) fn log_edge_parts(
         let build = move |changed: &[bool]| {
             let mut strips = LineStrips3D::update_fields();
             if changed[0] || changed[1] {
-                strips = strips.with_strips(part.paths(&f32s_of(&mine)));
+                strips.strips = Some(part.paths(LineStrips3D::descriptor_strips(), &mine));
             }
             if changed[2] {
                 strips = strips.with_radii([radius]).with_colors([color]);
@@ -425,7 +420,7 @@ pub(super) fn log_point_parts(
         let build = move |changed: &[bool]| {
             let mut p = Points3D::update_fields();
             if changed[0] {
-                p = p.with_positions(f32s_of(&mine));
+                p.positions = Some(vec3s(Points3D::descriptor_positions(), &mine));
             }
             if changed[1] {
                 p = p.with_radii([radius]).with_colors([color]);
