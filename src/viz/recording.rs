@@ -22,7 +22,7 @@ pub const METRIC_UNITS: [(&str, &str); 6] = [
 /// `metrics/<group>/<name>` placed under its unit: `metrics/ms/...` for timings,
 /// `metrics/m/...` for lengths, gaps, heights, points and residuals (`_m`, `_gap`, `girth`, `_y`,
 /// `point`, `dragged_to`, `residual`), `metrics/deg/...` for names ending in `_deg`,
-/// `metrics/ratio/...` for stretches and relative errors, `metrics/size/...` for mesh sizes
+/// `metrics/ratio/...` for stretches (`_stretch`) and relative errors, `metrics/size/...` for mesh sizes
 /// (vertices, faces, edges, triangles) and what a check tested, skipped, reused or welded
 /// (thousands, which would flatten the collision counts beside them), `metrics/count/...`
 /// otherwise.
@@ -45,7 +45,7 @@ pub fn metric_path(path: &str) -> String {
         || rest.contains("dragged_to/")
     {
         "m"
-    } else if rest.contains("stretch") || rest.contains("relative_error") {
+    } else if rest.ends_with("_stretch") || rest.contains("relative_error") {
         "ratio"
     } else if (rest.ends_with("faces") && !rest.contains("pierced"))
         || (rest.ends_with("vertices") && !rest.contains("penetrating"))
@@ -399,5 +399,24 @@ impl std::ops::Deref for OrderedRecording {
 
     fn deref(&self) -> &RecordingStream {
         &self.rec
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::metric_path;
+
+    /// The patches each of M1's rules refined are counts, plotted together: the stretch
+    /// rule's count is not a stretch (it went among the ratios once, by its name).
+    #[test]
+    fn the_patches_each_rule_refined_share_the_counts_plot_and_a_stretch_is_a_ratio() {
+        for rule in crate::m1::Rule::ALL.map(crate::m1::Rule::name).iter().chain(&["total"]) {
+            let path = metric_path(&format!("metrics/step/m1_patches_refined/{rule}"));
+            assert_eq!(path, format!("metrics/count/step/m1_patches_refined/{rule}"));
+        }
+        assert_eq!(
+            metric_path("metrics/step/max_stretch"),
+            "metrics/ratio/step/max_stretch"
+        );
     }
 }
