@@ -202,8 +202,14 @@ impl RerunLogger {
         let mut layouts = self.layouts.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let layout = match layouts.get(root) {
             Some(l) if l.fits((positions.len(), triangles), face_patch, edges, part_faces) => std::sync::Arc::clone(l),
-            _ => {
-                let made = std::sync::Arc::new(Layout::new(positions.len(), triangles, face_patch, edges, part_faces));
+            before => {
+                let made = std::sync::Arc::new(Layout::new(
+                    positions.len(),
+                    triangles,
+                    face_patch,
+                    edges,
+                    (part_faces, before.map(|b| &**b)),
+                ));
                 layouts.insert(root, std::sync::Arc::clone(&made));
                 made
             }

@@ -161,7 +161,7 @@ pub(super) fn split_edges(
             );
             EdgePart {
                 part: p as u32,
-                walks: OnceLock::new(),
+                walks: Arc::new(OnceLock::new()),
                 vertices,
                 edges: Arc::new(edges.into_flattened()),
             }
@@ -178,8 +178,9 @@ pub(super) struct EdgePart {
     /// The edges, in the part's numbering, two words each (shared like a part's faces).
     pub edges: Words,
     /// The edges as few polylines ([`super::draw::edge_paths`]), in the part's numbering,
-    /// found the first time the part is sent.
-    walks: OnceLock<Walks>,
+    /// found the first time the part is sent (shared with a later layout's part of the same
+    /// edges).
+    walks: Arc<OnceLock<Walks>>,
 }
 
 impl EdgePart {
@@ -236,16 +237,39 @@ pub(super) struct Layout {
 impl Layout {
     /// The mesh of `vertex_count` vertices and `triangles` (of patches `face_patch`) split into
     /// parts of whole patches of `part_faces` faces or more, its `edges` shared out among them.
+    /// A part of the same name as one of `before` (the mesh's last layout) with the same faces,
+    /// or edges, in its own numbering shares them with it, and its edges' walks: a new
+    /// refinement of a few patches leaves the other parts as they were, only renumbered.
     pub fn new(
         vertex_count: usize,
         triangles: &[[u32; 3]],
         face_patch: &[u32],
         edges: &[[u32; 2]],
-        part_faces: usize,
+        (part_faces, before): (usize, Option<&Self>),
     ) -> Self {
         let (face_part, names) = parts_of(face_patch, part_faces.max(1));
-        let parts = split(vertex_count, triangles, (&face_part, names.len()));
-        let edge_parts = split_edges(vertex_count, triangles, (&face_part, names.len()), edges);
+        let mut parts = split(vertex_count, triangles, (&face_part, names.len()));
+        let mut edge_parts = split_edges(vertex_count, triangles, (&face_part, names.len()), edges);
+        if let Some(before) = before {
+            let named = |part: u32| names[part as usize].as_str();
+            for part in &mut parts {
+                if let Some(old) = before
+                    .part_named(named(part.part))
+                    .filter(|o| o.triangles == part.triangles)
+                {
+                    part.triangles = Arc::clone(&old.triangles);
+                }
+            }
+            for part in &mut edge_parts {
+                if let Some(old) = before
+                    .edge_part_named(named(part.part))
+                    .filter(|o| o.edges == part.edges)
+                {
+                    part.edges = Arc::clone(&old.edges);
+                    part.walks = Arc::clone(&old.walks);
+                }
+            }
+        }
         Self {
             vertex_count,
             triangles: triangles.to_vec(),
@@ -256,6 +280,16 @@ impl Layout {
             parts,
             edge_parts,
         }
+    }
+
+    /// Its part named `name`, if any.
+    fn part_named(&self, name: &str) -> Option<&Part> {
+        self.parts.iter().find(|p| self.names[p.part as usize] == name)
+    }
+
+    /// Its edge part named `name`, if any.
+    fn edge_part_named(&self, name: &str) -> Option<&EdgePart> {
+        self.edge_parts.iter().find(|p| self.names[p.part as usize] == name)
     }
 
     /// Whether it is the layout of this mesh.
