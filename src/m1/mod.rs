@@ -25,6 +25,8 @@ pub use reshape::{M1Shape, Made, subdivide};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
 
+use std::sync::Arc;
+
 use crate::mesh::TriMesh;
 
 /// M1 settings (the session's `m1` scene statement).
@@ -52,28 +54,31 @@ impl Default for M1Options {
     }
 }
 
-/// M1 before its collision.
+/// M1 before its collision. What depends on its shape alone (the patches of its faces, its
+/// first step, its edges and anchors) is shared with every later M1 of the same shape
+/// ([`subdivide`]), so a drag that keeps the shape copies only its positions and faces.
 #[derive(Clone, Debug, PartialEq)]
 pub struct M1 {
     /// The refined mesh: M0's vertices first (same indices), then the new ones.
     pub mesh: TriMesh,
     /// Patch of each face.
-    pub face_patch: Vec<u32>,
+    pub face_patch: Arc<Vec<u32>>,
     /// Which patches were refined, by which rules.
     pub selection: Selection,
     /// M0's vertex count: vertices from here on are new.
     pub m0_vertices: usize,
     /// Old vertices the smoothing moved (not where M0 has them).
     pub smoothed: Vec<u32>,
-    /// The first step's result (the layer cut lines are stored through).
-    pub first: Step,
+    /// The first step's result (the layer cut lines are stored through), without its
+    /// positions: its vertices are M1's first `first_vertices`.
+    pub first: Arc<Step>,
     /// Vertex count after the first step (its vertices keep their indices in `mesh`).
     pub first_vertices: usize,
     /// Undirected edges, each once, sorted.
-    pub edges: Vec<[u32; 2]>,
+    pub edges: Arc<Vec<[u32; 2]>>,
     /// An M0 vertex each M1 vertex descends from (itself for M0's; a corner of the face it
     /// is the centroid of, recursively, for new ones): its partition and roles.
-    pub anchor: Vec<u32>,
+    pub anchor: Arc<Vec<u32>>,
 }
 
 impl M1 {
@@ -112,6 +117,7 @@ pub(crate) fn of_steps(
     edges: Vec<[u32; 2]>,
     selection: Selection,
 ) -> (M1, Vec<[u32; 3]>) {
+    let mut first = first;
     let first_vertices = first.mesh.positions.len();
     let mut smoothed = first.smoothed.clone();
     let mut anchor: Vec<u32> = (0..m0_vertices as u32).collect();
@@ -131,20 +137,29 @@ pub(crate) fn of_steps(
             smoothed.extend(second.smoothed.iter().copied().filter(|&v| (v as usize) < m0_vertices));
             (second.mesh, second.face_patch)
         }
-        None => (first.mesh.clone(), first.face_patch.clone()),
+        None => (
+            TriMesh {
+                positions: std::mem::take(&mut first.mesh.positions),
+                triangles: first.mesh.triangles.clone(),
+            },
+            first.face_patch.clone(),
+        ),
     };
+    // Its vertices are M1's first: their positions are read from M1 (whose shape a later
+    // M1 shares with this step, at other positions).
+    first.mesh.positions = Vec::new();
     smoothed.sort_unstable();
     smoothed.dedup();
     let m1 = M1 {
-        edges,
+        edges: Arc::new(edges),
         mesh,
-        face_patch: patches,
+        face_patch: Arc::new(patches),
         selection,
         m0_vertices,
         smoothed,
-        first,
+        first: Arc::new(first),
         first_vertices,
-        anchor,
+        anchor: Arc::new(anchor),
     };
     (m1, corners)
 }

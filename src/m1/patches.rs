@@ -337,7 +337,7 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
     // The patch of each vertex that is not pinned (all its faces are in one patch), and the
     // edges at such a vertex grouped by it, in M1's order.
     let mut patch_of = vec![u32::MAX; n];
-    for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
+    for (t, &p) in m1.mesh.triangles.iter().zip(m1.face_patch.iter()) {
         for &v in t {
             if !pinned[v as usize] {
                 patch_of[v as usize] = p;

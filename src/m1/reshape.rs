@@ -84,11 +84,6 @@ impl M1Shape {
             let [a, b, c] = corners.map(|v| positions[v as usize]);
             positions.push((a + b + c) / 3.0);
         }
-        m1.first.mesh.positions.clear();
-        m1.first
-            .mesh
-            .positions
-            .extend_from_slice(&positions[..m1.first_vertices]);
         m1.selection = selection;
         m1
     }

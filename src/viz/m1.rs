@@ -105,7 +105,7 @@ impl RerunLogger {
         }
         let first: Vec<Option<Rule>> = m1.selection.rules.iter().map(|r| r.first().copied()).collect();
         let mut colors = vec![KEPT; positions.len()];
-        for (t, &p) in m1.mesh.triangles.iter().zip(&m1.face_patch) {
+        for (t, &p) in m1.mesh.triangles.iter().zip(m1.face_patch.iter()) {
             if let Some(rule) = first.get(p as usize).copied().flatten() {
                 for &v in t {
                     colors[v as usize] = m1_rule_color(rule);
