@@ -38,6 +38,13 @@ pub(super) fn triangles(descriptor: ComponentDescriptor, words: &[u32]) -> Seria
     SerializedComponentBatch::new(Arc::new(triples(values, DataType::UInt32)), descriptor)
 }
 
+/// Colours (`Color`, RGBA packed with red in the most significant byte), each opaque.
+pub(super) fn colors(descriptor: ComponentDescriptor, rgb: impl Iterator<Item = [u8; 3]>) -> SerializedComponentBatch {
+    let packed: Vec<u32> = rgb.map(|[r, g, b]| u32::from_be_bytes([r, g, b, 255])).collect();
+    let values: ArrayRef = Arc::new(PrimitiveArray::<UInt32Type>::new(ScalarBuffer::from(packed), None));
+    SerializedComponentBatch::new(values, descriptor)
+}
+
 /// Line strips (`LineStrip3D`): strip `k` passes the points `vertices[start[k]..start[k +
 /// 1]]` of `points` (the words of each point's x, y and z in turn).
 pub(super) fn strips(
@@ -83,6 +90,10 @@ mod tests {
         let faces = [[0u32, 1, 2], [2, 3, 0], [u32::MAX, 5, 6]];
         let mine = triangles(Mesh3D::descriptor_triangle_indices(), faces.as_flattened());
         let theirs = (Mesh3D::update_fields().with_triangle_indices(faces)).triangle_indices;
+        assert_eq!(Some(mine), theirs);
+        let rgb = [[0u8, 0, 0], [255, 255, 255], [1, 2, 3], [250, 128, 7]];
+        let mine = colors(Mesh3D::descriptor_vertex_colors(), rgb.into_iter());
+        let theirs = (Mesh3D::update_fields().with_vertex_colors(rgb)).vertex_colors;
         assert_eq!(Some(mine), theirs);
         // Strips of 3, 0, 1 and 2 points over the points above.
         let (start, vertices) = ([0u32, 3, 3, 4, 6], [0u32, 1, 2, 3, 3, 0]);

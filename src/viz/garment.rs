@@ -4,6 +4,7 @@
 use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
+use super::columns::{self, triangles, vec3s};
 use super::draw::{closed, f32s};
 use super::logger::{RerunLogger, to_sink};
 use super::parts::{Parted, log_edge_parts, log_mesh_parts};
@@ -218,22 +219,19 @@ impl RerunLogger {
     /// The Coons patches, one colour each.
     fn log_patches(&self, fw: &Framework) -> Result<(), SinkError> {
         let rec = self.recording();
-        let mut positions = Vec::new();
-        let mut triangles = Vec::new();
-        let mut colors = Vec::new();
+        // Every patch's grid, its points and faces as words, made into Rerun's arrays at once.
+        let (mut points, mut faces, mut colors) = (Vec::new(), Vec::new(), Vec::new());
         for (i, p) in fw.patches.iter().enumerate() {
-            let base = positions.len() as u32;
-            positions.extend(f32s(&p.points));
+            let base = (points.len() / 3) as u32;
+            points.extend(p.points.iter().flat_map(|q| q.as_vec3().to_array().map(f32::to_bits)));
             colors.extend(std::iter::repeat_n(patch_color(i), p.points.len()));
-            triangles.extend(p.triangles().into_iter().map(|t| t.map(|k| k + base)));
+            faces.extend(p.triangles().into_iter().flat_map(|t| t.map(|k| k + base)));
         }
-        rec.log(
-            "garment/patches",
-            &Mesh3D::new(positions)
-                .with_triangle_indices(triangles)
-                .with_vertex_colors(colors),
-        )
-        .map_err(to_sink)?;
+        let mut mesh = Mesh3D::update_fields();
+        mesh.vertex_positions = Some(vec3s(Mesh3D::descriptor_vertex_positions(), &points));
+        mesh.triangle_indices = Some(triangles(Mesh3D::descriptor_triangle_indices(), &faces));
+        mesh.vertex_colors = Some(columns::colors(Mesh3D::descriptor_vertex_colors(), colors.into_iter()));
+        rec.log("garment/patches", &mesh).map_err(to_sink)?;
         let sizes: Vec<String> = fw
             .patches
             .iter()

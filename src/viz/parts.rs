@@ -388,7 +388,8 @@ pub(super) fn log_mesh_parts(
                 m.triangle_indices = Some(triangles(Mesh3D::descriptor_triangle_indices(), &part.triangles));
             }
             if changed[3] {
-                m = m.with_vertex_colors(part.vertices.iter().map(|&v| colors[v as usize]));
+                let rgb = part.vertices.iter().map(|&v| colors[v as usize]);
+                m.vertex_colors = Some(super::columns::colors(Mesh3D::descriptor_vertex_colors(), rgb));
             }
             m
         };
