@@ -1,7 +1,9 @@
 //! Data parallelism over independent items, results in input order (so output does not
 //! depend on the number of threads): vertex and edge checks, the ground truth.
 
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
 
 use crate::convergence;
 
@@ -24,19 +26,30 @@ pub fn threads() -> usize {
     .min(16)
 }
 
-/// `f(0..n)` on all cores, in order. Small inputs (fewer than 256 items) run on the
-/// calling thread.
+/// Chunks per worker of a parallel map of heavy items: the workers take them as they
+/// finish the last, so items of uneven cost (M1's patches, a garment's patches) even out.
+const CHUNKS_PER_THREAD: usize = 4;
+
+/// `f(0..n)` on all cores, in order, a run of neighbouring items per worker (queries that
+/// follow one another warm-start each other). Small inputs (fewer than 256 items) run on
+/// the calling thread.
 pub fn par_map<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
-    par_map_from(n, 256, f)
+    map_in_chunks(n, (256, 1), f)
 }
 
-/// [`par_map`] for items heavy enough to share out from `min` of them on.
+/// [`par_map`] for items heavy enough to share out from `min` of them on, and of uneven
+/// cost: shared out in smaller runs that the workers take as they finish the last.
 pub fn par_map_from<T: Send>(n: usize, min: usize, f: impl Fn(usize) -> T + Sync) -> Vec<T> {
+    map_in_chunks(n, (min, CHUNKS_PER_THREAD), f)
+}
+
+/// `f(0..n)` in `per_thread` chunks per worker, from `min` items on.
+fn map_in_chunks<T: Send>(n: usize, (min, per_thread): (usize, usize), f: impl Fn(usize) -> T + Sync) -> Vec<T> {
     let threads = threads();
     if threads <= 1 || n < min.max(2) {
         return (0..n).map(f).collect();
     }
-    let chunk = n.div_ceil(threads);
+    let chunk = n.div_ceil(threads * per_thread);
     let ranges = (0..n)
         .step_by(chunk)
         .map(|start| start..(start + chunk).min(n))
@@ -50,7 +63,7 @@ pub fn par_map_owned<I: Send, T: Send>(items: Vec<I>, min: usize, f: impl Fn(I) 
     if threads <= 1 || items.len() < min.max(2) {
         return items.into_iter().map(f).collect();
     }
-    let chunk = items.len().div_ceil(threads);
+    let chunk = items.len().div_ceil(threads * CHUNKS_PER_THREAD);
     let mut rest = items;
     let mut chunks = Vec::new();
     while rest.len() > chunk {
@@ -62,32 +75,47 @@ pub fn par_map_owned<I: Send, T: Send>(items: Vec<I>, min: usize, f: impl Fn(I) 
     in_chunks(chunks, |items| items.into_iter().map(&f).collect())
 }
 
-/// `run` on each chunk, a thread each, the results joined in chunk order.
+/// The worker pool of `threads` threads, made the first time that many are asked for and
+/// kept (a parallel map costs a task, not a thread spawned).
+fn pool(threads: usize) -> Option<Arc<rayon::ThreadPool>> {
+    static POOLS: Mutex<BTreeMap<usize, Arc<rayon::ThreadPool>>> = Mutex::new(BTreeMap::new());
+    let mut pools = POOLS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    if let Some(p) = pools.get(&threads) {
+        return Some(Arc::clone(p));
+    }
+    let made = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .thread_name(|k| format!("drape-worker-{k}"))
+        .build()
+        .ok()?;
+    let made = Arc::new(made);
+    pools.insert(threads, Arc::clone(&made));
+    Some(made)
+}
+
+/// `run` on each chunk, as tasks of the worker pool, the results joined in chunk order.
 fn in_chunks<C: Send, T: Send>(chunks: Vec<C>, run: impl Fn(C) -> Vec<T> + Sync) -> Vec<T> {
-    // Loop stops reported on the workers are merged back into this thread's collector.
+    use rayon::iter::{IntoParallelIterator, ParallelIterator};
+    // Loop stops reported on the workers are merged back into this thread's collector, in
+    // chunk order.
     let collecting = convergence::collecting();
-    std::thread::scope(|s| {
-        let handles: Vec<_> = chunks
-            .into_iter()
-            .map(|chunk| {
-                let run = &run;
-                s.spawn(move || {
-                    if collecting {
-                        convergence::collect_here(|| run(chunk))
-                    } else {
-                        (run(chunk), convergence::Collected::new())
-                    }
-                })
-            })
-            .collect();
-        let mut out = Vec::new();
-        for h in handles {
-            let (items, stops) = h.join().unwrap_or_else(|e| std::panic::resume_unwind(e));
-            convergence::absorb(&stops);
-            out.extend(items);
+    let each = |chunk: C| {
+        if collecting {
+            convergence::collect_here(|| run(chunk))
+        } else {
+            (run(chunk), convergence::Collected::new())
         }
-        out
-    })
+    };
+    let done: Vec<(Vec<T>, convergence::Collected)> = match pool(threads()) {
+        Some(pool) => pool.install(|| chunks.into_par_iter().map(each).collect()),
+        None => chunks.into_iter().map(each).collect(),
+    };
+    let mut out = Vec::new();
+    for (items, stops) in done {
+        convergence::absorb(&stops);
+        out.extend(items);
+    }
+    out
 }
 
 #[cfg(test)]
