@@ -151,16 +151,7 @@ fn random_sessions_logged_only_where_they_changed_show_the_scene_logging_everyth
 /// did not change when the iterations were held.)
 #[test]
 fn a_solves_iterations_go_out_as_one_chunk_per_entity_with_a_row_per_iteration() {
-    use drape::session::{RunOptions, parse_session, run_session};
-    use drape::viz::RerunLogger;
-    use rerun::log::LogMsg;
-    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
-    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
-    let report = {
-        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
-        run_session(&session, &RunOptions::default(), &mut [&mut logger])
-    };
-    assert!(report.error.is_none(), "{:?}", report.error);
+    let (report, chunks) = super::snapshot::recorded(DEMO_SESSION, LogOptions::default());
     let truth: Vec<(i64, usize)> = (report.steps.iter())
         .filter_map(|m| {
             let n = m.figures.get("solver_iterations")?.as_u64()?;
@@ -168,14 +159,6 @@ fn a_solves_iterations_go_out_as_one_chunk_per_entity_with_a_row_per_iteration()
         })
         .collect();
     assert!(truth.len() >= 3 && truth.iter().any(|&(_, n)| n >= 5), "{truth:?}");
-    let chunks: Vec<Chunk> = (storage.take().into_iter())
-        .filter_map(|msg| match msg {
-            LogMsg::ArrowMsg(store, arrow) if store.kind() == rerun::StoreKind::Recording => {
-                Some(Chunk::from_arrow_msg(&arrow).expect("chunk decodes"))
-            }
-            _ => None,
-        })
-        .collect();
     fn times(c: &Chunk, timeline: &'static str) -> Vec<i64> {
         c.timelines()
             .get(&timeline.into())

@@ -267,14 +267,19 @@ fn demo_chunks() -> Vec<Chunk> {
 /// The recording of the session `text` logged with `options`, as decoded chunks in the
 /// order they were written (the recording's own, not the blueprint's).
 pub fn recorded_chunks(text: &str, options: LogOptions) -> Vec<Chunk> {
+    recorded(text, options).1
+}
+
+/// [`recorded_chunks`], with the run's report (each step's figures).
+pub fn recorded(text: &str, options: LogOptions) -> (drape::session::RunReport, Vec<Chunk>) {
     let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
     let session = parse_session(text, "session.drape", std::path::Path::new(".")).expect("parses");
-    {
+    let report = {
         let mut logger = RerunLogger::new(rec, options).unwrap();
-        let report = run_session(&session, &RunOptions::default(), &mut [&mut logger]);
-        assert!(report.error.is_none(), "{:?}", report.error);
-    }
-    storage
+        run_session(&session, &RunOptions::default(), &mut [&mut logger])
+    };
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let chunks = storage
         .take()
         .into_iter()
         .filter_map(|msg| match msg {
@@ -283,7 +288,8 @@ pub fn recorded_chunks(text: &str, options: LogOptions) -> Vec<Chunk> {
             }
             _ => None,
         })
-        .collect()
+        .collect();
+    (report, chunks)
 }
 
 /// Two runs write the same chunks in the same order (what plain `rerun rrd compare`
@@ -441,13 +447,7 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
             _ => {}
         }
     }
-    let (rec, storage) = drape::viz::target::memory_recording("demo").unwrap();
-    let session = parse_session(DEMO_SESSION, "demo.drape", std::path::Path::new(".")).unwrap();
-    let report = {
-        let mut logger = RerunLogger::new(rec, LogOptions::default()).unwrap();
-        run_session(&session, &RunOptions::default(), &mut [&mut logger])
-    };
-    assert!(report.error.is_none(), "{:?}", report.error);
+    let (report, chunks) = recorded(DEMO_SESSION, LogOptions::default());
     // The truth: (step, figure path) -> value.
     let mut truth: BTreeMap<(i64, String), f64> = BTreeMap::new();
     for m in &report.steps {
@@ -459,12 +459,7 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
     }
     // What was logged under metrics/<unit>/step/, by the `step` timeline.
     let mut logged: BTreeMap<(i64, String), Vec<f64>> = BTreeMap::new();
-    for msg in storage.take() {
-        let LogMsg::ArrowMsg(store, arrow) = msg else { continue };
-        if store.kind() != rerun::StoreKind::Recording {
-            continue;
-        }
-        let chunk = Chunk::from_arrow_msg(&arrow).expect("chunk decodes");
+    for chunk in &chunks {
         let path = chunk.entity_path().to_string();
         let parts: Vec<&str> = path.splitn(4, '/').collect();
         let ["", "metrics", _unit, rest] = parts.as_slice() else {
