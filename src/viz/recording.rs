@@ -209,15 +209,22 @@ impl OrderedRecording {
             }
         }
         let row = rerun::log::RowId::new();
-        if let Some(held) = self.held().as_mut() {
-            // Held: one more row of the entity's chunk, sent by `release`.
-            match held.iter_mut().find(|(p, _)| *p == path) {
-                Some((_, rows)) => rows.push((row, timepoint, batches)),
-                None => held.push((path, vec![(row, timepoint, batches)])),
+        let mut held = self.held();
+        let Some(held) = held.as_mut() else {
+            return self.send_rows(path, vec![(row, timepoint, batches)]);
+        };
+        // Held: one more row of the entity's chunk, sent by `release`. A chunk's rows share
+        // their timelines: a row on other timelines sends the entity's rows so far first.
+        let same = |a: &rerun::TimePoint| a.timeline_names().eq(timepoint.timeline_names());
+        match held.iter().position(|(p, _)| *p == path) {
+            Some(k) if same(&held[k].1[0].1) => held[k].1.push((row, timepoint, batches)),
+            Some(k) => {
+                let (path, rows) = std::mem::replace(&mut held[k], (path, vec![(row, timepoint, batches)]));
+                self.send_rows(path, rows)?;
             }
-            return Ok(());
+            None => held.push((path, vec![(row, timepoint, batches)])),
         }
-        self.send_rows(path, vec![(row, timepoint, batches)])
+        Ok(())
     }
 
     /// Sends `rows` of `path` as one chunk.
@@ -242,7 +249,8 @@ impl OrderedRecording {
     /// rows as one chunk. For a run of rows that only a timeline of their own tells apart (a
     /// solver's iterations): the rows, their times and their order within each entity are
     /// those of logging them one by one, in a chunk each entity, where each would cost a
-    /// chunk of its own. Every row held must be on the same timelines.
+    /// chunk of its own. A row on other timelines than its entity's rows before it sends
+    /// those first (a chunk's rows share their timelines).
     pub fn hold(&self) {
         self.held().get_or_insert_with(Vec::new);
     }
@@ -418,5 +426,51 @@ mod tests {
             metric_path("metrics/step/max_stretch"),
             "metrics/ratio/step/max_stretch"
         );
+    }
+
+    /// Rows held go out one chunk per entity, in order, each row at the time it was logged;
+    /// a row on other timelines than the entity's rows before it starts a chunk of its own
+    /// (a chunk's rows share their timelines). The truth is the calls the test makes.
+    #[test]
+    fn held_rows_go_out_one_chunk_per_entity_and_run_of_timelines() {
+        use rerun::log::{Chunk, LogMsg};
+        let (stream, storage) = crate::viz::target::memory_recording("held").expect("a memory recording");
+        let rec = super::OrderedRecording::new(stream, false, true);
+        rec.set_time_sequence("step", 1);
+        rec.hold();
+        for iter in 1..=3 {
+            rec.set_time_sequence("iter", iter);
+            rec.log("a", &rerun::Scalars::single(iter as f64)).expect("logs");
+            rec.log("b", &rerun::Scalars::single(-iter as f64)).expect("logs");
+        }
+        rec.disable_timeline("iter");
+        rec.log("a", &rerun::Scalars::single(9.0)).expect("logs");
+        rec.release().expect("sends");
+        rec.log("a", &rerun::Scalars::single(10.0)).expect("logs");
+        rec.flush_blocking().expect("flushes");
+        let chunks: Vec<(String, usize, Vec<i64>)> = (storage.take().into_iter())
+            .filter_map(|m| match m {
+                LogMsg::ArrowMsg(store, arrow) if store.kind() == rerun::StoreKind::Recording => {
+                    let c = Chunk::from_arrow_msg(&arrow).expect("decodes");
+                    let iters = c
+                        .timelines()
+                        .get(&"iter".into())
+                        .map_or(Vec::new(), |t| t.times_raw().to_vec());
+                    Some((c.entity_path().to_string(), c.num_rows(), iters))
+                }
+                _ => None,
+            })
+            .filter(|(e, _, _)| !e.starts_with("/__"))
+            .collect();
+        // `a`'s three iterations go out when its row off the `iter` timeline comes; that row
+        // waits for the release in `a`'s place, before `b`; the last row is not held.
+        let want = [
+            ("/a", 3, vec![1, 2, 3]),
+            ("/a", 1, vec![]),
+            ("/b", 3, vec![1, 2, 3]),
+            ("/a", 1, vec![]),
+        ];
+        let want: Vec<(String, usize, Vec<i64>)> = want.into_iter().map(|(e, n, t)| (e.to_string(), n, t)).collect();
+        assert_eq!(chunks, want);
     }
 }
