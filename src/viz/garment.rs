@@ -302,13 +302,15 @@ impl RerunLogger {
         }
         rec.clear("garment/m0/muted")?;
         // Vertex colour: the patch of the first face that uses the vertex.
+        let patches = face_patch.iter().max().map_or(0, |&p| p as usize + 1);
+        let by_patch: Vec<[u8; 3]> = (0..patches).map(patch_color).collect();
         let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
         let mut seen = vec![false; mesh.positions.len()];
         for (t, &p) in mesh.triangles.iter().zip(face_patch) {
             for &v in t {
                 if !seen[v as usize] {
                     seen[v as usize] = true;
-                    colors[v as usize] = patch_color(p as usize);
+                    colors[v as usize] = by_patch[p as usize];
                 }
             }
         }

@@ -11,7 +11,6 @@ use super::colors::m1_rule_color;
 use super::draw::{f32s, log_face_outlines};
 use super::logger::{RerunLogger, to_sink};
 use super::parts::{log_edge_parts, log_mesh_parts, log_point_parts};
-use crate::m1::Rule;
 use crate::session::{M1Outcome, M1Stage, SinkError};
 
 /// Unrefined patches in M1.
@@ -103,12 +102,15 @@ impl RerunLogger {
         if !rec.keeps("garment/m1") {
             return Ok(());
         }
-        let first: Vec<Option<Rule>> = m1.selection.rules.iter().map(|r| r.first().copied()).collect();
+        // The colour of each refined patch: that of the first rule that selected it.
+        let by_patch: Vec<Option<[u8; 3]>> = (m1.selection.rules.iter())
+            .map(|r| r.first().copied().map(m1_rule_color))
+            .collect();
         let mut colors = vec![KEPT; positions.len()];
         for (t, &p) in m1.mesh.triangles.iter().zip(m1.face_patch.iter()) {
-            if let Some(rule) = first.get(p as usize).copied().flatten() {
+            if let Some(color) = by_patch.get(p as usize).copied().flatten() {
                 for &v in t {
-                    colors[v as usize] = m1_rule_color(rule);
+                    colors[v as usize] = color;
                 }
             }
         }
