@@ -114,6 +114,15 @@ pub(super) fn f32s(points: &[DVec3]) -> Vec<[f32; 3]> {
     points.iter().map(|p| p.as_vec3().to_array()).collect()
 }
 
+/// [`f32s`] as words: the bits of each point's x, y and z in turn (what a part's fields
+/// are compared by, and what [`super::columns`] makes Rerun's arrays of).
+pub(super) fn f32_words(points: &[DVec3]) -> Vec<u32> {
+    points
+        .iter()
+        .flat_map(|p| p.as_vec3().to_array().map(f32::to_bits))
+        .collect()
+}
+
 /// Logs the closed outlines of `faces` (indices into `triangles`, corners at `positions`)
 /// at `path`, or clears it when there are none.
 pub(super) fn log_face_outlines(

@@ -5,7 +5,7 @@ use glam::DVec3;
 use rerun::{Arrows3D, Clear, LineStrips3D, Mesh3D, Points3D, TextLogLevel};
 
 use super::columns::{self, triangles, vec3s};
-use super::draw::{closed, f32s};
+use super::draw::{closed, f32_words, f32s};
 use super::logger::{RerunLogger, to_sink};
 use super::parts::{Parted, log_edge_parts, log_mesh_parts};
 use crate::garment::{Framework, GarmentRing, RingStages};
@@ -223,7 +223,7 @@ impl RerunLogger {
         let (mut points, mut faces, mut colors) = (Vec::new(), Vec::new(), Vec::new());
         for (i, p) in fw.patches.iter().enumerate() {
             let base = (points.len() / 3) as u32;
-            points.extend(p.points.iter().flat_map(|q| q.as_vec3().to_array().map(f32::to_bits)));
+            points.extend(f32_words(&p.points));
             colors.extend(std::iter::repeat_n(patch_color(i), p.points.len()));
             faces.extend(p.triangles().into_iter().flat_map(|t| t.map(|k| k + base)));
         }
@@ -383,16 +383,14 @@ fn log_curve(
 ) -> Result<(), SinkError> {
     const RADIUS: f32 = 0.0018;
     const COLOR: [u8; 3] = [40, 200, 120];
-    let strip = f32s(points);
-    let words: Vec<u32> = strip.iter().flat_map(|p| p.map(f32::to_bits)).collect();
     let fields = vec![
-        ("points", std::sync::Arc::new(words)),
+        ("points", std::sync::Arc::new(f32_words(points))),
         ("style", std::sync::Arc::new(vec![RADIUS.to_bits()])),
     ];
     rec.log_part(path, fields, |changed: &[bool]| {
         let mut strips = LineStrips3D::update_fields();
         if changed[0] {
-            strips = strips.with_strips([strip]);
+            strips = strips.with_strips([f32s(points)]);
         }
         if changed[1] {
             strips = strips.with_radii([RADIUS]).with_colors([COLOR]);

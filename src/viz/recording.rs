@@ -209,8 +209,9 @@ impl OrderedRecording {
             }
         }
         let row = rerun::log::RowId::new();
-        let mut held = self.held();
-        let Some(held) = held.as_mut() else {
+        let mut guard = self.held();
+        let Some(held) = guard.as_mut() else {
+            drop(guard);
             return self.send_rows(path, vec![(row, timepoint, batches)]);
         };
         // Held: one more row of the entity's chunk, sent by `release`. A chunk's rows share
