@@ -160,9 +160,11 @@ impl Measured {
     }
 }
 
-/// The quality check's distance of `p` (within a fifth of the body's height).
+/// The quality check's distance of `p` (within a fifth of the body's height), searched up
+/// from where this thread's last such search ended: the check asks vertex after vertex, so
+/// that lies next to the answer (the same answer as a search from the root).
 fn distance_at(index: &BodyIndex, p: DVec3) -> VertexDistance {
-    VertexDistance::from_nearest(index, p, index.nearest(p, check_reach(index)).as_ref())
+    VertexDistance::from_nearest(index, p, index.nearest_next(p, check_reach(index)).as_ref())
 }
 
 /// Every vertex's distance at `positions`, as the quality check measures it; those `reuse`
