@@ -10,7 +10,7 @@ use super::stage::{CollisionOutcome, M1Outcome, SculptOutcome};
 use crate::collision::GarmentMesh;
 use crate::import::ImportedGarment;
 use crate::m1::StoredCut;
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 /// A garment from a file (`garment mesh`): the file as read and prepared for the
 /// collision, its face regions (the patches M1's selection rules judge), its name and ease.
@@ -96,8 +96,13 @@ pub(crate) struct GarmentState {
     pub(crate) dims: Dimensions,
     /// The solved framework and M0 (before collision response).
     pub(crate) framework: Option<Framework>,
-    /// What detection remembers between steps (inert points, patch skipping).
-    pub(crate) detect: DetectState,
+    /// What detection remembers between steps (inert points, patch skipping, the distances
+    /// measured): one memory shared by this garment's states, the current one and those in
+    /// its history, so that no step copies it. Each answer in it is kept with the position
+    /// it was found at and read only at that position (the topology too), so a state that
+    /// `undo` restores reads it as well as the state that wrote it: what stands elsewhere
+    /// is measured again.
+    pub(crate) detect: Arc<Mutex<DetectState>>,
     /// The last collision of M0.
     pub(crate) collision: Option<CollisionOutcome>,
     /// The constraint network.
@@ -180,6 +185,11 @@ impl GarmentState {
         }
     }
 
+    /// Detection's memory (see [`Self::detect`]), for one collision or one update.
+    pub(crate) fn detect_memory(&self) -> MutexGuard<'_, DetectState> {
+        self.detect.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
     /// A new garment, not yet solved.
     pub(crate) fn new(template: TemplateKind, options: FrameworkOptions) -> Self {
         Self {
@@ -189,7 +199,7 @@ impl GarmentState {
             options,
             dims: Dimensions::default(),
             framework: None,
-            detect: DetectState::default(),
+            detect: Arc::default(),
             collision: None,
             net: None,
             edits: Vec::new(),
@@ -218,7 +228,7 @@ impl GarmentState {
             options: self.options,
             dims: self.dims.clone(),
             framework: None,
-            detect: self.detect.clone(),
+            detect: Arc::clone(&self.detect),
             collision: None,
             net: None,
             edits: self.edits.clone(),

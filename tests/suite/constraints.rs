@@ -643,11 +643,64 @@ fn only_patches_next_to_changed_curves_are_resurfaced_and_they_match_a_full_rebu
     assert_eq!(partial.m0.mesh, full.m0.mesh, "kept patches are what a rebuild gives");
 }
 
+/// Detection's memory is one per garment, shared by its states (no step copies it), so the
+/// drag after an undo reads what the undone drag left in it. It may take from it only what
+/// stands where it was found: that drag must give the same collided M0 and the same figures
+/// as a session that never made the undone drag (the truth), all but the counts of work
+/// that say what was taken from memory.
+#[test]
+fn a_drag_after_an_undo_collides_as_if_the_undone_drag_never_was() {
+    // A tight ease, so that the drags leave vertices inside the body to be moved out.
+    let head = "drape 1\nbody builtin\ngarment jumpsuit fit=tight\nset ease 0.004\ndrag waist.front_left by=0,0,0.02\n";
+    let last = "drag left_knee by=0,0.03,0\n";
+    let run = |text: &str| {
+        let session = parse_session(text, "undo.drape", std::path::Path::new(".")).expect("parses");
+        let mut sink = Steps::default();
+        let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+        assert!(report.error.is_none(), "{:?}", report.error);
+        assert!(sink.refused.is_empty(), "{:?}", sink.refused);
+        let responded = sink.responded.last().map(|(_, m)| m.clone()).expect("collided");
+        let clearance = sink.clearance.last().map(|(_, c)| c.clone()).expect("collided");
+        let mut figures = report.steps.last().expect("a step").figures.clone();
+        let tested = figures.get("tested_vertices").and_then(|t| t.as_u64());
+        for work in [
+            "tested_vertices",
+            "tested_by_method",
+            "skipped_inert",
+            "skipped_patch",
+            "patches_skipped",
+            "reused",
+        ] {
+            figures.remove(work);
+        }
+        (responded, figures, clearance, tested)
+    };
+    let undone = run(&format!("{head}drag chest.front_left by=0,0,-0.04\nundo\n{last}"));
+    let fresh = run(&format!("{head}{last}"));
+    assert!(
+        undone.1.get("hits").and_then(|h| h.as_u64()).is_some_and(|h| h > 0),
+        "{:?}",
+        undone.1
+    );
+    assert_eq!(undone.0, fresh.0, "the collided M0");
+    assert_eq!(undone.1, fresh.1);
+    let differ = (undone.2.iter().zip(&fresh.2))
+        .filter(|(a, b)| a.to_bits() != b.to_bits())
+        .count();
+    assert_eq!(
+        (undone.2.len(), differ),
+        (fresh.2.len(), 0),
+        "vertex clearances that differ"
+    );
+}
+
 /// Keeps M0 (before and after response) at every mesh stage.
 #[derive(Default)]
 struct Steps {
     m0: Vec<(usize, TriMesh)>,
     responded: Vec<(usize, TriMesh)>,
+    /// Each vertex's signed distance to the body after the response, by step.
+    clearance: Vec<(usize, Vec<f64>)>,
     refused: Vec<String>,
 }
 
@@ -662,6 +715,7 @@ impl StageSink for Steps {
     fn collision(&mut self, info: &StageInfo, stage: CollisionStage<'_>) -> Result<(), SinkError> {
         if stage.part == CollisionPart::Respond {
             self.responded.push((info.step, stage.outcome.collision.mesh.clone()));
+            (self.clearance).push((info.step, stage.outcome.collision.quality.clearance.clone()));
         }
         Ok(())
     }

@@ -280,7 +280,7 @@ fn collide_garment(
     let (Some(garment), Some(ease)) = (garment, state.ease()) else {
         return Ok(());
     };
-    let mut collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect);
+    let mut collision = collision::collide(index, &garment, ease, &options.collision, &mut state.detect_memory());
     let layer_ease = crate::layers::PushOptions::default().ease;
     let pushed_m0 = (!below.is_empty())
         .then(|| {

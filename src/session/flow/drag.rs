@@ -124,9 +124,9 @@ pub(in crate::session) fn drag(
     let mut next = scope.timed("garment.state", || {
         let mut after = solution.framework.clone();
         built.place_on(&mut after);
-        let mut next = state.on_framework(after);
+        let next = state.on_framework(after);
         if let Some(fw) = &next.framework {
-            next.detect
+            next.detect_memory()
                 .remember_nearest(probe.index(), &fw.m0.mesh.positions, &built.measured);
         }
         next

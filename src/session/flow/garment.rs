@@ -76,7 +76,7 @@ pub(in crate::session) fn solve_garment(
     })?;
     // The assembly measured the new patches' samples: the collision need not again.
     garment
-        .detect
+        .detect_memory()
         .remember_nearest(probe.index(), &fw.m0.mesh.positions, &rebuilt.measured);
     for (name, count) in [
         ("garment.rings_kept", rebuilt.rings_kept),
