@@ -93,7 +93,17 @@ impl TriMesh {
 /// [`TriMesh::vertex_normals`] of the mesh `triangles` make over `positions`, without
 /// building the mesh.
 pub fn vertex_normals_of(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVec3> {
-    let mut normals = vec![DVec3::ZERO; positions.len()];
+    let mut normals = Vec::new();
+    vertex_normals_into(positions, triangles, &mut normals);
+    normals
+}
+
+/// [`vertex_normals_of`] written into `normals` (its old contents dropped), so that a caller
+/// that makes normals again and again reuses one buffer: each vertex's faces' cross
+/// products summed in face order, then normalised in place (the same bits).
+pub fn vertex_normals_into(positions: &[DVec3], triangles: &[[u32; 3]], normals: &mut Vec<DVec3>) {
+    normals.clear();
+    normals.resize(positions.len(), DVec3::ZERO);
     for tri in triangles {
         let [a, b, c] = tri.map(|v| positions[v as usize]);
         let n = (b - a).cross(c - a);
@@ -101,5 +111,7 @@ pub fn vertex_normals_of(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<DVe
             normals[v as usize] += n;
         }
     }
-    normals.iter().map(|n| n.normalize_or_zero()).collect()
+    for n in normals.iter_mut() {
+        *n = n.normalize_or_zero();
+    }
 }

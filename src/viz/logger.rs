@@ -107,6 +107,9 @@ pub struct RerunLogger {
     pub(super) layered: Vec<String>,
     /// The last layout of each mesh logged in parts, by entity root.
     layouts: std::sync::Mutex<std::collections::BTreeMap<&'static str, std::sync::Arc<Layout>>>,
+    /// The buffer the meshes' normals are summed in, kept from mesh to mesh (a fresh one
+    /// each time cost more in new pages than the sums).
+    normals: std::sync::Mutex<Vec<glam::DVec3>>,
 }
 
 impl From<rerun::RecordingStreamError> for SinkError {
@@ -180,6 +183,7 @@ impl RerunLogger {
             iter: 0,
             layered: Vec::new(),
             layouts: Default::default(),
+            normals: Default::default(),
         })
     }
 
@@ -214,7 +218,9 @@ impl RerunLogger {
                 made
             }
         };
-        Parted::of(positions, layout)
+        drop(layouts);
+        let mut sums = self.normals.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        Parted::of(positions, layout, &mut sums)
     }
 
     /// The next value of the `iter` timeline (solver iterations, counted over the session).

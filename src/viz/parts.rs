@@ -207,12 +207,11 @@ fn color_word([r, g, b]: [u8; 3]) -> u32 {
 }
 
 /// The smooth vertex normals of the whole mesh (so that a part's shading runs on across
-/// its seams), as Rerun takes them.
-pub(super) fn f32_normals(positions: &[DVec3], triangles: &[[u32; 3]]) -> Vec<[f32; 3]> {
-    crate::mesh::trimesh::vertex_normals_of(positions, triangles)
-        .iter()
-        .map(|n| n.as_vec3().to_array())
-        .collect()
+/// its seams), as Rerun takes them; summed in `sums` (see
+/// [`crate::mesh::trimesh::vertex_normals_into`]).
+pub(super) fn f32_normals(positions: &[DVec3], triangles: &[[u32; 3]], sums: &mut Vec<DVec3>) -> Vec<[f32; 3]> {
+    crate::mesh::trimesh::vertex_normals_into(positions, triangles, sums);
+    sums.iter().map(|n| n.as_vec3().to_array()).collect()
 }
 
 /// How a mesh is split into parts, with its edges: a function of its faces, their patches
@@ -320,11 +319,11 @@ pub(super) struct Parted {
 }
 
 impl Parted {
-    /// The mesh `layout` was made for, at `positions`.
-    pub fn of(positions: &[DVec3], layout: Arc<Layout>) -> Self {
+    /// The mesh `layout` was made for, at `positions` (its normals summed in `sums`).
+    pub fn of(positions: &[DVec3], layout: Arc<Layout>, sums: &mut Vec<DVec3>) -> Self {
         Self {
             points: f32s(positions),
-            normals: f32_normals(positions, &layout.triangles),
+            normals: f32_normals(positions, &layout.triangles, sums),
             layout,
         }
     }
