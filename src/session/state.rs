@@ -65,7 +65,7 @@ impl SessionState {
     /// Makes `next` the current garment; the one it replaces can be restored by `undo`.
     pub(crate) fn advance(&mut self, next: GarmentState) {
         if let Some(previous) = self.garment.replace(next) {
-            self.history.push(previous);
+            self.history.push(previous.for_history());
         }
     }
 }
@@ -188,6 +188,27 @@ impl GarmentState {
     /// Detection's memory (see [`Self::detect`]), for one collision or one update.
     pub(crate) fn detect_memory(&self) -> MutexGuard<'_, DetectState> {
         self.detect.lock().unwrap_or_else(PoisonError::into_inner)
+    }
+
+    /// The state as the undo history keeps it: without M1's caches (its patches' collisions,
+    /// its shape and M0's edges), which only the step after it reads. Each history state
+    /// kept its own, some 20 MB a drag at resolution 24, all in new pages. `undo` hands the
+    /// restored state the caches of the one it drops ([`Self::take_caches`]).
+    pub(crate) fn for_history(mut self) -> Self {
+        self.m1_reuse = None;
+        self.m1_shape = None;
+        self.m0_edges = None;
+        self
+    }
+
+    /// Takes M1's caches from `later` (the state `undo` drops). A cache answers only for the
+    /// same inputs (a patch's M0 and selection, M0's faces, patches and refinement), which it
+    /// checks, so an earlier state reads it as safely as the state that made it: M1 is the
+    /// same, bit for bit, as one built whole.
+    pub(crate) fn take_caches(&mut self, later: &mut Self) {
+        self.m1_reuse = later.m1_reuse.take();
+        self.m1_shape = later.m1_shape.take();
+        self.m0_edges = later.m0_edges.take();
     }
 
     /// A new garment, not yet solved.

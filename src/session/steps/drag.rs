@@ -78,7 +78,7 @@ fn refuse(
     edit: &Edit,
     message: &str,
 ) {
-    history.push(kept.clone());
+    history.push(kept.clone().for_history());
     scope.refuse(
         message,
         "constraints.refused",

@@ -117,7 +117,7 @@ pub(super) fn run(
                 refused: Some(&message),
             }),
         );
-        state.history.push(current.clone());
+        state.history.push(current.clone().for_history());
         return Ok(());
     }
     emit(scope, &next);

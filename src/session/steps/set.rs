@@ -130,7 +130,7 @@ fn refuse(
     value: f64,
     message: &str,
 ) {
-    history.push(kept.clone());
+    history.push(kept.clone().for_history());
     scope.refuse(
         message,
         "garment.refused",

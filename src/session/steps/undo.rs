@@ -18,7 +18,10 @@ struct UndoFigures {
 }
 
 pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
-    let previous = state.history.pop().ok_or(StepError::NothingToUndo)?;
+    let mut previous = state.history.pop().ok_or(StepError::NothingToUndo)?;
+    if let Some(undone) = state.garment.as_mut() {
+        previous.take_caches(undone);
+    }
     if let Some(fw) = &previous.framework {
         scope.record(&UndoFigures {
             m0_vertices: fw.m0.mesh.positions.len(),
