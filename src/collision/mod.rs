@@ -76,8 +76,9 @@ pub struct GarmentMesh {
     pub boundary: Vec<bool>,
     /// For vertices on a garment ring, the ring plane's normal.
     pub ring_normal: Vec<Option<DVec3>>,
-    /// Patches of each vertex.
-    pub vertex_patches: Vec<Vec<u32>>,
+    /// Patches of each vertex, ascending (shared with M0, and by the meshes of the same
+    /// faces).
+    pub vertex_patches: std::sync::Arc<Vec<Vec<u32>>>,
     /// Curves of each patch.
     pub patch_curves: Vec<Vec<CurveRef>>,
     /// Control points of every curve.
@@ -88,7 +89,6 @@ impl GarmentMesh {
     /// From M0 of a framework on a body of height `height`.
     pub fn from_framework(fw: &Framework, height: f64) -> Self {
         let m0 = &fw.m0;
-        let n = m0.mesh.positions.len();
         // Openings: the ends of edges with a face on one side only (found with M0's faces).
         let boundary = m0.boundary.clone();
         let tol = 1e-9 * height;
@@ -103,19 +103,6 @@ impl GarmentMesh {
                     .map(|r| r.plane.normal)
             })
             .collect();
-        let mut vertex_patches = vec![Vec::new(); n];
-        for (f, tri) in m0.mesh.triangles.iter().enumerate() {
-            let patch = m0.face_patch[f];
-            for &v in tri {
-                let list: &mut Vec<u32> = &mut vertex_patches[v as usize];
-                if !list.contains(&patch) {
-                    list.push(patch);
-                }
-            }
-        }
-        for list in &mut vertex_patches {
-            list.sort_unstable();
-        }
         let patch_curves = m0
             .patch_names
             .iter()
@@ -133,7 +120,7 @@ impl GarmentMesh {
             edges: m0.edges.clone(),
             boundary,
             ring_normal,
-            vertex_patches,
+            vertex_patches: std::sync::Arc::clone(&m0.vertex_patches),
             patch_curves,
             controls: fw.curve_controls(),
         }

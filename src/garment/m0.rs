@@ -8,11 +8,13 @@
 //! edge lists. Every quad is split along the same diagonal whatever the geometry, so M0's
 //! connectivity depends only on the template.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use crate::geom::{CoonsPatch, CornerMismatch, triangle_grid};
 use crate::mesh::TriMesh;
-use crate::mesh::topology::{boundary_vertices, repeated_triangles, undirected_edges};
+use crate::mesh::topology::{boundary_vertices, face_labels_by_vertex, repeated_triangles, undirected_edges};
 
 /// One patch sampled on its grid.
 #[derive(Clone, Debug, PartialEq)]
@@ -199,6 +201,9 @@ pub struct M0 {
     /// Whether each vertex is on the boundary (an opening: an end of an edge with one
     /// face), as [`boundary_vertices`] finds it; kept with the faces.
     pub boundary: Vec<bool>,
+    /// The patches of each vertex's faces, ascending ([`face_labels_by_vertex`]): shared by
+    /// every M0 of the same faces (the collision's skipping reads it at every step).
+    pub vertex_patches: Arc<Vec<Vec<u32>>>,
 }
 
 /// `x` as an unsigned key in the order [`f64::total_cmp`] gives (negatives, by their bits
@@ -338,8 +343,10 @@ pub fn restitch(patches: &[PatchGrid], threshold: f64, before: Option<(&[PatchGr
     let mesh = TriMesh { positions, triangles };
     let edges = undirected_edges(&mesh);
     let boundary = boundary_vertices(&mesh);
+    let vertex_patches = Arc::new(face_labels_by_vertex(count, &mesh.triangles, &face_patch));
     M0 {
         mesh,
+        vertex_patches,
         face_patch,
         patch_names: patches.iter().map(|p| p.name.clone()).collect(),
         directed_edges,
@@ -362,6 +369,7 @@ impl M0 {
             report: self.report,
             welds: Vec::new(),
             boundary: self.boundary.clone(),
+            vertex_patches: Arc::clone(&self.vertex_patches),
         }
     }
 }

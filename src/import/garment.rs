@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use crate::collision::BodyIndex;
 use crate::collision::GarmentMesh;
-use crate::mesh::topology::{boundary_vertices, undirected_edges};
+use crate::mesh::topology::{boundary_vertices, face_labels_by_vertex, undirected_edges};
 use crate::mesh::validate::consistent_parts;
 use crate::mesh::{Adjacency, MeshDocument, MeshError, MeshFileError, TriMesh};
 
@@ -361,18 +361,7 @@ fn check_size_and_place(doc: &MeshDocument, body: &TriMesh) -> Result<(), Import
 fn garment_mesh(mesh: TriMesh, groups: &[u32], group_count: usize) -> GarmentMesh {
     let n = mesh.positions.len();
     let boundary = boundary_vertices(&mesh);
-    let mut vertex_patches = vec![Vec::new(); n];
-    for (tri, &g) in mesh.triangles.iter().zip(groups) {
-        for &v in tri {
-            let list: &mut Vec<u32> = &mut vertex_patches[v as usize];
-            if !list.contains(&g) {
-                list.push(g);
-            }
-        }
-    }
-    for list in &mut vertex_patches {
-        list.sort_unstable();
-    }
+    let vertex_patches = std::sync::Arc::new(face_labels_by_vertex(n, &mesh.triangles, groups));
     GarmentMesh {
         normals: mesh.vertex_normals(),
         edges: undirected_edges(&mesh),

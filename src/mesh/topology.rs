@@ -223,3 +223,21 @@ pub fn boundary_vertices(mesh: &TriMesh) -> Vec<bool> {
     }
     boundary
 }
+
+/// The labels of each vertex's faces, each list ascending and without repeats (a face's
+/// label is `face_label`: a patch, a group), for a mesh of `n` vertices.
+pub fn face_labels_by_vertex(n: usize, triangles: &[[u32; 3]], face_label: &[u32]) -> Vec<Vec<u32>> {
+    let mut lists = vec![Vec::new(); n];
+    for (tri, &label) in triangles.iter().zip(face_label) {
+        for &v in tri {
+            let list: &mut Vec<u32> = &mut lists[v as usize];
+            if !list.contains(&label) {
+                list.push(label);
+            }
+        }
+    }
+    for list in &mut lists {
+        list.sort_unstable();
+    }
+    lists
+}
