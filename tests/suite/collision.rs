@@ -479,7 +479,7 @@ fn degenerate_triangles_and_points_on_edges_vertices_and_faces_do_not_break_dete
         normals: vec![DVec3::Y; 6],
         boundary: vec![false; 6],
         ring_normal: vec![None; 6],
-        vertex_patches: vec![vec![]; 6],
+        vertex_patches: std::sync::Arc::new(vec![vec![]; 6]),
         patch_curves: vec![],
         controls: Default::default(),
     };
