@@ -91,7 +91,7 @@ pub struct StoredCut {
 fn first_layer(m1: &M1, positions: &[DVec3]) -> TriMesh {
     TriMesh {
         positions: positions[..m1.first_vertices].to_vec(),
-        triangles: m1.first.mesh.triangles.clone(),
+        triangles: m1.first_triangles().to_vec(),
     }
 }
 

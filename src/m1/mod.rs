@@ -70,7 +70,8 @@ pub struct M1 {
     /// Old vertices the smoothing moved (not where M0 has them).
     pub smoothed: Vec<u32>,
     /// The first step's result (the layer cut lines are stored through), without its
-    /// positions: its vertices are M1's first `first_vertices`.
+    /// positions (its vertices are M1's first `first_vertices`) and, when it is M1's only
+    /// step, without its faces and their patches, which are M1's ([`Self::first_triangles`]).
     pub first: Arc<Step>,
     /// Vertex count after the first step (its vertices keep their indices in `mesh`).
     pub first_vertices: usize,
@@ -85,6 +86,15 @@ impl M1 {
     /// Undirected edges of M1, sorted.
     pub fn edges(&self) -> &[[u32; 2]] {
         &self.edges
+    }
+
+    /// The faces of the first step: its own, or M1's when it is M1's only step.
+    pub fn first_triangles(&self) -> &[[u32; 3]] {
+        if self.first.mesh.triangles.is_empty() {
+            &self.mesh.triangles
+        } else {
+            &self.first.mesh.triangles
+        }
     }
 }
 
@@ -137,12 +147,13 @@ pub(crate) fn of_steps(
             smoothed.extend(second.smoothed.iter().copied().filter(|&v| (v as usize) < m0_vertices));
             (second.mesh, second.face_patch)
         }
+        // M1 is the one step: it takes the step's faces and their patches.
         None => (
             TriMesh {
                 positions: std::mem::take(&mut first.mesh.positions),
-                triangles: first.mesh.triangles.clone(),
+                triangles: std::mem::take(&mut first.mesh.triangles),
             },
-            first.face_patch.clone(),
+            std::mem::take(&mut first.face_patch),
         ),
     };
     // Its vertices are M1's first: their positions are read from M1 (whose shape a later
