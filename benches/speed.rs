@@ -158,7 +158,7 @@ fn main() {
         garments.push((
             format!("M0 resolution {resolution}"),
             g.mesh.positions.clone(),
-            g.edges.clone(),
+            g.edges.to_vec(),
             Some((g, ease)),
         ));
     }

@@ -66,14 +66,14 @@ pub struct CollisionOptions {
 pub struct GarmentMesh {
     /// The mesh.
     pub mesh: TriMesh,
-    /// The patch of each face.
-    pub face_patch: Vec<u32>,
+    /// The patch of each face (shared with M0, like the edges and the openings).
+    pub face_patch: std::sync::Arc<Vec<u32>>,
     /// Undirected edges.
-    pub edges: Vec<[u32; 2]>,
+    pub edges: std::sync::Arc<Vec<[u32; 2]>>,
     /// Unit vertex normals (area-weighted mean of the incident face normals, world frame).
     pub normals: Vec<DVec3>,
     /// Vertices on an opening.
-    pub boundary: Vec<bool>,
+    pub boundary: std::sync::Arc<Vec<bool>>,
     /// For vertices on a garment ring, the ring plane's normal.
     pub ring_normal: Vec<Option<DVec3>>,
     /// Patches of each vertex, ascending (shared with M0, and by the meshes of the same
@@ -90,7 +90,7 @@ impl GarmentMesh {
     pub fn from_framework(fw: &Framework, height: f64) -> Self {
         let m0 = &fw.m0;
         // Openings: the ends of edges with a face on one side only (found with M0's faces).
-        let boundary = m0.boundary.clone();
+        let boundary = std::sync::Arc::clone(&m0.boundary);
         let tol = 1e-9 * height;
         let ring_normal = m0
             .mesh
@@ -116,8 +116,8 @@ impl GarmentMesh {
         Self {
             normals: m0.mesh.vertex_normals(),
             mesh: m0.mesh.clone(),
-            face_patch: m0.face_patch.clone(),
-            edges: m0.edges.clone(),
+            face_patch: std::sync::Arc::clone(&m0.face_patch),
+            edges: std::sync::Arc::clone(&m0.edges),
             boundary,
             ring_normal,
             vertex_patches: std::sync::Arc::clone(&m0.vertex_patches),

@@ -187,20 +187,20 @@ pub struct M0 {
     /// Vertices and faces.
     pub mesh: TriMesh,
     /// The patch of each face.
-    pub face_patch: Vec<u32>,
+    pub face_patch: Arc<Vec<u32>>,
     /// Patch names, by index.
     pub patch_names: Vec<String>,
     /// Every face's edges, in face order (`3 x faces`).
-    pub directed_edges: Vec<[u32; 2]>,
+    pub directed_edges: Arc<Vec<[u32; 2]>>,
     /// Unique undirected edges, smaller index first, sorted.
-    pub edges: Vec<[u32; 2]>,
+    pub edges: Arc<Vec<[u32; 2]>>,
     /// What stitching did.
     pub report: StitchReport,
     /// The vertex each patch sample became (the patches' samples in order).
     pub welds: Vec<u32>,
     /// Whether each vertex is on the boundary (an opening: an end of an edge with one
     /// face), as [`boundary_vertices`] finds it; kept with the faces.
-    pub boundary: Vec<bool>,
+    pub boundary: Arc<Vec<bool>>,
     /// The patches of each vertex's faces, ascending ([`face_labels_by_vertex`]): shared by
     /// every M0 of the same faces (the collision's skipping reads it at every step).
     pub vertex_patches: Arc<Vec<Vec<u32>>>,
@@ -347,13 +347,13 @@ pub fn restitch(patches: &[PatchGrid], threshold: f64, before: Option<(&[PatchGr
     M0 {
         mesh,
         vertex_patches,
-        face_patch,
+        face_patch: Arc::new(face_patch),
         patch_names: patches.iter().map(|p| p.name.clone()).collect(),
-        directed_edges,
-        edges,
+        directed_edges: Arc::new(directed_edges),
+        edges: Arc::new(edges),
         report,
         welds: map,
-        boundary,
+        boundary: Arc::new(boundary),
     }
 }
 
@@ -362,13 +362,13 @@ impl M0 {
     fn clone_topology(&self) -> Self {
         Self {
             mesh: TriMesh::default(),
-            face_patch: self.face_patch.clone(),
+            face_patch: Arc::clone(&self.face_patch),
             patch_names: self.patch_names.clone(),
-            directed_edges: self.directed_edges.clone(),
-            edges: self.edges.clone(),
+            directed_edges: Arc::clone(&self.directed_edges),
+            edges: Arc::clone(&self.edges),
             report: self.report,
             welds: Vec::new(),
-            boundary: self.boundary.clone(),
+            boundary: Arc::clone(&self.boundary),
             vertex_patches: Arc::clone(&self.vertex_patches),
         }
     }

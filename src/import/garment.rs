@@ -364,9 +364,9 @@ fn garment_mesh(mesh: TriMesh, groups: &[u32], group_count: usize) -> GarmentMes
     let vertex_patches = std::sync::Arc::new(face_labels_by_vertex(n, &mesh.triangles, groups));
     GarmentMesh {
         normals: mesh.vertex_normals(),
-        edges: undirected_edges(&mesh),
-        face_patch: groups.to_vec(),
-        boundary,
+        edges: std::sync::Arc::new(undirected_edges(&mesh)),
+        face_patch: std::sync::Arc::new(groups.to_vec()),
+        boundary: std::sync::Arc::new(boundary),
         ring_normal: vec![None; n],
         vertex_patches,
         patch_curves: vec![Vec::new(); group_count],

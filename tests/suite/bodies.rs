@@ -51,7 +51,7 @@ impl StageSink for Collisions {
             self.0.push(StepCollision {
                 step: info.step,
                 collision: o.collision.clone(),
-                edges: o.garment.edges.clone(),
+                edges: o.garment.edges.to_vec(),
                 before: o.garment.mesh.positions.clone(),
             });
         }

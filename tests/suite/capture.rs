@@ -81,7 +81,7 @@ impl StageSink for Collect {
                 info.step,
                 o.collision.mesh.positions.clone(),
                 o.garment.mesh.triangles.clone(),
-                o.garment.face_patch.clone(),
+                o.garment.face_patch.to_vec(),
                 o.garment.mesh.positions.clone(),
             ));
         }

@@ -211,7 +211,7 @@ fn responded(stage: &drape::session::CollisionStage<'_>) -> Option<Garment> {
     (stage.part == drape::session::CollisionPart::Respond).then(|| {
         (
             stage.outcome.collision.mesh.positions.clone(),
-            stage.outcome.garment.edges.clone(),
+            stage.outcome.garment.edges.to_vec(),
             stage.outcome.collision.mesh.triangles.clone(),
         )
     })

@@ -182,7 +182,7 @@ fn m0_is_manifold_consistently_oriented_outward_with_five_openings() {
     let m0 = &fw.m0;
     let adjacency = Adjacency::try_new(&m0.mesh).expect("no edge has more than two faces");
     // Consistent orientation: no directed edge is used twice.
-    let mut directed = m0.directed_edges.clone();
+    let mut directed = m0.directed_edges.to_vec();
     directed.sort_unstable();
     let before = directed.len();
     directed.dedup();
