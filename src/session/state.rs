@@ -111,7 +111,7 @@ pub(crate) struct GarmentState {
     pub(crate) edits: Vec<Edit>,
     /// M0's positions as the garment was first built (the standard size M1's stretch rule
     /// compares with; the topology never changes).
-    pub(crate) standard: Option<Vec<glam::DVec3>>,
+    pub(crate) standard: Option<Arc<Vec<glam::DVec3>>>,
     /// The last M1, when the scene asks for one.
     pub(crate) m1: Option<M1Outcome>,
     /// What the last M1's collision leaves for the next, patch by patch: kept through

@@ -82,7 +82,7 @@ pub(in crate::session) fn build_m1(
             mesh: m0,
             face_patch,
             patches,
-            standard: state.standard.as_deref(),
+            standard: state.standard.as_ref().map(|s| s.as_slice()),
             measured: Some(&measured),
             edges: None,
         };

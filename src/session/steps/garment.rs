@@ -31,7 +31,10 @@ pub(super) fn run(
             Stage::Constraints(ConstraintStage::Network(fw, net)),
         );
     }
-    next.standard = next.framework.as_ref().map(|fw| fw.m0.mesh.positions.clone());
+    next.standard = next
+        .framework
+        .as_ref()
+        .map(|fw| std::sync::Arc::new(fw.m0.mesh.positions.clone()));
     if let Some(probe) = &state.probe {
         collide_new(scope, &state.body, probe.index(), &mut next, cx);
     }

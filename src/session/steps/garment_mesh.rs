@@ -85,7 +85,7 @@ pub(super) fn run(
         ease,
     });
     // M1's stretch rule compares with the garment as read.
-    next.standard = Some(standard);
+    next.standard = Some(Arc::new(standard));
     if let Some(probe) = &state.probe {
         collide_new(scope, &state.body, probe.index(), &mut next, cx);
     }
