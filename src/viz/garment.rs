@@ -293,8 +293,8 @@ impl RerunLogger {
     pub(super) fn m0(
         &self,
         mesh: &TriMesh,
-        face_patch: &[u32],
-        edges: &[[u32; 2]],
+        face_patch: &std::sync::Arc<Vec<u32>>,
+        edges: &std::sync::Arc<Vec<[u32; 2]>>,
     ) -> Result<Option<Parted>, SinkError> {
         let rec = self.recording();
         if !rec.keeps("garment/m0") {
@@ -306,7 +306,7 @@ impl RerunLogger {
         let by_patch: Vec<[u8; 3]> = (0..patches).map(patch_color).collect();
         let mut colors = vec![[200u8, 200, 200]; mesh.positions.len()];
         let mut seen = vec![false; mesh.positions.len()];
-        for (t, &p) in mesh.triangles.iter().zip(face_patch) {
+        for (t, &p) in mesh.triangles.iter().zip(face_patch.iter()) {
             for &v in t {
                 if !seen[v as usize] {
                     seen[v as usize] = true;

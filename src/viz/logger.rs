@@ -199,19 +199,20 @@ impl RerunLogger {
         &self,
         root: &'static str,
         (positions, triangles): (&[glam::DVec3], &[[u32; 3]]),
-        face_patch: &[u32],
-        edges: &[[u32; 2]],
+        face_patch: &std::sync::Arc<Vec<u32>>,
+        edges: &std::sync::Arc<Vec<[u32; 2]>>,
     ) -> Parted {
         let part_faces = self.options.part_faces;
         let mut layouts = self.layouts.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         let layout = match layouts.get(root) {
-            Some(l) if l.fits((positions.len(), triangles), face_patch, edges, part_faces) => std::sync::Arc::clone(l),
+            Some(l) if l.fits((positions.len(), triangles), (face_patch, edges), part_faces) => {
+                std::sync::Arc::clone(l)
+            }
             before => {
                 let made = std::sync::Arc::new(Layout::new(
                     positions.len(),
                     triangles,
-                    face_patch,
-                    edges,
+                    (face_patch, edges),
                     (part_faces, before.map(|b| &**b)),
                 ));
                 layouts.insert(root, std::sync::Arc::clone(&made));

@@ -114,12 +114,7 @@ impl RerunLogger {
                 }
             }
         }
-        let parted = self.parted(
-            "garment/m1",
-            (positions, &m1.mesh.triangles),
-            &m1.face_patch,
-            m1.edges(),
-        );
+        let parted = self.parted("garment/m1", (positions, &m1.mesh.triangles), &m1.face_patch, &m1.edges);
         log_mesh_parts(rec, "garment/m1/mesh", &parted, &colors)?;
         log_edge_parts(rec, "garment/m1/edges", &parted, (0.0003, [70, 70, 80]))?;
         log_point_parts(

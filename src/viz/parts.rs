@@ -222,8 +222,8 @@ pub(super) struct Layout {
     /// was made for.
     vertex_count: usize,
     triangles: Vec<[u32; 3]>,
-    face_patch: Vec<u32>,
-    edges: Vec<[u32; 2]>,
+    face_patch: Arc<Vec<u32>>,
+    edges: Arc<Vec<[u32; 2]>>,
     part_faces: usize,
     /// The entity name of each part.
     pub names: Vec<String>,
@@ -242,8 +242,7 @@ impl Layout {
     pub fn new(
         vertex_count: usize,
         triangles: &[[u32; 3]],
-        face_patch: &[u32],
-        edges: &[[u32; 2]],
+        (face_patch, edges): (&Arc<Vec<u32>>, &Arc<Vec<[u32; 2]>>),
         (part_faces, before): (usize, Option<&Self>),
     ) -> Self {
         let (face_part, names) = parts_of(face_patch, part_faces.max(1));
@@ -272,8 +271,8 @@ impl Layout {
         Self {
             vertex_count,
             triangles: triangles.to_vec(),
-            face_patch: face_patch.to_vec(),
-            edges: edges.to_vec(),
+            face_patch: Arc::clone(face_patch),
+            edges: Arc::clone(edges),
             part_faces,
             names,
             parts,
@@ -291,19 +290,19 @@ impl Layout {
         self.edge_parts.iter().find(|p| self.names[p.part as usize] == name)
     }
 
-    /// Whether it is the layout of this mesh.
+    /// Whether it is the layout of this mesh (the faces' patches and the edges compared
+    /// only when they are not the very lists it was made for).
     pub fn fits(
         &self,
         (vertex_count, triangles): (usize, &[[u32; 3]]),
-        face_patch: &[u32],
-        edges: &[[u32; 2]],
+        (face_patch, edges): (&Arc<Vec<u32>>, &Arc<Vec<[u32; 2]>>),
         part_faces: usize,
     ) -> bool {
         self.vertex_count == vertex_count
             && self.part_faces == part_faces
             && self.triangles == triangles
-            && self.face_patch == face_patch
-            && self.edges == edges
+            && (Arc::ptr_eq(&self.face_patch, face_patch) || self.face_patch == *face_patch)
+            && (Arc::ptr_eq(&self.edges, edges) || self.edges == *edges)
     }
 }
 
