@@ -192,7 +192,7 @@ impl GarmentState {
 
     /// The state as the undo history keeps it: without M1's caches (its patches' collisions,
     /// its shape and M0's edges), which only the step after it reads. Each history state
-    /// kept its own, some 20 MB a drag at resolution 24, all in new pages. `undo` hands the
+    /// kept its own, some 12 MB a drag at resolution 24, all in new pages. `undo` hands the
     /// restored state the caches of the one it drops ([`Self::take_caches`]).
     pub(crate) fn for_history(mut self) -> Self {
         self.m1_reuse = None;

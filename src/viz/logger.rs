@@ -107,8 +107,8 @@ pub struct RerunLogger {
     pub(super) layered: Vec<String>,
     /// The last layout of each mesh logged in parts, by entity root.
     layouts: std::sync::Mutex<std::collections::BTreeMap<&'static str, std::sync::Arc<Layout>>>,
-    /// The buffer the meshes' normals are summed in, kept from mesh to mesh (a fresh one
-    /// each time cost more in new pages than the sums).
+    /// The buffer the meshes' normals are summed in, kept from mesh to mesh so that the sums
+    /// take no new pages.
     normals: std::sync::Mutex<Vec<glam::DVec3>>,
 }
 
