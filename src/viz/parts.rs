@@ -90,42 +90,60 @@ fn grouped(labels: impl Iterator<Item = usize> + Clone, groups: usize) -> (Vec<u
 }
 
 /// Renumbers `items` (lists of mesh vertices) into a part's own numbering: the part's
-/// vertices in the order met, and the items in it. `local` is all `u32::MAX` on entry and
-/// on return.
-fn renumber<const N: usize>(items: impl Iterator<Item = [u32; N]>, local: &mut [u32]) -> (Vec<u32>, Vec<[u32; N]>) {
+/// vertices in the order met, returned, and the items in it, written to `words` (`N` words
+/// each). `local` is all `u32::MAX` on entry and on return.
+fn renumber<const N: usize>(
+    items: impl Iterator<Item = [u32; N]>,
+    local: &mut [u32],
+    words: &mut Vec<u32>,
+) -> Vec<u32> {
     let mut vertices = Vec::new();
-    let renumbered = items
-        .map(|item| {
-            item.map(|v| {
-                let l = &mut local[v as usize];
-                if *l == u32::MAX {
-                    *l = vertices.len() as u32;
-                    vertices.push(v);
-                }
-                *l
-            })
-        })
-        .collect();
+    words.clear();
+    for item in items {
+        for v in item {
+            let l = &mut local[v as usize];
+            if *l == u32::MAX {
+                *l = vertices.len() as u32;
+                vertices.push(v);
+            }
+            words.push(*l);
+        }
+    }
     for &v in &vertices {
         local[v as usize] = u32::MAX;
     }
-    (vertices, renumbered)
+    vertices
+}
+
+/// `words` as a part's shared words: `old`'s when they are the same (no new list), else new.
+fn shared_or_new(words: &[u32], old: Option<&Words>) -> Words {
+    match old {
+        Some(o) if o.as_slice() == words => Arc::clone(o),
+        _ => Arc::new(words.to_vec()),
+    }
 }
 
 /// The mesh of `vertex_count` vertices and `triangles` split by `face_part` into
-/// `parts` parts, those with faces, in order.
-pub(super) fn split(vertex_count: usize, triangles: &[[u32; 3]], (face_part, parts): (&[u32], usize)) -> Vec<Part> {
+/// `parts` parts, those with faces, in order; a part whose faces, in its own numbering, are
+/// those `old` gives for it shares them.
+pub(super) fn split<'a>(
+    vertex_count: usize,
+    triangles: &[[u32; 3]],
+    (face_part, parts): (&[u32], usize),
+    old: impl Fn(u32) -> Option<&'a Words>,
+) -> Vec<Part> {
     let (start, order) = grouped(face_part.iter().map(|&p| p as usize), parts);
     let mut local = vec![u32::MAX; vertex_count];
+    let mut words = Vec::new();
     (0..parts)
         .filter(|&p| start[p] < start[p + 1])
         .map(|p| {
             let faces = order[start[p]..start[p + 1]].iter().map(|&f| triangles[f as usize]);
-            let (vertices, triangles) = renumber(faces, &mut local);
+            let vertices = renumber(faces, &mut local, &mut words);
             Part {
                 part: p as u32,
                 vertices,
-                triangles: Arc::new(triangles.into_flattened()),
+                triangles: shared_or_new(&words, old(p as u32)),
             }
         })
         .collect()
@@ -133,12 +151,15 @@ pub(super) fn split(vertex_count: usize, triangles: &[[u32; 3]], (face_part, par
 
 /// The mesh's `edges` shared out among the `parts` parts, each edge to one: the later of
 /// its ends' first parts (the lowest part of a face around the vertex), so that an edge
-/// inside a part goes to that part and one along a seam to one side of it.
-pub(super) fn split_edges(
+/// inside a part goes to that part and one along a seam to one side of it. A part whose
+/// edges, in its own numbering, are those of the edge part `old` gives for it shares them
+/// and their walks.
+pub(super) fn split_edges<'a>(
     vertex_count: usize,
     triangles: &[[u32; 3]],
     (face_part, parts): (&[u32], usize),
     edges: &[[u32; 2]],
+    old: impl Fn(u32) -> Option<&'a EdgePart>,
 ) -> Vec<EdgePart> {
     if parts == 0 {
         return Vec::new();
@@ -152,18 +173,25 @@ pub(super) fn split_edges(
     let owner = |&[a, b]: &[u32; 2]| (first[a as usize].max(first[b as usize]) as usize).min(parts - 1);
     let (start, order) = grouped(edges.iter().map(owner), parts);
     let mut local = vec![u32::MAX; vertex_count];
+    let mut words = Vec::new();
     (0..parts)
         .filter(|&p| start[p] < start[p + 1])
         .map(|p| {
-            let (vertices, edges) = renumber(
-                order[start[p]..start[p + 1]].iter().map(|&e| edges[e as usize]),
-                &mut local,
-            );
-            EdgePart {
-                part: p as u32,
-                walks: Arc::new(OnceLock::new()),
-                vertices,
-                edges: Arc::new(edges.into_flattened()),
+            let items = order[start[p]..start[p + 1]].iter().map(|&e| edges[e as usize]);
+            let vertices = renumber(items, &mut local, &mut words);
+            match old(p as u32).filter(|o| o.edges.as_slice() == words.as_slice()) {
+                Some(o) => EdgePart {
+                    part: p as u32,
+                    walks: Arc::clone(&o.walks),
+                    vertices,
+                    edges: Arc::clone(&o.edges),
+                },
+                None => EdgePart {
+                    part: p as u32,
+                    walks: Arc::new(OnceLock::new()),
+                    vertices,
+                    edges: Arc::new(words.clone()),
+                },
             }
         })
         .collect()
@@ -246,28 +274,13 @@ impl Layout {
         (part_faces, before): (usize, Option<&Self>),
     ) -> Self {
         let (face_part, names) = parts_of(face_patch, part_faces.max(1));
-        let mut parts = split(vertex_count, triangles, (&face_part, names.len()));
-        let mut edge_parts = split_edges(vertex_count, triangles, (&face_part, names.len()), edges);
-        if let Some(before) = before {
-            let named = |part: u32| names[part as usize].as_str();
-            for part in &mut parts {
-                if let Some(old) = before
-                    .part_named(named(part.part))
-                    .filter(|o| o.triangles == part.triangles)
-                {
-                    part.triangles = Arc::clone(&old.triangles);
-                }
-            }
-            for part in &mut edge_parts {
-                if let Some(old) = before
-                    .edge_part_named(named(part.part))
-                    .filter(|o| o.edges == part.edges)
-                {
-                    part.edges = Arc::clone(&old.edges);
-                    part.walks = Arc::clone(&old.walks);
-                }
-            }
-        }
+        let named = |part: u32| names[part as usize].as_str();
+        let parts = split(vertex_count, triangles, (&face_part, names.len()), |p| {
+            before.and_then(|b| b.part_named(named(p))).map(|o| &o.triangles)
+        });
+        let edge_parts = split_edges(vertex_count, triangles, (&face_part, names.len()), edges, |p| {
+            before.and_then(|b| b.edge_part_named(named(p)))
+        });
         Self {
             vertex_count,
             triangles: triangles.to_vec(),
