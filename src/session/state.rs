@@ -35,7 +35,7 @@ pub(crate) struct SessionState {
     /// put back after it).
     pub(crate) garment: Option<GarmentState>,
     /// That garment's states before each of its drags, sets, cuts and sculpts, for `undo`.
-    pub(crate) history: Vec<GarmentState>,
+    pub(crate) history: History,
     /// The garments worn, innermost first, each with its undo history.
     pub(crate) worn: Vec<Worn>,
     /// Per step `undo` can take back, the garments it changed (indices into
@@ -54,7 +54,7 @@ impl SessionState {
             body,
             probe: None,
             garment: None,
-            history: Vec::new(),
+            history: History::default(),
             worn: Vec::new(),
             undo: Vec::new(),
             nurbs: Vec::new(),
@@ -65,8 +65,42 @@ impl SessionState {
     /// Makes `next` the current garment; the one it replaces can be restored by `undo`.
     pub(crate) fn advance(&mut self, next: GarmentState) {
         if let Some(previous) = self.garment.replace(next) {
-            self.history.push(previous.for_history());
+            self.history.push(previous);
         }
+    }
+}
+
+/// A garment's undo history: its states before each undoable step, the newest last. A state
+/// goes in without M1's caches, which only the step after it reads (each state kept its
+/// own, some 12 MB a drag at resolution 24, all in new pages); `undo` hands the state it
+/// restores the caches of the state it drops ([`GarmentState::take_caches`]).
+#[derive(Default)]
+pub(crate) struct History(Vec<GarmentState>);
+
+impl History {
+    /// Keeps `state` (without M1's caches) as the one `undo` restores next.
+    pub(crate) fn push(&mut self, state: GarmentState) {
+        self.0.push(state.without_caches());
+    }
+
+    /// The state `undo` restores next, taken out.
+    pub(crate) fn pop(&mut self) -> Option<GarmentState> {
+        self.0.pop()
+    }
+
+    /// The state `undo` would restore next.
+    pub(crate) fn last(&self) -> Option<&GarmentState> {
+        self.0.last()
+    }
+
+    /// How many states it holds.
+    pub(crate) fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// Forgets every state (a new garment).
+    pub(crate) fn clear(&mut self) {
+        self.0.clear();
     }
 }
 
@@ -77,7 +111,7 @@ pub(crate) struct Worn {
     /// Its state (`None` only while a step works on it, in [`SessionState::garment`]).
     pub(crate) garment: Option<GarmentState>,
     /// Its states before each of its undoable steps.
-    pub(crate) history: Vec<GarmentState>,
+    pub(crate) history: History,
 }
 
 /// The current garment: its template, settings, the dimensions set so far, the solve, the
@@ -190,11 +224,9 @@ impl GarmentState {
         self.detect.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// The state as the undo history keeps it: without M1's caches (its patches' collisions,
-    /// its shape and M0's edges), which only the step after it reads. Each history state
-    /// kept its own, some 12 MB a drag at resolution 24, all in new pages. `undo` hands the
-    /// restored state the caches of the one it drops ([`Self::take_caches`]).
-    pub(crate) fn for_history(mut self) -> Self {
+    /// The state without M1's caches (its patches' collisions, its shape and M0's edges),
+    /// as [`History`] keeps it.
+    fn without_caches(mut self) -> Self {
         self.m1_reuse = None;
         self.m1_shape = None;
         self.m0_edges = None;

@@ -299,7 +299,7 @@ fn push_over(
     }
     let changed = kept.iter().map(|(j, _)| *j).collect();
     for (j, previous) in kept {
-        state.worn[j].history.push(previous.for_history());
+        state.worn[j].history.push(previous);
     }
     Ok(Ok(changed))
 }

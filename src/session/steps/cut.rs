@@ -43,7 +43,7 @@ pub(super) fn run(
     let stored = cut::store(&outcome.m1, m0, positions, name, plane, &drawn);
     let points: usize = stored.pieces.iter().map(|(p, _)| p.len()).sum();
     let mut next = current.clone();
-    state.history.push(current.clone().for_history());
+    state.history.push(current.clone());
     if points == 0 {
         refuse(
             scope,
@@ -137,7 +137,7 @@ pub(super) fn through(
         }
         vertices.push(v as u32);
     }
-    state.history.push(current.clone().for_history());
+    state.history.push(current.clone());
     if let Some(why) = problem {
         refuse(scope, name, &why);
         return Ok(());

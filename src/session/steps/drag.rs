@@ -10,7 +10,7 @@ use crate::session::flow::collide::{collide_and_emit, unclear};
 use crate::session::flow::drag::drag;
 use crate::session::options::StepContext;
 use crate::session::stage::{ConstraintStage, GarmentPart, GarmentStage, Stage};
-use crate::session::state::{GarmentState, SessionState};
+use crate::session::state::{GarmentState, History, SessionState};
 
 pub(super) fn run(
     scope: &mut StepScope<'_, '_, '_>,
@@ -71,14 +71,8 @@ pub(super) fn run(
 
 /// Refuses the drag: the garment stays as it was (an `undo` of this step changes nothing),
 /// the refusal is recorded and emitted, and the session goes on.
-fn refuse(
-    scope: &mut StepScope<'_, '_, '_>,
-    history: &mut Vec<GarmentState>,
-    kept: &GarmentState,
-    edit: &Edit,
-    message: &str,
-) {
-    history.push(kept.clone().for_history());
+fn refuse(scope: &mut StepScope<'_, '_, '_>, history: &mut History, kept: &GarmentState, edit: &Edit, message: &str) {
+    history.push(kept.clone());
     scope.refuse(
         message,
         "constraints.refused",

@@ -117,7 +117,7 @@ pub(super) fn run(
                 refused: Some(&message),
             }),
         );
-        state.history.push(current.clone().for_history());
+        state.history.push(current.clone());
         return Ok(());
     }
     emit(scope, &next);

@@ -12,7 +12,7 @@ use crate::session::flow::garment::solve_garment;
 use crate::session::format::Change;
 use crate::session::options::StepContext;
 use crate::session::stage::{GarmentPart, GarmentStage, Stage};
-use crate::session::state::{GarmentState, SessionState};
+use crate::session::state::{GarmentState, History, SessionState};
 
 /// The change asked for.
 #[derive(Serialize)]
@@ -124,13 +124,13 @@ pub(super) fn run(
 /// nothing), the refusal is recorded and emitted, and the session goes on.
 fn refuse(
     scope: &mut StepScope<'_, '_, '_>,
-    history: &mut Vec<GarmentState>,
+    history: &mut History,
     kept: &GarmentState,
     name: &str,
     value: f64,
     message: &str,
 ) {
-    history.push(kept.clone().for_history());
+    history.push(kept.clone());
     scope.refuse(
         message,
         "garment.refused",
