@@ -106,14 +106,12 @@ pub struct Surfacer<'a> {
     probe: &'a BodyProbe,
     layout: &'a Layout,
     previous: &'a [&'a Framework],
+    /// The patches kept, in order; a patch surfaced anew stands here as a placeholder
+    /// until [`Self::finish`] clears it (see `fresh`).
     patches: Vec<PatchGrid>,
     resurfaced: Vec<String>,
-    /// Patches surfaced anew whose interior the clearing moved: (index, the clearing of
-    /// each sample).
-    to_relax: Vec<(usize, Cleared)>,
-    /// The body's nearest point to the interior samples of the patches surfaced anew, where
-    /// they stand: (patch, sample, nearest point).
-    measured: Vec<(usize, usize, Nearest)>,
+    /// The patches surfaced anew, their interiors not yet cleared: (index, Coons grid).
+    fresh: Vec<(usize, PatchGrid)>,
     /// The contour spans cleared so far (a span bounds two patches).
     spans: RefCell<Spans>,
 }
@@ -143,8 +141,7 @@ impl<'a> Surfacer<'a> {
             previous,
             patches: Vec::new(),
             resurfaced: Vec::new(),
-            to_relax: Vec::new(),
-            measured: Vec::new(),
+            fresh: Vec::new(),
             spans: RefCell::new(Spans::new()),
         }
     }
@@ -159,31 +156,44 @@ impl<'a> Surfacer<'a> {
         self.layout
     }
 
-    /// What was made ([`Surfaced`]); the cleared patches relaxed (on all cores: each patch
-    /// on its own).
+    /// What was made ([`Surfaced`]): the patches surfaced anew cleared off the body, and
+    /// relaxed where the clearing moved them, on all cores (each patch on its own, the
+    /// results in patch order: the same on any number of threads).
     pub fn finish(mut self) -> Surfaced {
         let (probe, gap, scale) = (self.probe, self.layout.clearance, self.layout.height);
-        let patches = &self.patches;
-        // Each job owns its clearing (its balls are not copied).
-        let jobs = std::mem::take(&mut self.to_relax);
-        let relaxed = par_map_owned(jobs, 2, |(i, cleared)| {
+        let fresh = std::mem::take(&mut self.fresh);
+        let done = par_map_owned(fresh, 2, |(i, mut grid)| {
+            // The blend of four boundaries that stand off the body can still dip into it
+            // where the body bulges between them (the inner thigh and the belly over a tall
+            // crotch junction): interior samples stand the clearance off, as contour spans
+            // do.
             let Cleared {
                 moved,
                 mut found,
                 balls,
-            } = cleared;
-            let mut grid = patches[i].clone();
-            relax(&mut grid, &moved, &mut found, balls, probe, gap, scale);
-            (i, grid, found)
+            } = clear_interior(&mut grid, probe, gap);
+            let relaxed = moved.contains(&true);
+            if relaxed {
+                relax(&mut grid, &moved, &mut found, balls, probe, gap, scale);
+            }
+            (i, grid, found, relaxed)
         });
-        for (i, grid, found) in relaxed {
-            self.measured.extend(sampled(i, &found));
+        // The patches left as cleared first, then those relaxed, each in patch order.
+        let mut measured = Vec::new();
+        for pass in [false, true] {
+            for (i, _, found, relaxed) in &done {
+                if *relaxed == pass {
+                    measured.extend(sampled(*i, found));
+                }
+            }
+        }
+        for (i, grid, ..) in done {
             self.patches[i] = grid;
         }
         Surfaced {
             patches: self.patches,
             resurfaced: self.resurfaced,
-            measured: self.measured,
+            measured,
             spans: self.spans.into_inner(),
         }
     }
@@ -266,18 +276,18 @@ impl<'a> Surfacer<'a> {
         kept.is_some()
     }
 
-    /// Clears a new patch's interior off the body and keeps it.
-    fn surface(&mut self, name: &str, mut grid: PatchGrid) {
-        // The blend of four boundaries that stand off the body can still dip into it where
-        // the body bulges between them (the inner thigh and the belly over a tall crotch
-        // junction): interior samples stand the clearance off, as contour spans do.
-        let cleared = clear_interior(&mut grid, self.probe, self.layout.clearance);
-        if cleared.moved.contains(&true) {
-            self.to_relax.push((self.patches.len(), cleared));
-        } else {
-            self.measured.extend(sampled(self.patches.len(), &cleared.found));
-        }
-        self.patches.push(grid);
+    /// Keeps a new patch, to be cleared off the body by [`Self::finish`].
+    fn surface(&mut self, name: &str, grid: PatchGrid) {
+        let placeholder = PatchGrid {
+            name: String::new(),
+            nu: 0,
+            nv: 0,
+            points: Vec::new(),
+            curves: Vec::new(),
+            triangular: false,
+        };
+        self.fresh.push((self.patches.len(), grid));
+        self.patches.push(placeholder);
         self.resurfaced.push(name.to_string());
     }
 }
