@@ -170,8 +170,10 @@ pub(super) fn split_edges<'a>(
             first[v as usize] = first[v as usize].min(p);
         }
     }
-    let owner = |&[a, b]: &[u32; 2]| (first[a as usize].max(first[b as usize]) as usize).min(parts - 1);
-    let (start, order) = grouped(edges.iter().map(owner), parts);
+    let owner: Vec<u32> = (edges.iter())
+        .map(|&[a, b]| first[a as usize].max(first[b as usize]).min(parts as u32 - 1))
+        .collect();
+    let (start, order) = grouped(owner.iter().map(|&p| p as usize), parts);
     let mut local = vec![u32::MAX; vertex_count];
     let mut words = Vec::new();
     (0..parts)
