@@ -328,7 +328,8 @@ fn kept_of_m1(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Kept {
     }
 }
 
-/// Each refined patch's input, by patch number.
+/// Each refined patch's input, by patch number; the patches built on all cores, each on
+/// its own (the same inputs on any number of threads).
 fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, PatchInput)> {
     let patches = m1.selection.rules.len();
     let n = m1.mesh.positions.len();
@@ -351,53 +352,50 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
             .filter(|&&[a, b]| !pinned[a as usize] || !pinned[b as usize])
             .map(|&e| (patch_of[free_end(e) as usize], e)),
     );
-    let mut local = vec![u32::MAX; n];
-    // The patch (plus one) whose vertices were last listed, per vertex: each listed once
-    // before the sort, which then sorts a sixth of the corners.
-    let mut listed = vec![0u32; n];
-    let mut out = Vec::new();
-    for (p, rules) in m1.selection.rules.iter().enumerate() {
-        if rules.is_empty() {
-            continue;
-        }
+    let refined: Vec<usize> = (0..patches).filter(|&p| !m1.selection.rules[p].is_empty()).collect();
+    crate::par::par_map_from(refined.len(), 2, |k| {
+        let p = refined[k];
         let faces = grouped[first[p]..first[p + 1]].to_vec();
-        let mut vertices: Vec<u32> = Vec::with_capacity(faces.len());
-        for &v in faces.iter().flat_map(|&f| &m1.mesh.triangles[f as usize]) {
-            if std::mem::replace(&mut listed[v as usize], p as u32 + 1) != p as u32 + 1 {
-                vertices.push(v);
+        super::numbering::NUMBERING.with_borrow_mut(|numbering| {
+            let local = numbering.start(n);
+            let mut vertices: Vec<u32> = Vec::with_capacity(faces.len());
+            for &v in faces.iter().flat_map(|&f| &m1.mesh.triangles[f as usize]) {
+                if local.get(v).is_none() {
+                    local.set(v, 0);
+                    vertices.push(v);
+                }
             }
-        }
-        vertices.sort_unstable();
-        for (i, &v) in vertices.iter().enumerate() {
-            local[v as usize] = i as u32;
-        }
-        let at = |v: u32| local[v as usize];
-        let base = vertices.partition_point(|&v| (v as usize) < m1.m0_vertices);
-        let mut input = PatchInput {
-            mesh: TriMesh {
-                positions: Vec::new(),
-                triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
-            },
-            edges: edges[edge_first[p]..edge_first[p + 1]]
-                .iter()
-                .map(|e| e.map(at))
-                .collect(),
-            moved: (vertices.iter().enumerate())
-                .filter(|&(i, &v)| i < base && !pinned[v as usize])
-                .map(|(i, _)| i as u32)
-                .collect(),
-            anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
-            partition: Vec::new(),
-            ring_normal: Vec::new(),
-            measured: Vec::new(),
-            base,
-            vertices,
-            faces,
-        };
-        input.place(m1, m0);
-        out.push((p as u32, input));
-    }
-    out
+            vertices.sort_unstable();
+            for (i, &v) in vertices.iter().enumerate() {
+                local.set(v, i as u32);
+            }
+            let at = |v: u32| local.get(v).unwrap_or(u32::MAX);
+            let base = vertices.partition_point(|&v| (v as usize) < m1.m0_vertices);
+            let mut input = PatchInput {
+                mesh: TriMesh {
+                    positions: Vec::new(),
+                    triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
+                },
+                edges: edges[edge_first[p]..edge_first[p + 1]]
+                    .iter()
+                    .map(|e| e.map(at))
+                    .collect(),
+                moved: (vertices.iter().enumerate())
+                    .filter(|&(i, &v)| i < base && !pinned[v as usize])
+                    .map(|(i, _)| i as u32)
+                    .collect(),
+                anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
+                partition: Vec::new(),
+                ring_normal: Vec::new(),
+                measured: Vec::new(),
+                base,
+                vertices,
+                faces,
+            };
+            input.place(m1, m0);
+            (p as u32, input)
+        })
+    })
 }
 
 /// The patches' collisions joined into M1's (vertex, edge and face numbers M1's; moves in
