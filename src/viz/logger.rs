@@ -98,6 +98,9 @@ impl LogOptions {
     }
 }
 
+/// How many layouts of each mesh the logger keeps (see [`RerunLogger::parted`]).
+const LAYOUTS_KEPT: usize = 2;
+
 /// Logs every stage to a recording.
 pub struct RerunLogger {
     pub(super) rec: OrderedRecording,
@@ -105,8 +108,10 @@ pub struct RerunLogger {
     iter: i64,
     /// The garments worn over others logged so far (the layout names them).
     pub(super) layered: Vec<String>,
-    /// The last layout of each mesh logged in parts, by entity root.
-    layouts: std::sync::Mutex<std::collections::BTreeMap<&'static str, std::sync::Arc<Layout>>>,
+    /// The last layouts of each mesh logged in parts, by entity root, the latest first (at
+    /// most [`LAYOUTS_KEPT`]): a refinement undone, or one that goes back and forth between
+    /// two steps, finds its layout again.
+    layouts: std::sync::Mutex<std::collections::BTreeMap<&'static str, Vec<std::sync::Arc<Layout>>>>,
     /// The buffer the meshes' normals are summed in, kept from mesh to mesh so that the sums
     /// take no new pages.
     normals: std::sync::Mutex<Vec<glam::DVec3>>,
@@ -193,8 +198,9 @@ impl RerunLogger {
     }
 
     /// The mesh at `root` (`triangles` over `positions`, its faces' patches and its edges)
-    /// as it is logged in parts, its layout kept from the last mesh logged there when its
-    /// faces, patches and edges are the same.
+    /// as it is logged in parts, its layout kept from one of the last meshes logged there
+    /// whose faces, patches and edges are the same (a layout depends on nothing else, so the
+    /// data logged is the same as with a new one).
     pub(super) fn parted(
         &self,
         root: &'static str,
@@ -204,21 +210,19 @@ impl RerunLogger {
     ) -> Parted {
         let part_faces = self.options.part_faces;
         let mut layouts = self.layouts.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        let layout = match layouts.get(root) {
-            Some(l) if l.fits((positions.len(), triangles), (face_patch, edges), part_faces) => {
-                std::sync::Arc::clone(l)
-            }
-            before => {
-                let made = std::sync::Arc::new(Layout::new(
-                    positions.len(),
-                    triangles,
-                    (face_patch, edges),
-                    (part_faces, before.map(|b| &**b)),
-                ));
-                layouts.insert(root, std::sync::Arc::clone(&made));
-                made
-            }
+        let kept = layouts.entry(root).or_default();
+        let fitting = (kept.iter()).position(|l| l.fits((positions.len(), triangles), (face_patch, edges), part_faces));
+        let layout = match fitting {
+            Some(k) => kept.remove(k),
+            None => std::sync::Arc::new(Layout::new(
+                positions.len(),
+                triangles,
+                (face_patch, edges),
+                (part_faces, kept.first().map(|b| &**b)),
+            )),
         };
+        kept.insert(0, std::sync::Arc::clone(&layout));
+        kept.truncate(LAYOUTS_KEPT);
         drop(layouts);
         let mut sums = self.normals.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         Parted::of(positions, layout, &mut sums)
