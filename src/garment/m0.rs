@@ -17,7 +17,7 @@ use crate::mesh::TriMesh;
 use crate::mesh::topology::{boundary_vertices, face_labels_by_vertex, repeated_triangles, undirected_edges};
 
 /// One patch sampled on its grid.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct PatchGrid {
     /// Patch name (`torso.waist_bust.front_left`, ...).
     pub name: String,

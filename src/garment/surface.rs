@@ -172,22 +172,16 @@ impl<'a> Surfacer<'a> {
                 mut found,
                 balls,
             } = clear_interior(&mut grid, probe, gap);
-            let relaxed = moved.contains(&true);
-            if relaxed {
+            if moved.contains(&true) {
                 relax(&mut grid, &moved, &mut found, balls, probe, gap, scale);
             }
-            (i, grid, found, relaxed)
+            (i, grid, found)
         });
-        // The patches left as cleared first, then those relaxed, each in patch order.
+        // (A vertex two patches' samples weld into stands where both do: the same nearest
+        // point, whichever comes first.)
         let mut measured = Vec::new();
-        for pass in [false, true] {
-            for (i, _, found, relaxed) in &done {
-                if *relaxed == pass {
-                    measured.extend(sampled(*i, found));
-                }
-            }
-        }
-        for (i, grid, ..) in done {
+        for (i, grid, found) in done {
+            measured.extend(sampled(i, &found));
             self.patches[i] = grid;
         }
         Surfaced {
@@ -278,16 +272,8 @@ impl<'a> Surfacer<'a> {
 
     /// Keeps a new patch, to be cleared off the body by [`Self::finish`].
     fn surface(&mut self, name: &str, grid: PatchGrid) {
-        let placeholder = PatchGrid {
-            name: String::new(),
-            nu: 0,
-            nv: 0,
-            points: Vec::new(),
-            curves: Vec::new(),
-            triangular: false,
-        };
         self.fresh.push((self.patches.len(), grid));
-        self.patches.push(placeholder);
+        self.patches.push(PatchGrid::default());
         self.resurfaced.push(name.to_string());
     }
 }
