@@ -27,18 +27,6 @@ fn patterns_tab() -> rerun::blueprint::ContainerLike {
     .into()
 }
 
-/// The figures the Collision plot shows: what detection found and the response moved, and
-/// what was left in the body after M0's collision and after M1's.
-const GUARANTEE_FIGURES: [&str; 8] = [
-    "hits",
-    "responses",
-    "penetrating_vertices",
-    "crossing_edges",
-    "pierced_faces",
-    "m1_penetrating_vertices",
-    "m1_crossing_edges",
-    "m1_pierced_faces",
-];
 /// Top left, tabs: the Garment (M0 on the plain body, with its cut lines' stored form,
 /// the collision marks and the framework) and the Body (partition tint, landmarks, rings,
 /// partition bounds, dress forms, sections; labels on hover, the partition legend a table
@@ -271,8 +259,7 @@ fn figures_and_log() -> rerun::blueprint::ContainerLike {
         Tabs::new(
             std::iter::once(
                 TimeSeriesView::new("Collision")
-                    .with_origin("/metrics/count/step")
-                    .with_contents(GUARANTEE_FIGURES.map(|f| format!("+ /metrics/count/step/{f}")))
+                    .with_origin("/metrics/count/guarantee")
                     .into(),
             )
             .chain(METRIC_UNITS.iter().map(|(unit, title)| {

@@ -1,4 +1,5 @@
-//! Colours: one per partition, one per collision response rule, and an error colour map.
+//! Colours: one per partition, one per collision response rule, one per plotted series,
+//! and an error colour map.
 
 use crate::body::PartitionId;
 use crate::collision::AppliedRule;
@@ -82,4 +83,24 @@ pub fn clearance_band(d: f64) -> usize {
         .iter()
         .position(|(upper, _, _)| mm < *upper)
         .unwrap_or(CLEARANCE_BANDS.len() - 1)
+}
+
+/// Colour of a plotted series, by its name: a hue from the name's hash (xxh64) spread by the
+/// golden ratio, so that the series of one plot differ and keep their colour from run to run.
+pub fn series_color(name: &str) -> [u8; 3] {
+    let hash = xxhash_rust::xxh64::xxh64(name.as_bytes(), 0);
+    let hue = ((hash >> 11) as f64 / (1u64 << 53) as f64 * 0.618_033_988_749_895 * 64.0).fract() * 6.0;
+    // HSV to RGB at saturation 0.75 and value 0.95.
+    let (s, v) = (0.75, 0.95);
+    let f = hue.fract();
+    let (p, q, t) = (v * (1.0 - s), v * (1.0 - s * f), v * (1.0 - s * (1.0 - f)));
+    let rgb = match hue as u32 {
+        0 => [v, t, p],
+        1 => [q, v, p],
+        2 => [p, v, t],
+        3 => [p, q, v],
+        4 => [t, p, v],
+        _ => [v, p, q],
+    };
+    rgb.map(|c| (c * 255.0).round() as u8)
 }

@@ -1,10 +1,10 @@
 //! [`RerunLogger`]: the stage sink that logs to a Rerun recording.
 
-use rerun::{RecordingStream, Scalars, SeriesPoints, TextLog, TextLogLevel, ViewCoordinates};
+use rerun::{RecordingStream, Scalars, TextLog, TextLogLevel, ViewCoordinates};
 
 use super::parts::{Layout, Parted};
 use super::recording::{OrderedRecording, metric_path};
-use crate::mannequin::{MannequinResult, Region};
+use crate::mannequin::MannequinResult;
 use crate::session::{
     BodyStage, CollisionStage, ConstraintStage, GarmentStage, LogDetail, M1Stage, SectionCut, SinkError, Stage,
     StageInfo, StageSink, StepEnd,
@@ -115,6 +115,8 @@ pub struct RerunLogger {
     /// The buffer the meshes' normals are summed in, kept from mesh to mesh so that the sums
     /// take no new pages.
     normals: std::sync::Mutex<Vec<glam::DVec3>>,
+    /// The series of each entity the step figures are plotted in.
+    pub(super) series: super::figures::Series,
 }
 
 impl From<rerun::RecordingStreamError> for SinkError {
@@ -158,30 +160,11 @@ fn is_final(stage: &Stage<'_>) -> bool {
 }
 
 impl RerunLogger {
-    /// Logs into `rec`; sends the static scene settings (y up, series styles) first.
+    /// Logs into `rec`; sends the static scene settings (y up) first.
     pub fn new(rec: RecordingStream, options: LogOptions) -> Result<Self, SinkError> {
         let rec = OrderedRecording::new(rec, options.detail == LogDetail::Metrics, options.only_changed);
         rec.log_static("/", &ViewCoordinates::RIGHT_HAND_Y_UP())
             .map_err(to_sink)?;
-        // The mannequin's figures are one value per run: markers, polar warm and chord cool.
-        for region in Region::ALL {
-            for (method, stat, color) in [
-                ("polar", "max", [220, 40, 30]),
-                ("polar", "rms", [250, 150, 60]),
-                ("chord", "max", [30, 110, 230]),
-                ("chord", "rms", [90, 200, 230]),
-            ] {
-                let name = format!("{} {method} {stat} (m)", region.name());
-                rec.log_static(
-                    metric_path(&format!("metrics/step/regions/{}/{method}/{stat}_m", region.name())),
-                    &SeriesPoints::new()
-                        .with_names([name])
-                        .with_colors([color])
-                        .with_marker_sizes([4.0]),
-                )
-                .map_err(to_sink)?;
-            }
-        }
         Ok(Self {
             rec,
             options,
@@ -189,6 +172,7 @@ impl RerunLogger {
             layered: Vec::new(),
             layouts: Default::default(),
             normals: Default::default(),
+            series: Default::default(),
         })
     }
 
@@ -341,11 +325,6 @@ impl StageSink for RerunLogger {
     fn step_end(&mut self, _info: &StageInfo, end: StepEnd<'_>) -> Result<(), SinkError> {
         match end {
             StepEnd::Done(metrics) => {
-                if self.options.timings {
-                    for (name, ms) in &metrics.timings_ms {
-                        self.scalar(&format!("metrics/timings/{name}"), *ms)?;
-                    }
-                }
                 self.log_figures(metrics)?;
                 self.text(
                     TextLogLevel::DEBUG,

@@ -15,7 +15,7 @@
 //! `collision/response/<rule>` (arrows), `collision/mesh/remaining`,
 //! `collision/mesh/crossing_edges`, `constraints/network/{links,curves}` (green met, red
 //! violated), `constraints/solve/{curve,control,node_hits}` (per solver iteration),
-//! `constraints/drag/{path,points}`, `metrics/<unit>/...` (scalars, one folder per unit), `log` (text per stage).
+//! `constraints/drag/{path,points}`, `metrics/<unit>/...` (scalars, one folder per unit; a step's figures one row per unit and op, `metrics/<unit>/step/<op>`), `log` (text per stage).
 //! `nurbs/{near,crossing}/{leaf,butterfly}/{surface,net}`, `nurbs/<scene>/hulls/<side>` and
 //! `nurbs/near/closest/{control,true}` (the [nurbs] experiment, per `level`).
 //! `garment/sculpt` (+ `/edges`), `sculpt/{pick,radius,direction,displacement}`,

@@ -408,7 +408,8 @@ fn lighter_log_details_keep_the_metrics_and_drop_the_rest() {
 }
 
 /// Every number a step records (its `--metrics` figures) reaches the recording, once, at
-/// the step's end, under `metrics/<unit>/step/...`, with the same value; and nothing else is
+/// the step's end, as a series of `metrics/<unit>/step/<op>` (or of
+/// `metrics/count/guarantee/<op>`) named by its path, with the same value; and nothing else is
 /// logged there. The truth is the run's own metrics report, walked here independently of
 /// the logger's walk: each figure's leaves, an object's by field name, a list's by its
 /// elements' name (`name`, `ring`, `region` or `id`, else the text fields joined) or index.
@@ -457,28 +458,38 @@ fn every_figure_a_step_records_is_logged_at_its_end() {
         }
         truth.extend(out.into_iter().map(|(p, v)| ((m.step as i64, p), v)));
     }
-    // What was logged under metrics/<unit>/step/, by the `step` timeline.
-    let mut logged: BTreeMap<(i64, String), Vec<f64>> = BTreeMap::new();
+    // What was logged under metrics/<unit>/step/<op> and metrics/count/guarantee/<op>: each
+    // entity's series names (static), and its rows of scalars by the `step` timeline, a
+    // series' place in the row its place among the names.
+    let scalars: rerun::ComponentIdentifier = "Scalars:scalars".into();
+    let names_id: rerun::ComponentIdentifier = "SeriesPoints:names".into();
+    let mut names: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut rows: Vec<(String, i64, Vec<f64>)> = Vec::new();
     for chunk in &chunks {
         let path = chunk.entity_path().to_string();
-        let parts: Vec<&str> = path.splitn(4, '/').collect();
-        let ["", "metrics", _unit, rest] = parts.as_slice() else {
+        let parts: Vec<&str> = path.split('/').collect();
+        let ["", "metrics", _unit, "step" | "guarantee", _op] = parts.as_slice() else {
             continue;
         };
-        let Some(figure) = rest.strip_prefix("step") else {
-            continue;
-        };
-        let id: rerun::ComponentIdentifier = "Scalars:scalars".into();
-        for ((step, _), batch) in chunk
-            .iter_component_indices("step".into(), id)
-            .zip(chunk.iter_component::<rerun::components::Scalar>(id))
-        {
-            for s in batch.iter() {
-                logged
-                    .entry((step.as_i64(), figure.to_string()))
-                    .or_default()
-                    .push(s.0.0);
+        if chunk.is_static() {
+            for batch in chunk.iter_component::<rerun::components::Name>(names_id) {
+                names.insert(path.clone(), batch.iter().map(|n| n.to_string()).collect());
             }
+            continue;
+        }
+        for ((step, _), batch) in chunk
+            .iter_component_indices("step".into(), scalars)
+            .zip(chunk.iter_component::<rerun::components::Scalar>(scalars))
+        {
+            rows.push((path.clone(), step.as_i64(), batch.iter().map(|s| s.0.0).collect()));
+        }
+    }
+    let mut logged: BTreeMap<(i64, String), Vec<f64>> = BTreeMap::new();
+    for (path, step, row) in rows {
+        let names = &names[&path];
+        assert_eq!(names.len(), row.len(), "{path} at step {step}: a row of another length");
+        for (name, value) in names.iter().zip(row) {
+            logged.entry((step, format!("/{name}"))).or_default().push(value);
         }
     }
     assert!(truth.len() > 500, "{} figures: too few to trust", truth.len());
