@@ -116,7 +116,7 @@ pub struct RerunLogger {
     /// take no new pages.
     normals: std::sync::Mutex<Vec<glam::DVec3>>,
     /// The series of each entity the step figures are plotted in.
-    pub(super) series: super::figures::Series,
+    pub(super) series: super::series::Series,
 }
 
 impl From<rerun::RecordingStreamError> for SinkError {

@@ -47,6 +47,7 @@ mod patterns;
 pub mod recording;
 pub mod replay;
 mod sculpt;
+mod series;
 pub mod target;
 
 pub use blueprint::{check_garment_blueprint, default_blueprint, layered_blueprint, nurbs_blueprint, sculpt_blueprint};
