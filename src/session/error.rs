@@ -120,6 +120,11 @@ pub enum StepError {
     /// `undo` with nothing to take back.
     #[error("nothing to undo: no drag, set, cut or sculpt step of the current garment ran")]
     NothingToUndo,
+    /// `undo` past the oldest edit kept ([`super::RunOptions::undo_limit`]).
+    #[error(
+        "nothing more to undo: the session keeps the last {0} edits for undo (--undo-limit), and the ones before were dropped"
+    )]
+    UndoLimit(usize),
     /// `move` names a part no `nurbs` step added (the parser refuses it; a step made by hand
     /// may not).
     #[error("no NURBS part '{0}': add it with a 'nurbs' step first")]

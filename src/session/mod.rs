@@ -25,7 +25,7 @@ pub use emit::Shortfall;
 pub use error::{DragRefusal, FailureKind, RunError, SinkError, StepError};
 pub use format::{Change, Layer, LogDetail, Op, ParseError, Scene, SculptAt, Session, Step, Units, parse_session};
 pub use metrics::StepMetrics;
-pub use options::RunOptions;
+pub use options::{DEFAULT_UNDO_LIMIT, RunOptions};
 pub use runner::{LiveSession, RunReport, run_session};
 pub use stage::{
     BodyStage, CollisionOutcome, CollisionPart, CollisionStage, ConstraintStage, GarmentPart, GarmentStage, LayerPair,

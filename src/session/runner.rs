@@ -83,6 +83,7 @@ impl<'k, 's> LiveSession<'k, 's> {
         let mut scope = self.out.step(n, step.op.keyword());
         match run_worn(&mut scope, &mut self.state, (&self.session, &self.options), step) {
             Ok(()) => {
+                self.state.keep_last(self.options.undo_limit());
                 let (metrics, shortfalls) = scope.done();
                 self.report.steps.push(metrics);
                 self.report.shortfalls.extend(shortfalls.into_iter().map(|s| (n, s)));

@@ -12,6 +12,8 @@ use crate::import::ImportedGarment;
 use crate::m1::StoredCut;
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
+use super::error::StepError;
+
 /// A garment from a file (`garment mesh`): the file as read and prepared for the
 /// collision, its face regions (the patches M1's selection rules judge), its name and ease.
 pub(crate) struct FileGarment {
@@ -41,6 +43,8 @@ pub(crate) struct SessionState {
     /// Per step `undo` can take back, the garments it changed (indices into
     /// [`Self::worn`]): the edited one, then those over it that it pushed.
     pub(crate) undo: Vec<Vec<usize>>,
+    /// The limit [`Self::undo`] was cut to when its oldest steps were dropped.
+    pub(crate) undo_dropped_past: Option<usize>,
     /// NURBS parts, in the order added (none: no NURBS work at all).
     pub(crate) nurbs: Vec<crate::nurbs::NurbsPart>,
     /// The body's triangle hulls for the NURBS parts, built with the first part.
@@ -57,8 +61,24 @@ impl SessionState {
             history: History::default(),
             worn: Vec::new(),
             undo: Vec::new(),
+            undo_dropped_past: None,
             nurbs: Vec::new(),
             nurbs_body: None,
+        }
+    }
+
+    /// Keeps the last `limit` edits for `undo` (of the garment, of each garment worn, and of
+    /// the steps over worn garments), dropping the oldest states past them. A worn
+    /// garment's states are those before the steps that changed it, the newest last, so the
+    /// last `limit` steps find theirs.
+    pub(crate) fn keep_last(&mut self, limit: usize) {
+        self.history.keep_last(limit);
+        for w in &mut self.worn {
+            w.history.keep_last(limit);
+        }
+        if self.undo.len() > limit {
+            self.undo.drain(..self.undo.len() - limit);
+            self.undo_dropped_past = Some(limit);
         }
     }
 
@@ -75,32 +95,48 @@ impl SessionState {
 /// own, some 12 MB a drag at resolution 24, all in new pages); `undo` hands the state it
 /// restores the caches of the state it drops ([`GarmentState::take_caches`]).
 #[derive(Default)]
-pub(crate) struct History(Vec<GarmentState>);
+pub(crate) struct History {
+    states: Vec<GarmentState>,
+    /// The limit it was cut to when its oldest states were dropped ([`Self::keep_last`]).
+    dropped_past: Option<usize>,
+}
 
 impl History {
     /// Keeps `state` (without M1's caches) as the one `undo` restores next.
     pub(crate) fn push(&mut self, state: GarmentState) {
-        self.0.push(state.without_caches());
+        self.states.push(state.without_caches());
     }
 
-    /// The state `undo` restores next, taken out.
-    pub(crate) fn pop(&mut self) -> Option<GarmentState> {
-        self.0.pop()
+    /// The state `undo` restores next, taken out; when there is none, why.
+    pub(crate) fn pop(&mut self) -> Result<GarmentState, StepError> {
+        self.states.pop().ok_or(match self.dropped_past {
+            Some(limit) => StepError::UndoLimit(limit),
+            None => StepError::NothingToUndo,
+        })
     }
 
     /// The state `undo` would restore next.
     pub(crate) fn last(&self) -> Option<&GarmentState> {
-        self.0.last()
+        self.states.last()
     }
 
     /// How many states it holds.
     pub(crate) fn len(&self) -> usize {
-        self.0.len()
+        self.states.len()
     }
 
     /// Forgets every state (a new garment).
     pub(crate) fn clear(&mut self) {
-        self.0.clear();
+        self.states.clear();
+        self.dropped_past = None;
+    }
+
+    /// Drops the oldest states past the last `limit`.
+    pub(crate) fn keep_last(&mut self, limit: usize) {
+        if self.states.len() > limit {
+            self.states.drain(..self.states.len() - limit);
+            self.dropped_past = Some(limit);
+        }
     }
 }
 

@@ -159,6 +159,7 @@ fn run_on_target(
                 w.history.clear();
             }
             state.undo.clear();
+            state.undo_dropped_past = None;
             state.worn.push(Worn {
                 name,
                 garment: state.garment.take(),
@@ -330,7 +331,10 @@ fn refuse_all(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState, k: us
 
 /// `undo`: every garment the last undoable step changed back to its state before it.
 fn undo(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
-    let changed = state.undo.pop().ok_or(StepError::NothingToUndo)?;
+    let changed = state.undo.pop().ok_or(match state.undo_dropped_past {
+        Some(limit) => StepError::UndoLimit(limit),
+        None => StepError::NothingToUndo,
+    })?;
     for k in changed {
         checkout(state, k);
         scope.layer = (k > 0).then(|| state.worn[k].name.clone());

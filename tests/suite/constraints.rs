@@ -694,6 +694,64 @@ fn a_drag_after_an_undo_collides_as_if_the_undone_drag_never_was() {
     );
 }
 
+/// `undo` takes back the last `undo_limit` edits, no more: with a limit of 2, three drags
+/// then three undos bring back the garment after the second drag, then after the first
+/// (the truth: the meshes logged at those drags), and the third undo fails naming the
+/// limit. With the default limit the same session undoes all three (back to the garment as
+/// built), so the limit is what stopped it. The same over a worn garment (`name=`, `over=`),
+/// whose undo goes through the steps that changed each garment.
+#[test]
+fn undo_takes_back_the_last_edits_up_to_the_limit_and_names_it_past_them() {
+    let drags = "drag waist.front_left by=0,0,0.01\ndrag crotch.point by=0,-0.01,0\ndrag left_knee by=0,0.01,0\n";
+    let text = format!("drape 1\nbody builtin\ngarment jumpsuit resolution=4\n{drags}undo\nundo\nundo\n");
+    let session = parse_session(&text, "limit.drape", std::path::Path::new(".")).expect("parses");
+    let run = |limit: usize| {
+        let mut sink = Steps::default();
+        let options = RunOptions {
+            undo_limit: limit,
+            ..RunOptions::default()
+        };
+        let report = run_session(&session, &options, &mut [&mut sink]);
+        (report, sink)
+    };
+    let at = |v: &[(usize, TriMesh)], step: usize| -> TriMesh {
+        v.iter()
+            .rev()
+            .find(|(s, _)| *s == step)
+            .map(|(_, m)| m.clone())
+            .expect("logged")
+    };
+    // Steps: 1 garment, 2-4 drags, 5-7 undos.
+    let (report, sink) = run(2);
+    let error = report.error.expect("the third undo fails");
+    assert_eq!(error.step, 7, "{error}");
+    assert!(error.to_string().contains("the last 2 edits"), "{error}");
+    assert_eq!(at(&sink.responded, 5), at(&sink.responded, 3), "first undo");
+    assert_eq!(at(&sink.responded, 6), at(&sink.responded, 2), "second undo");
+    assert_ne!(at(&sink.responded, 2), at(&sink.responded, 1));
+    let (report, sink) = run(0);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    assert_eq!(
+        at(&sink.responded, 7),
+        at(&sink.responded, 1),
+        "the default undoes all three"
+    );
+    // Over a worn garment: the inner one dragged three times, then three undos.
+    let worn = format!(
+        "drape 1\nbody builtin\ngarment jumpsuit resolution=4 name=inner\ngarment dress fit=loose resolution=4 name=outer over=inner\n{}undo\nundo\nundo\n",
+        drags.replace("drag ", "drag inner:")
+    );
+    let session = parse_session(&worn, "worn.drape", std::path::Path::new(".")).expect("parses");
+    let options = RunOptions {
+        undo_limit: 2,
+        ..RunOptions::default()
+    };
+    let report = run_session(&session, &options, &mut []);
+    let error = report.error.expect("the third undo fails");
+    assert_eq!(error.step, 8, "{error}");
+    assert!(error.to_string().contains("the last 2 edits"), "{error}");
+}
+
 /// Keeps M0 (before and after response) at every mesh stage.
 #[derive(Default)]
 struct Steps {

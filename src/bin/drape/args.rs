@@ -37,6 +37,10 @@ pub(crate) struct Cli {
     /// Build the body index every run: read and write no index cache.
     #[arg(long, global = true, conflicts_with = "index_cache")]
     pub(crate) no_index_cache: bool,
+    /// How many edits `undo` can take back: each keeps the garment whole (about 24 MB an
+    /// edit for a jumpsuit at resolution 24 with M1), so the oldest are dropped past it.
+    #[arg(long, global = true, value_name = "N", default_value_t = drape::session::DEFAULT_UNDO_LIMIT as u32, value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub(crate) undo_limit: u32,
 }
 
 /// The subcommands.

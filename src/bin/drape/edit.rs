@@ -44,6 +44,7 @@ pub(crate) fn edit(args: &EditArgs) -> Result<ExitCode> {
     let options = RunOptions {
         max_input_bytes: crate::max_input_bytes(),
         index_cache: crate::index_cache(),
+        undo_limit: crate::undo_limit(),
         ..RunOptions::default()
     };
     let mut live = match LiveSession::start(&session, options, &mut sinks) {

@@ -36,6 +36,7 @@ fn main() -> ExitCode {
         cli.max_input_mb.saturating_mul(1024 * 1024),
         std::sync::atomic::Ordering::Relaxed,
     );
+    UNDO_LIMIT.store(cli.undo_limit as usize, std::sync::atomic::Ordering::Relaxed);
     if let Some(n) = cli.threads {
         drape::par::set_threads(usize::from(n));
     }
@@ -76,6 +77,15 @@ static MAX_INPUT_BYTES: std::sync::atomic::AtomicU64 =
 /// The largest input file read, bytes.
 fn max_input_bytes() -> u64 {
     MAX_INPUT_BYTES.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// How many edits `undo` can take back in this run (`--undo-limit`).
+static UNDO_LIMIT: std::sync::atomic::AtomicUsize =
+    std::sync::atomic::AtomicUsize::new(drape::session::DEFAULT_UNDO_LIMIT);
+
+/// How many edits `undo` can take back.
+fn undo_limit() -> usize {
+    UNDO_LIMIT.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// The body index cache of this run (`--index-cache`, `--no-index-cache`).

@@ -140,6 +140,7 @@ fn run_options(args: &RunArgs, stop: &std::sync::Arc<std::sync::atomic::AtomicBo
         max_input_bytes: crate::max_input_bytes(),
         stop: Some(stop.clone()),
         index_cache: crate::index_cache(),
+        undo_limit: crate::undo_limit(),
         ..RunOptions::default()
     };
     if args.brute_force {

@@ -18,7 +18,7 @@ struct UndoFigures {
 }
 
 pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
-    let mut previous = state.history.pop().ok_or(StepError::NothingToUndo)?;
+    let mut previous = state.history.pop()?;
     if let Some(undone) = state.garment.as_mut() {
         previous.take_caches(undone);
     }
