@@ -44,7 +44,7 @@ pub fn series_of(path: &str) -> (String, String) {
 /// would make two equal recordings compare different). So each set of figures a kind of
 /// step records has its own entity, `<entity>/<op>` ([`series_of`]'s entity and the step's
 /// op), or `<op>_2`, `<op>_3` for the next sets of that op (a drag that was refused records
-/// other figures than one that ran). Each is plotted as points, a series by name, in the
+/// other figures than one that ran, and one whose collision took more rounds counts each). Each is plotted as points, a series by name, in the
 /// same colour wherever it appears.
 #[derive(Debug, Default)]
 pub struct Series(BTreeMap<(String, String), Vec<FigureSet>>);
