@@ -714,13 +714,6 @@ fn undo_takes_back_the_last_edits_up_to_the_limit_and_names_it_past_them() {
         let report = run_session(&session, &options, &mut [&mut sink]);
         (report, sink)
     };
-    let at = |v: &[(usize, TriMesh)], step: usize| -> TriMesh {
-        v.iter()
-            .rev()
-            .find(|(s, _)| *s == step)
-            .map(|(_, m)| m.clone())
-            .expect("logged")
-    };
     // Steps: 1 garment, 2-4 drags, 5-7 undos.
     let (report, sink) = run(2);
     let error = report.error.expect("the third undo fails");
@@ -750,6 +743,15 @@ fn undo_takes_back_the_last_edits_up_to_the_limit_and_names_it_past_them() {
     let error = report.error.expect("the third undo fails");
     assert_eq!(error.step, 8, "{error}");
     assert!(error.to_string().contains("the last 2 edits"), "{error}");
+}
+
+/// The last mesh `v` holds at step `step`.
+fn at(v: &[(usize, TriMesh)], step: usize) -> TriMesh {
+    v.iter()
+        .rev()
+        .find(|(s, _)| *s == step)
+        .map(|(_, m)| m.clone())
+        .expect("logged")
 }
 
 /// Keeps M0 (before and after response) at every mesh stage.
@@ -794,13 +796,6 @@ fn undo_restores_the_exact_previous_state_and_a_refused_drag_changes_nothing() {
     let mut sink = Steps::default();
     let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
     assert!(report.error.is_none(), "{:?}", report.error);
-    let at = |v: &[(usize, TriMesh)], step: usize| -> TriMesh {
-        v.iter()
-            .rev()
-            .find(|(s, _)| *s == step)
-            .map(|(_, m)| m.clone())
-            .expect("logged")
-    };
     // Steps: 1 garment, 2 drag, 3 drag, 4 undo, 5 refused drag, 6 undo, 7 undo.
     assert_ne!(at(&sink.m0, 2), at(&sink.m0, 1));
     assert_ne!(at(&sink.m0, 3), at(&sink.m0, 2));
