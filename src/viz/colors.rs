@@ -85,11 +85,10 @@ pub fn clearance_band(d: f64) -> usize {
         .unwrap_or(CLEARANCE_BANDS.len() - 1)
 }
 
-/// Colour of a plotted series, by its name: a hue from the name's hash (xxh64) spread by the
-/// golden ratio, so that the series of one plot differ and keep their colour from run to run.
-pub fn series_color(name: &str) -> [u8; 3] {
-    let hash = xxhash_rust::xxh64::xxh64(name.as_bytes(), 0);
-    let hue = ((hash >> 11) as f64 / (1u64 << 53) as f64 * 0.618_033_988_749_895 * 64.0).fract() * 6.0;
+/// Colour of the plotted series met `k`-th in a recording: hues a golden-ratio turn apart,
+/// so that series met together (those of one plot) are far apart on the colour wheel.
+pub fn series_color(k: usize) -> [u8; 3] {
+    let hue = (k as f64 * 0.618_033_988_749_895).fract() * 6.0;
     // HSV to RGB at saturation 0.75 and value 0.95.
     let (s, v) = (0.75, 0.95);
     let f = hue.fract();

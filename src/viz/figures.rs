@@ -89,7 +89,7 @@ impl RerunLogger {
         for (entity, figures) in by_entity {
             let (entity, values, names) = self.series.row(&entity, op, &figures);
             if let Some(names) = names {
-                let colors: Vec<[u8; 3]> = names.iter().map(|n| series_color(n)).collect();
+                let colors: Vec<[u8; 3]> = names.iter().map(|n| series_color(self.series.place(n))).collect();
                 let points = (SeriesPoints::new().with_names(names))
                     .with_colors(colors)
                     .with_marker_sizes([3.0]);

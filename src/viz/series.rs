@@ -47,7 +47,12 @@ pub fn series_of(path: &str) -> (String, String) {
 /// other figures than one that ran, and one whose collision took more rounds counts each). Each is plotted as points, a series by name, in the
 /// same colour wherever it appears.
 #[derive(Debug, Default)]
-pub struct Series(BTreeMap<(String, String), Vec<FigureSet>>);
+pub struct Series {
+    /// The sets of figures of each entity and op, in the order first met.
+    sets: BTreeMap<(String, String), Vec<FigureSet>>,
+    /// Each series name's place in the order names were first met, in any entity.
+    met: BTreeMap<String, usize>,
+}
 
 /// One set of figures: its names in the order of the first step that recorded it, and
 /// sorted, to know it again.
@@ -68,7 +73,7 @@ impl Series {
     ) -> (String, Vec<f64>, Option<Vec<String>>) {
         let mut sorted: Vec<String> = figures.iter().map(|(name, _)| name.clone()).collect();
         sorted.sort_unstable();
-        let sets = self.0.entry((entity.to_string(), op.to_string())).or_default();
+        let sets = self.sets.entry((entity.to_string(), op.to_string())).or_default();
         let (k, new) = match sets.iter().position(|s| s.sorted == sorted) {
             Some(k) => (k, false),
             None => {
@@ -86,6 +91,12 @@ impl Series {
             k => format!("{entity}/{op}_{}", k + 1),
         };
         (path, values, new.then(|| set.names.clone()))
+    }
+
+    /// The place of series `name` in the order names were first met (its colour's).
+    pub fn place(&mut self, name: &str) -> usize {
+        let next = self.met.len();
+        *self.met.entry(name.to_string()).or_insert(next)
     }
 }
 
@@ -139,5 +150,8 @@ mod tests {
             row,
             ("metrics/count/guarantee/drag".into(), vec![9.0], names(&["hits"]))
         );
+        // A series' colour place is where its name was first met, whatever the entity.
+        let places: Vec<usize> = ["b", "a", "hits", "c", "b"].iter().map(|n| series.place(n)).collect();
+        assert_eq!(places, vec![0, 1, 2, 3, 0]);
     }
 }
