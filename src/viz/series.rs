@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 /// The figures the Collision plot shows, in their own entity (`metrics/count/guarantee`):
 /// what detection found and the response moved, and what was left in the body after M0's
 /// collision and after M1's.
-pub(super) const GUARANTEE_FIGURES: [&str; 8] = [
+const GUARANTEE_FIGURES: [&str; 8] = [
     "hits",
     "responses",
     "penetrating_vertices",
@@ -19,7 +19,7 @@ pub(super) const GUARANTEE_FIGURES: [&str; 8] = [
 ];
 
 /// The entity the guarantee's figures are plotted in.
-pub(super) const GUARANTEE_ENTITY: &str = "metrics/count/guarantee";
+const GUARANTEE_ENTITY: &str = "metrics/count/guarantee";
 
 /// The entity a figure is plotted in, and its series' name there: `metrics/<unit>/<group>`
 /// and the rest of its path (`metrics/count/step/hits_by_partition/A` is series
@@ -44,8 +44,8 @@ pub fn series_of(path: &str) -> (String, String) {
 /// would make two equal recordings compare different). So each set of figures a kind of
 /// step records has its own entity, `<entity>/<op>` ([`series_of`]'s entity and the step's
 /// op), or `<op>_2`, `<op>_3` for the next sets of that op (a drag that was refused records
-/// other figures than one that ran, and one whose collision took more rounds counts each). Each is plotted as points, a series by name, in the
-/// same colour wherever it appears.
+/// other figures than one that ran, and one whose collision took more rounds counts each).
+/// Each is plotted as points, a series by name, in the same colour wherever it appears.
 #[derive(Debug, Default)]
 pub struct Series {
     /// The sets of figures of each entity and op, in the order first met.
@@ -83,8 +83,10 @@ impl Series {
             }
         };
         let set = &sets[k];
+        // The set's names are the figures' (the same sorted lists), so every one is found.
+        let by_name: BTreeMap<&str, f64> = figures.iter().map(|(name, v)| (name.as_str(), *v)).collect();
         let values = (set.names.iter())
-            .map(|n| figures.iter().find(|(name, _)| name == n).map_or(f64::NAN, |f| f.1))
+            .map(|n| by_name.get(n.as_str()).copied().unwrap_or(f64::NAN))
             .collect();
         let path = match k {
             0 => format!("{entity}/{op}"),
