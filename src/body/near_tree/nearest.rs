@@ -35,34 +35,37 @@ impl NearTree {
             return None;
         }
         let mut fell = None;
+        // One stack for every descent of the query (not cleared between them: a descent
+        // reads only what it pushed).
+        let mut stack = [(0u32, 0f32); NEAREST_STACK];
         let start =
             start.filter(|&n| n != 1 && n < 2 * self.pairs.len() && self.node(n).count > 0 && !self.up.is_empty());
         let Some(mut below) = start else {
-            self.descend(q, 0, &mut bound, &mut fell, &mut leaf);
+            self.descend(q, 0, (&mut bound, &mut fell), &mut stack, &mut leaf);
             return fell;
         };
-        self.descend(q, below, &mut bound, &mut fell, &mut leaf);
+        self.descend(q, below, (&mut bound, &mut fell), &mut stack, &mut leaf);
         while below > 1 {
             let other = below ^ 1;
             if self.node(other).distance_squared(q) < bound {
-                self.descend(q, other, &mut bound, &mut fell, &mut leaf);
+                self.descend(q, other, (&mut bound, &mut fell), &mut stack, &mut leaf);
             }
             below = self.up[below >> 1] as usize;
         }
         fell
     }
 
-    /// The depth-first descent of [`Self::nearest`] through the subtree at binary node `at`.
+    /// The depth-first descent of [`Self::nearest`] through the subtree at binary node `at`,
+    /// its deferred nodes on `stack`.
     #[inline(always)]
     fn descend(
         &self,
         q: Vec3A,
         mut at: usize,
-        bound: &mut f32,
-        fell: &mut Option<usize>,
+        (bound, fell): (&mut f32, &mut Option<usize>),
+        stack: &mut [(u32, f32); NEAREST_STACK],
         leaf: &mut impl FnMut(u32, &[DVec3; 3]) -> Option<f32>,
     ) {
-        let mut stack = [(0u32, 0f32); NEAREST_STACK];
         let mut depth = 0usize;
         loop {
             let node = *self.node(at);
