@@ -46,6 +46,7 @@ mod parts;
 mod patterns;
 pub mod recording;
 pub mod replay;
+pub mod rrd_index;
 mod sculpt;
 mod series;
 pub mod target;

@@ -6,6 +6,7 @@ use std::sync::{Arc, Mutex};
 
 use rerun::{RecordingStream, RecordingStreamBuilder, RecordingStreamResult};
 
+use super::rrd_index::unindexed_sink;
 use super::{APP_ID, default_blueprint};
 
 /// A recording's destination.
@@ -72,10 +73,13 @@ pub fn open_recording_kept(
         .with_blueprint(default_blueprint());
     let kept = match (target, keep) {
         (RecordingTarget::File(_), _) | (_, None) => None,
-        (_, Some(file)) => Some(KeptFile::new(rerun::sink::FileSink::new(file)?)),
+        (_, Some(file)) => Some(KeptFile::new(unindexed_sink(file)?)),
     };
     let rec = match (target, &kept) {
-        (RecordingTarget::File(path), _) => builder.save(path)?,
+        (RecordingTarget::File(path), _) => {
+            let sink: Box<dyn rerun::sink::LogSink> = Box::new(unindexed_sink(path)?);
+            builder.set_sinks(vec![sink])?
+        }
         (RecordingTarget::Connect(url), None) => builder.connect_grpc_opts(url.as_str())?,
         (RecordingTarget::Connect(url), Some(file)) => {
             let rerun::external::re_uri::RedapUri::Proxy(uri) = url.parse()? else {

@@ -37,6 +37,7 @@ mod refusals;
 mod remote;
 mod replay;
 mod resample;
+mod rrd_index;
 mod sculpt;
 mod sections;
 mod session_errors;

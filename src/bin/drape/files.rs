@@ -22,6 +22,24 @@ pub(crate) fn partial_path(path: &Path) -> PathBuf {
     path.with_file_name(name)
 }
 
+/// Puts the recording written at `partial` (closed, without its index) at `path` with Rerun's
+/// index ([`drape::viz::rrd_index`]). Where indexing fails, the recording still takes its
+/// name without the index (the data are complete; `rerun rrd optimize` adds one), with a
+/// warning.
+pub(crate) fn finish_recording(partial: &Path, path: &Path) -> crate::failure::Result<()> {
+    use crate::failure::Classify as _;
+    if let Err(e) = drape::viz::rrd_index::index_into(partial, path) {
+        eprintln!(
+            "warning: {e}; {} keeps the recording without its index (`rerun rrd optimize` adds one)",
+            path.display()
+        );
+        std::fs::rename(partial, path)
+            .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
+            .internal()?;
+    }
+    Ok(())
+}
+
 pub(crate) fn create_parent(path: &Path) -> anyhow::Result<()> {
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;

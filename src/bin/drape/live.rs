@@ -142,7 +142,7 @@ impl LiveRecording {
         } = self;
         match kept.map(|k| k.close(&rec, std::time::Duration::from_secs(60))) {
             None if serving.is_none() => {
-                drop(rec); // closes the file sink (writes its footer)
+                drop(rec); // closes the file sink
                 return rename(file);
             }
             None | Some(ViewerFlush::Delivered) => {}
@@ -210,8 +210,6 @@ fn rename(file: Option<(PathBuf, PathBuf)>) -> Result<Option<PathBuf>> {
     let Some((partial, path)) = file else {
         return Ok(None);
     };
-    std::fs::rename(&partial, &path)
-        .with_context(|| format!("cannot rename {} to {}", partial.display(), path.display()))
-        .internal()?;
+    crate::files::finish_recording(&partial, &path)?;
     Ok(Some(path))
 }

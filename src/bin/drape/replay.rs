@@ -136,9 +136,7 @@ fn write(dir: &Path) -> Result<ExitCode> {
         .context("cannot open the recording")
         .internal()?;
     run_into(&session, rec)?;
-    std::fs::rename(&partial, &rrd)
-        .with_context(|| format!("cannot rename {}", partial.display()))
-        .internal()?;
+    crate::files::finish_recording(&partial, &rrd)?;
     let data = read_rrd(&rrd).internal()?;
     let bytes = std::fs::metadata(&rrd).map(|m| m.len()).unwrap_or(0);
     let manifest = json!({

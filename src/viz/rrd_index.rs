@@ -1,0 +1,116 @@
+//! A recording file's index, written when the recording is closed.
+//!
+//! Rerun ends an `.rrd` file with a footer: a manifest of every chunk (where it lies in the
+//! file, its entity, its time ranges and components), which gives the viewer random access
+//! and which `rerun rrd verify` requires. Rerun's file sink builds it as it writes: for each
+//! chunk it reads the encoded chunk back and pads the manifest's columns. That is work per
+//! chunk, on the writer's thread, that every step waited for (a step ends when its chunks
+//! are in the file): on one core 13% of a drag at resolution 6 and 6% at resolution 24.
+//!
+//! So drape's recordings are written without it during the session ([`unindexed_sink`]),
+//! and [`index_into`] writes the whole file again with its footer when the session is over:
+//! the same messages in the same order (Rerun's decoder reads them back, its encoder writes
+//! them with the footer it builds), into a file beside the final one that then takes its
+//! name. It costs about as much as decoding and encoding the file once (0.26 s for a 12 MB
+//! recording, 0.65 s for 74 MB, one core), paid once, after the last step.
+
+use std::io::{BufReader, BufWriter, Write as _};
+use std::path::{Path, PathBuf};
+
+use rerun::external::re_build_info::CrateVersion;
+use rerun::external::re_log_encoding::{
+    DecoderApp, Encoder, EncodingOptions, FileSink, FileSinkError, FileSinkOptions,
+};
+use rerun::log::LogMsg;
+
+/// Why a recording could not be indexed (the file without its index is left where it was).
+#[derive(Debug, thiserror::Error)]
+pub enum IndexError {
+    /// A file could not be read, written or renamed.
+    #[error("{}: cannot {action}: {source}", path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// What was attempted.
+        action: &'static str,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The recording did not decode, or did not encode again.
+    #[error("{}: {detail}", path.display())]
+    Rerun {
+        /// The file.
+        path: PathBuf,
+        /// Rerun's message.
+        detail: String,
+    },
+}
+
+/// A file sink that writes the recording at `path` without Rerun's footer (see the module's
+/// notes); [`index_into`] adds it once the sink is closed.
+pub fn unindexed_sink(path: &Path) -> Result<FileSink, FileSinkError> {
+    FileSink::with_options(path, FileSinkOptions { write_footer: false })
+}
+
+/// What [`index_into`] wrote.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Indexed {
+    /// Messages copied.
+    pub messages: usize,
+    /// The indexed file's size, bytes.
+    pub bytes: u64,
+}
+
+/// Writes the recording `from` (closed, written without its footer) to `to` with Rerun's
+/// footer, message by message (never the whole recording in memory), through a file beside
+/// `to` that then takes its name; `from` is removed once `to` is in place. On an error `from`
+/// is left as it was and `to` untouched.
+pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, IndexError> {
+    let io = |path: &Path, action: &'static str| {
+        let path = path.to_path_buf();
+        move |source| IndexError::Io { path, action, source }
+    };
+    let rerun = |path: &Path| {
+        let path = path.to_path_buf();
+        move |e: &dyn std::fmt::Display| IndexError::Rerun {
+            path,
+            detail: e.to_string(),
+        }
+    };
+    let mut next = to.as_os_str().to_owned();
+    next.push(".indexing");
+    let next = PathBuf::from(next);
+    let reader = BufReader::new(std::fs::File::open(from).map_err(io(from, "read"))?);
+    let writer = BufWriter::new(std::fs::File::create(&next).map_err(io(&next, "create"))?);
+    let written = (|| {
+        let decoder = DecoderApp::decode_eager(reader).map_err(|e| rerun(from)(&e))?;
+        let mut encoder = Encoder::new_eager(CrateVersion::LOCAL, EncodingOptions::PROTOBUF_COMPRESSED, writer)
+            .map_err(|e| rerun(&next)(&e))?;
+        let mut messages = 0;
+        for msg in decoder {
+            let msg: LogMsg = msg.map_err(|e| rerun(from)(&e))?;
+            encoder.append(&msg).map_err(|e| rerun(&next)(&e))?;
+            messages += 1;
+        }
+        encoder.finish().map_err(|e| rerun(&next)(&e))?;
+        let mut writer = encoder.into_inner().map_err(|e| rerun(&next)(&e))?;
+        writer.flush().map_err(io(&next, "write"))?;
+        let file = writer.into_inner().map_err(|e| io(&next, "write")(e.into_error()))?;
+        file.sync_all().map_err(io(&next, "write"))?;
+        Ok(messages)
+    })();
+    let messages = match written {
+        Ok(n) => n,
+        Err(e) => {
+            std::fs::remove_file(&next).ok();
+            return Err(e);
+        }
+    };
+    let bytes = std::fs::metadata(&next).map_err(io(&next, "read"))?.len();
+    std::fs::rename(&next, to).map_err(io(&next, "rename"))?;
+    if from != to {
+        std::fs::remove_file(from).map_err(io(from, "remove"))?;
+    }
+    Ok(Indexed { messages, bytes })
+}
