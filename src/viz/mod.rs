@@ -49,6 +49,7 @@ pub mod replay;
 pub mod rrd_index;
 mod sculpt;
 mod series;
+pub mod session_file;
 pub mod target;
 
 pub use blueprint::{check_garment_blueprint, default_blueprint, layered_blueprint, nurbs_blueprint, sculpt_blueprint};

@@ -3,24 +3,22 @@
 //! Rerun ends an `.rrd` file with a footer: a manifest of every chunk (where it lies in the
 //! file, its entity, its time ranges and components), which gives the viewer random access
 //! and which `rerun rrd verify` requires. Rerun's file sink builds it as it writes: for each
-//! chunk it reads the encoded chunk back and pads the manifest's columns. That is work per
-//! chunk, on the writer's thread, that every step waited for (a step ends when its chunks
-//! are in the file): on one core 13% of a drag at resolution 6 and 6% at resolution 24.
+//! chunk it reads the encoded chunk back and pads the manifest's columns, on its writer's
+//! thread, and compresses the chunk (LZ4). That is work per chunk that every step waited for
+//! (a step ends when its chunks are in the file).
 //!
-//! So drape's recordings are written without it during the session ([`unindexed_sink`]),
-//! and [`index_into`] writes the whole file again with its footer when the session is over:
-//! the same messages in the same order (Rerun's decoder reads them back, its encoder writes
-//! them with the footer it builds), into a file beside the final one that then takes its
-//! name. It costs about as much as decoding and encoding the file once (0.26 s for a 12 MB
-//! recording, 0.65 s for 74 MB, one core), paid once, after the last step.
+//! So a session writes its file uncompressed and without the footer
+//! ([`super::session_file::SessionFile`]), and [`index_into`] writes the whole file again,
+//! compressed and with its footer, when the session is over: the same messages in the same
+//! order (Rerun's decoder reads them back, its encoder writes them with the footer it builds),
+//! into a file beside the final one that then takes its name. It costs about one decode and
+//! one encode of the file, once, after the last step.
 
 use std::io::{BufReader, BufWriter, Write as _};
 use std::path::{Path, PathBuf};
 
 use rerun::external::re_build_info::CrateVersion;
-use rerun::external::re_log_encoding::{
-    DecoderApp, Encoder, EncodingOptions, FileSink, FileSinkError, FileSinkOptions,
-};
+use rerun::external::re_log_encoding::{DecoderApp, Encoder, EncodingOptions};
 use rerun::log::LogMsg;
 
 /// Why a recording could not be indexed (the file without its index is left where it was).
@@ -47,12 +45,6 @@ pub enum IndexError {
     },
 }
 
-/// A file sink that writes the recording at `path` without Rerun's footer (see the module's
-/// notes); [`index_into`] adds it once the sink is closed.
-pub fn unindexed_sink(path: &Path) -> Result<FileSink, FileSinkError> {
-    FileSink::with_options(path, FileSinkOptions { write_footer: false })
-}
-
 /// What [`index_into`] wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Indexed {
@@ -62,8 +54,8 @@ pub struct Indexed {
     pub bytes: u64,
 }
 
-/// Writes the recording `from` (closed, written without its footer) to `to` with Rerun's
-/// footer, message by message (never the whole recording in memory), through a file beside
+/// Writes the recording `from` (closed: written by a [`super::session_file::SessionFile`], or
+/// any recording) to `to`, compressed and with Rerun's footer, message by message (never the whole recording in memory), through a file beside
 /// `to` that then takes its name; `from` is removed once `to` is in place. On an error `from`
 /// is left as it was and `to` untouched.
 pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, IndexError> {

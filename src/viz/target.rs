@@ -6,7 +6,7 @@ use std::sync::{Arc, Mutex};
 
 use rerun::{RecordingStream, RecordingStreamBuilder, RecordingStreamResult};
 
-use super::rrd_index::unindexed_sink;
+use super::session_file::SessionFile;
 use super::{APP_ID, default_blueprint};
 
 /// A recording's destination.
@@ -73,11 +73,11 @@ pub fn open_recording_kept(
         .with_blueprint(default_blueprint());
     let kept = match (target, keep) {
         (RecordingTarget::File(_), _) | (_, None) => None,
-        (_, Some(file)) => Some(KeptFile::new(unindexed_sink(file)?)),
+        (_, Some(file)) => Some(KeptFile::new(SessionFile::create(file)?)),
     };
     let rec = match (target, &kept) {
         (RecordingTarget::File(path), _) => {
-            let sink: Box<dyn rerun::sink::LogSink> = Box::new(unindexed_sink(path)?);
+            let sink: Box<dyn rerun::sink::LogSink> = Box::new(SessionFile::create(path)?);
             builder.set_sinks(vec![sink])?
         }
         (RecordingTarget::Connect(url), None) => builder.connect_grpc_opts(url.as_str())?,
@@ -108,7 +108,7 @@ pub fn open_recording_kept(
 /// viewer's, closed on its own so that a viewer that went away (whose sink would wait for it
 /// for good when dropped) cannot keep the file from being finished.
 #[derive(Clone)]
-pub struct KeptFile(Arc<Mutex<Option<rerun::sink::FileSink>>>);
+pub struct KeptFile(Arc<Mutex<Option<SessionFile>>>);
 
 /// How closing a [`KeptFile`] went for the viewer (the file is closed either way).
 #[derive(Debug)]
@@ -122,7 +122,7 @@ pub enum ViewerFlush {
 }
 
 impl KeptFile {
-    fn new(file: rerun::sink::FileSink) -> Self {
+    fn new(file: SessionFile) -> Self {
         Self(Arc::new(Mutex::new(Some(file))))
     }
 
@@ -137,8 +137,7 @@ impl KeptFile {
         };
         let file = self.0.lock().ok().and_then(|mut slot| slot.take());
         if let Some(file) = file {
-            rerun::sink::LogSink::flush_blocking(&file, timeout).ok();
-            drop(file); // writes the footer
+            file.close().ok();
         }
         outcome
     }
@@ -149,7 +148,7 @@ impl rerun::sink::LogSink for KeptFile {
         if let Ok(slot) = self.0.lock()
             && let Some(file) = slot.as_ref()
         {
-            file.send(msg);
+            rerun::sink::LogSink::send(file, msg);
         }
     }
 

@@ -1,6 +1,7 @@
-//! A recording file is written without Rerun's index during the session and indexed when it
-//! is closed (`drape::viz::rrd_index`). The truth is Rerun's own decoder: it reads the
-//! footer's manifests back, and the messages of both files.
+//! A recording file is written uncompressed and without Rerun's index during the session
+//! (`drape::viz::session_file`) and compressed and indexed when it is closed
+//! (`drape::viz::rrd_index`). The truth is Rerun's own decoder: it reads the footer's
+//! manifests back, and the messages of both files.
 
 use std::path::{Path, PathBuf};
 
