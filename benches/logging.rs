@@ -5,9 +5,12 @@
 //! logged before its recordings sent chunks themselves), and a chunk built by the caller and
 //! sent past the batcher (`send_chunk`, how drape's `OrderedRecording` logs now). Each time
 //! is the whole cost of a call on the core: building, encoding, compressing and writing the
-//! chunk, up to the end of a blocking flush. It prints us per chunk and ns per byte of
-//! positions, medians of 5 runs; on one core the per-chunk part is what makes a garment
-//! mesh logged as hundreds of small entities slower than as a few large ones.
+//! chunk, up to the end of a blocking flush. Sent chunks are timed twice: into Rerun's file
+//! sink (its writer thread compresses each chunk and adds it to the file's index) and into
+//! the file a drape session writes (`viz::session_file`: uncompressed, unindexed, compressed
+//! and indexed once when closed). It prints us per chunk and ns per byte of positions,
+//! medians of 5 runs; on one core the per-chunk part is what makes a garment mesh logged as
+//! hundreds of small entities slower than as a few large ones.
 
 use std::time::Instant;
 
@@ -44,20 +47,30 @@ fn median(mut v: Vec<f64>) -> f64 {
 fn main() {
     let dir = std::env::temp_dir().join(format!("drape-bench-logging-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp folder");
-    let file = dir.join("bench.rrd");
-    let rec = drape::viz::open_file_recording(&file, "bench", drape::viz::default_blueprint()).expect("recording");
+    let rec = drape::viz::open_file_recording(&dir.join("rerun.rrd"), "bench", drape::viz::default_blueprint())
+        .expect("recording");
+    let session = drape::viz::open_recording(
+        &drape::viz::RecordingTarget::File(dir.join("session.rrd")),
+        "bench-session",
+    )
+    .expect("recording");
     rec.set_time_sequence("step", 1);
-    println!("| points per chunk | chunks | log + flush, us/chunk | sent chunk, us/chunk | sent chunk, ns/byte |");
-    println!("|---:|---:|---:|---:|---:|");
+    session.set_time_sequence("step", 1);
+    println!(
+        "| points per chunk | chunks | log + flush, us/chunk | sent chunk, us/chunk | sent chunk, ns/byte | sent into a session's file, us/chunk | ns/byte |"
+    );
+    println!("|---:|---:|---:|---:|---:|---:|---:|");
     for (size, n) in [(10usize, 1000usize), (1_000, 400), (10_000, 100), (100_000, 20)] {
         let batched = median((0..5).map(|_| per_call_us(&rec, n, size, true)).collect());
         let sent = median((0..5).map(|_| per_call_us(&rec, n, size, false)).collect());
+        let own = median((0..5).map(|_| per_call_us(&session, n, size, false)).collect());
         let bytes = (12 * size) as f64;
         println!(
-            "| {size} | {n} | {batched:.1} | {sent:.1} | {:.2} |",
-            sent * 1e3 / bytes
+            "| {size} | {n} | {batched:.1} | {sent:.1} | {:.2} | {own:.1} | {:.2} |",
+            sent * 1e3 / bytes,
+            own * 1e3 / bytes
         );
     }
-    drop(rec);
+    drop((rec, session));
     std::fs::remove_dir_all(&dir).ok();
 }
