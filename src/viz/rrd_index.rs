@@ -21,29 +21,7 @@ use rerun::external::re_build_info::CrateVersion;
 use rerun::external::re_log_encoding::{DecoderApp, Encoder, EncodingOptions};
 use rerun::log::LogMsg;
 
-/// Why a recording could not be indexed (the file without its index is left where it was).
-#[derive(Debug, thiserror::Error)]
-pub enum IndexError {
-    /// A file could not be read, written or renamed.
-    #[error("{}: cannot {action}: {source}", path.display())]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// What was attempted.
-        action: &'static str,
-        /// The cause.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The recording did not decode, or did not encode again.
-    #[error("{}: {detail}", path.display())]
-    Rerun {
-        /// The file.
-        path: PathBuf,
-        /// Rerun's message.
-        detail: String,
-    },
-}
+use crate::session::SinkError;
 
 /// What [`index_into`] wrote.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,17 +35,17 @@ pub struct Indexed {
 /// Writes the recording `from` (closed: written by a [`super::session_file::SessionFile`], or
 /// any recording) to `to`, compressed and with Rerun's footer, message by message (never the whole recording in memory), through a file beside
 /// `to` that then takes its name; `from` is removed once `to` is in place. On an error `from`
-/// is left as it was and `to` untouched.
-pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, IndexError> {
+/// is left as it was and `to` untouched (a file or Rerun's decoder or encoder failed).
+pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, SinkError> {
     let io = |path: &Path, action: &'static str| {
         let path = path.to_path_buf();
-        move |source| IndexError::Io { path, action, source }
+        move |source| SinkError::Io { path, action, source }
     };
     let rerun = |path: &Path| {
         let path = path.to_path_buf();
-        move |e: &dyn std::fmt::Display| IndexError::Rerun {
-            path,
-            detail: e.to_string(),
+        move |e: &dyn std::fmt::Display| SinkError::Backend {
+            what: "rerun recording",
+            source: format!("{}: {e}", path.display()).into(),
         }
     };
     let mut next = to.as_os_str().to_owned();
