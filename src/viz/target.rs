@@ -35,7 +35,9 @@ fn batcher() -> rerun::log::ChunkBatcherConfig {
 
 /// Opens a recording with the default blueprint, no wall-clock `log_time`, a recording id
 /// derived from `name` and chunks that follow the log calls, so the same session logs the
-/// same data.
+/// same data. A file (the target, or the copy kept beside a viewer) is a session's file
+/// ([`super::session_file::SessionFile`]: uncompressed, without Rerun's index): once the
+/// recording is closed, [`super::rrd_index::index_into`] compresses and indexes it.
 pub fn open_recording(target: &RecordingTarget, name: &str) -> RecordingStreamResult<RecordingStream> {
     open_recording_kept(target, name, None).map(|(rec, _)| rec)
 }
