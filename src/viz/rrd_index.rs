@@ -23,20 +23,12 @@ use rerun::log::LogMsg;
 
 use crate::session::SinkError;
 
-/// What [`index_into`] wrote.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Indexed {
-    /// Messages copied.
-    pub messages: usize,
-    /// The indexed file's size, bytes.
-    pub bytes: u64,
-}
-
 /// Writes the recording `from` (closed: written by a [`super::session_file::SessionFile`], or
-/// any recording) to `to`, compressed and with Rerun's footer, message by message (never the whole recording in memory), through a file beside
-/// `to` that then takes its name; `from` is removed once `to` is in place. On an error `from`
-/// is left as it was and `to` untouched (a file or Rerun's decoder or encoder failed).
-pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, SinkError> {
+/// any recording) to `to`, compressed and with Rerun's footer, message by message (never the
+/// whole recording in memory), through a file beside `to` that then takes its name; `from`
+/// is removed once `to` is in place. On an error (a file, or Rerun's decoder or encoder,
+/// failed) `from` is left as it was and `to` untouched.
+pub fn index_into(from: &Path, to: &Path) -> Result<(), SinkError> {
     let io = |path: &Path, action: &'static str| {
         let path = path.to_path_buf();
         move |source| SinkError::Io { path, action, source }
@@ -57,30 +49,23 @@ pub fn index_into(from: &Path, to: &Path) -> Result<Indexed, SinkError> {
         let decoder = DecoderApp::decode_eager(reader).map_err(|e| rerun(from)(&e))?;
         let mut encoder = Encoder::new_eager(CrateVersion::LOCAL, EncodingOptions::PROTOBUF_COMPRESSED, writer)
             .map_err(|e| rerun(&next)(&e))?;
-        let mut messages = 0;
         for msg in decoder {
             let msg: LogMsg = msg.map_err(|e| rerun(from)(&e))?;
             encoder.append(&msg).map_err(|e| rerun(&next)(&e))?;
-            messages += 1;
         }
         encoder.finish().map_err(|e| rerun(&next)(&e))?;
         let mut writer = encoder.into_inner().map_err(|e| rerun(&next)(&e))?;
         writer.flush().map_err(io(&next, "write"))?;
         let file = writer.into_inner().map_err(|e| io(&next, "write")(e.into_error()))?;
-        file.sync_all().map_err(io(&next, "write"))?;
-        Ok(messages)
+        file.sync_all().map_err(io(&next, "write"))
     })();
-    let messages = match written {
-        Ok(n) => n,
-        Err(e) => {
-            std::fs::remove_file(&next).ok();
-            return Err(e);
-        }
-    };
-    let bytes = std::fs::metadata(&next).map_err(io(&next, "read"))?.len();
+    if let Err(e) = written {
+        std::fs::remove_file(&next).ok();
+        return Err(e);
+    }
     std::fs::rename(&next, to).map_err(io(&next, "rename"))?;
     if from != to {
         std::fs::remove_file(from).map_err(io(from, "remove"))?;
     }
-    Ok(Indexed { messages, bytes })
+    Ok(())
 }

@@ -45,11 +45,6 @@ impl SessionFile {
         })
     }
 
-    /// The file's path.
-    pub fn path(&self) -> &Path {
-        &self.path
-    }
-
     /// Writes what is buffered and closes the file; what is sent afterwards is dropped.
     /// Returns the first write that failed, if any.
     pub fn close(&self) -> Result<(), SinkFlushError> {
@@ -92,6 +87,8 @@ impl LogSink for SessionFile {
         }
     }
 
+    /// Writes what is buffered to the file, at once (no writer thread to wait for, so no
+    /// timeout), and returns the first failed write, if any.
     fn flush_blocking(&self, _timeout: std::time::Duration) -> Result<(), SinkFlushError> {
         let result = match self.encoder.lock() {
             Ok(mut slot) => match slot.as_mut() {

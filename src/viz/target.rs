@@ -2,7 +2,7 @@
 //! web viewer served beside it if asked), or memory.
 
 use std::path::{Path, PathBuf};
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use rerun::{RecordingStream, RecordingStreamBuilder, RecordingStreamResult};
 
@@ -110,7 +110,7 @@ pub fn open_recording_kept(
 /// viewer's, closed on its own so that a viewer that went away (whose sink would wait for it
 /// for good when dropped) cannot keep the file from being finished.
 #[derive(Clone)]
-pub struct KeptFile(Arc<Mutex<Option<SessionFile>>>);
+pub struct KeptFile(Arc<SessionFile>);
 
 /// How closing a [`KeptFile`] went for the viewer (the file is closed either way).
 #[derive(Debug)]
@@ -125,43 +125,34 @@ pub enum ViewerFlush {
 
 impl KeptFile {
     fn new(file: SessionFile) -> Self {
-        Self(Arc::new(Mutex::new(Some(file))))
+        Self(Arc::new(file))
     }
 
     /// Flushes the stream (every message logged so far reaches this sink, in order, before
-    /// the flush completes or fails at the viewer's sink), then writes the file's end and
-    /// closes it. What is logged afterwards goes to the viewer only.
-    pub fn close(&self, rec: &RecordingStream, timeout: std::time::Duration) -> ViewerFlush {
+    /// the flush completes or fails at the viewer's sink), then closes the file. What is
+    /// logged afterwards goes to the viewer only. Returns how the viewer fared, and the
+    /// file's first failed write, if any.
+    pub fn close(
+        &self,
+        rec: &RecordingStream,
+        timeout: std::time::Duration,
+    ) -> (ViewerFlush, Result<(), rerun::sink::SinkFlushError>) {
         let outcome = match rec.flush_with_timeout(timeout) {
             Ok(()) => ViewerFlush::Delivered,
             Err(rerun::sink::SinkFlushError::Timeout) => ViewerFlush::TimedOut,
             Err(e) => ViewerFlush::Failed(e),
         };
-        let file = self.0.lock().ok().and_then(|mut slot| slot.take());
-        if let Some(file) = file {
-            file.close().ok();
-        }
-        outcome
+        (outcome, self.0.close())
     }
 }
 
 impl rerun::sink::LogSink for KeptFile {
     fn send(&self, msg: rerun::log::LogMsg) {
-        if let Ok(slot) = self.0.lock()
-            && let Some(file) = slot.as_ref()
-        {
-            rerun::sink::LogSink::send(file, msg);
-        }
+        rerun::sink::LogSink::send(&*self.0, msg);
     }
 
     fn flush_blocking(&self, timeout: std::time::Duration) -> Result<(), rerun::sink::SinkFlushError> {
-        match self.0.lock() {
-            Ok(slot) => match slot.as_ref() {
-                Some(file) => rerun::sink::LogSink::flush_blocking(file, timeout),
-                None => Ok(()),
-            },
-            Err(_) => Err(rerun::sink::SinkFlushError::failed("file sink poisoned")),
-        }
+        rerun::sink::LogSink::flush_blocking(&*self.0, timeout)
     }
 
     fn defers_finalization_to_shutdown(&self) -> bool {

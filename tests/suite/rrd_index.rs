@@ -65,7 +65,7 @@ fn a_recording_is_indexed_when_closed_with_every_chunk_and_the_same_messages() {
     assert!(data >= 14, "{data} data messages");
     assert_eq!(listed, 0, "written without an index during the session");
     let before = read_rrd(&partial).expect("the partial file reads");
-    let indexed = index_into(&partial, &done).expect("indexed");
+    index_into(&partial, &done).expect("indexed");
     assert!(!partial.exists(), "the partial file is removed");
     assert_eq!(
         decoded(&done),
@@ -73,7 +73,6 @@ fn a_recording_is_indexed_when_closed_with_every_chunk_and_the_same_messages() {
         "every data chunk is in the footer's manifest"
     );
     assert_eq!(read_rrd(&done).expect("the indexed file reads"), before);
-    assert_eq!(indexed.bytes, std::fs::metadata(&done).expect("size").len());
     std::fs::remove_dir_all(&dir).ok();
 }
 

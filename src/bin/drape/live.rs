@@ -140,7 +140,15 @@ impl LiveRecording {
             serving,
             _web,
         } = self;
-        match kept.map(|k| k.close(&rec, std::time::Duration::from_secs(60))) {
+        let closed = kept.map(|k| k.close(&rec, std::time::Duration::from_secs(60)));
+        let (viewer, written) = match closed {
+            Some((viewer, written)) => (Some(viewer), written),
+            None => (None, Ok(())),
+        };
+        written
+            .map_err(|e| anyhow::anyhow!("the recording's file could not be written: {e}"))
+            .internal()?;
+        match viewer {
             None if serving.is_none() => {
                 drop(rec); // closes the file sink
                 return rename(file);
