@@ -47,6 +47,9 @@ pub fn convexify(points: &[DVec2]) -> (Vec<usize>, ConvexifyReport) {
     let ext = extremes(points);
     let mut ordered = ext;
     ordered.sort_unstable();
+    // Two extremes can be one point (the rightmost is also the lowest): the scan may go on
+    // until only the distinct extremes are left.
+    let distinct = 1 + ordered.windows(2).filter(|w| w[0] != w[1]).count();
     // Orientation from three extremes, taken in ring order.
     let [a, b, c] = [ordered[0], ordered[1], ordered[2]].map(|i| points[i]);
     let orientation = match turn(a, b, c) {
@@ -76,7 +79,7 @@ pub fn convexify(points: &[DVec2]) -> (Vec<usize>, ConvexifyReport) {
         let removed = m - next.len();
         report.removed += removed;
         kept = next;
-        if removed == 0 || kept.len() <= 4 {
+        if removed == 0 || kept.len() <= distinct {
             break;
         }
     }
@@ -86,16 +89,7 @@ pub fn convexify(points: &[DVec2]) -> (Vec<usize>, ConvexifyReport) {
     let expected: Vec<usize> = (0..n).filter(|&i| on_hull(i)).collect();
     let mut sorted = kept.clone();
     sorted.sort_unstable();
-    let convex = (0..kept.len()).all(|k| {
-        let m = kept.len();
-        turn(
-            points[kept[(k + m - 1) % m]],
-            points[kept[k]],
-            points[kept[(k + 1) % m]],
-        ) * orientation
-            >= 0.0
-    });
-    if sorted != expected || !convex {
+    if sorted != expected || !turns_once_convexly(points, &kept, orientation) {
         // The hull's own cyclic order, turned like the ring and starting at its lowest
         // index: for a simple ring that is ring order; a self-crossing ring has none.
         let mut ordered: Vec<usize> = hull.iter().filter_map(|h| (0..n).find(|&i| points[i] == *h)).collect();
@@ -110,6 +104,29 @@ pub fn convexify(points: &[DVec2]) -> (Vec<usize>, ConvexifyReport) {
         kept = ordered;
     }
     (kept, report)
+}
+
+/// Whether the closed polygon `points[kept]` turns one way only (with `orientation`'s sign,
+/// or not at all) and goes round once: its turning angles sum to one full turn. Turning one
+/// way alone is not enough: a ring that winds twice round its middle (a pentagram-like ring)
+/// turns one way at every point and still crosses itself.
+fn turns_once_convexly(points: &[DVec2], kept: &[usize], orientation: f64) -> bool {
+    let m = kept.len();
+    let mut total = 0.0;
+    for k in 0..m {
+        let (a, b, c) = (
+            points[kept[(k + m - 1) % m]],
+            points[kept[k]],
+            points[kept[(k + 1) % m]],
+        );
+        let (u, v) = (b - a, c - b);
+        if u.perp_dot(v) * orientation < 0.0 {
+            return false;
+        }
+        total += u.perp_dot(v).atan2(u.dot(v));
+    }
+    // One turn is 2 pi; a ring that goes round twice turns 4 pi.
+    total.abs() < 3.0 * std::f64::consts::PI
 }
 
 /// A convexified ring with its extremes located in it.

@@ -401,3 +401,14 @@ pub fn rerun_cli() -> std::process::Command {
     );
     std::process::Command::new(cli)
 }
+
+/// Cases for a property test: `default` (what keeps the suite quick), or `PROPTEST_CASES`
+/// when set, for a long sweep (`PROPTEST_CASES=100000 cargo test --release convexify`).
+/// Proptest reads that variable only for configurations that leave `cases` at its default,
+/// which every property test here sets.
+pub fn proptest_cases(default: u32) -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}

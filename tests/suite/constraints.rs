@@ -155,7 +155,7 @@ fn the_knocks_once_left_unrestored_are_restored() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(CASES))]
+    #![proptest_config(ProptestConfig::with_cases(super::common::proptest_cases(CASES)))]
 
     /// Coplanarity, symmetry and the design region of a ring: its anchors knocked off the
     /// plane, asymmetric and far out (up to 5 cm); solving the ring puts them back.

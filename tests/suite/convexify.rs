@@ -100,7 +100,7 @@ fn is_simple(p: &[DVec2]) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(ProptestConfig::with_cases(super::common::proptest_cases(400)))]
 
     #[test]
     fn convexify_gives_the_hull_in_ring_order_keeping_the_extremes(points in ring()) {
@@ -161,4 +161,50 @@ fn a_star_shaped_notch_is_removed_by_the_scan_itself() {
     assert_eq!(kept, vec![0, 1, 2, 6]);
     assert!(!report.fallback);
     assert_eq!(report.removed, 3);
+}
+
+#[test]
+fn a_ring_that_winds_twice_round_its_middle_gets_its_hull() {
+    // Six points all on their hull, in a ring order that goes round twice: every turn has
+    // the same sign, yet the ring crosses itself. Its convexification is the hull, whose
+    // area the test's own gift wrapping gives.
+    let pts = [
+        (0.4, 0.45049457771160073),
+        (-1.2343235602669267, 3.5377749165655707),
+        (-0.9612376693028273, 2.002217057951647),
+        (-1.289522422278717, 3.8679419074008865),
+        (-1.0161705728142916, 2.2559538251649336),
+        (-0.022563322595030185, -0.9780581135894246),
+    ]
+    .map(|(x, y)| DVec2::new(x, y));
+    assert!(!is_simple(&pts));
+    let (kept, report) = convexify(&pts);
+    let kept: Vec<DVec2> = kept.iter().map(|&i| pts[i]).collect();
+    assert!(is_simple(&kept), "the result crosses itself: {kept:?}");
+    assert!(report.fallback);
+    let hull = gift_wrap(&pts);
+    assert!((area(&kept).abs() - area(&hull).abs()).abs() < 1e-12);
+}
+
+#[test]
+fn a_star_shaped_ring_whose_lowest_point_is_also_its_rightmost_is_scanned_down_to_a_triangle() {
+    // Point 6 is both the rightmost and the lowest: three distinct extremes, and a hull of
+    // three points. The scan must go below four points to reach it.
+    let pts = [
+        (0.4, 0.0),
+        (0.40719119050670044, 1.249102073487793),
+        (2.4492935982947065e-17, 0.4),
+        (-0.282842712474619, 0.28284271247461906),
+        (-1.2704941506310674, -0.6121319417585702),
+        (-0.28284271247461906, -0.282842712474619),
+        (0.8963471374102787, -1.159117626274666),
+        (0.3073867594776446, -0.25595581669075756),
+    ]
+    .map(|(x, y)| DVec2::new(x, y));
+    let (kept, report) = convexify(&pts);
+    assert!(!report.fallback, "{report:?}");
+    let hull = gift_wrap(&pts);
+    assert_eq!(hull.len(), 3);
+    assert_eq!(kept.len(), 3);
+    assert!(kept.iter().all(|&i| hull.contains(&pts[i])));
 }

@@ -162,7 +162,7 @@ fn lines_of(text: &str) -> usize {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 512, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig::with_cases(super::common::proptest_cases(512)))]
 
     #[test]
     fn the_session_parser_survives_mutations_and_names_the_place(

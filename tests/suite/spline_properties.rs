@@ -55,7 +55,7 @@ fn check_c2(s: &CubicSpline, x: &[f64], y: &[f64]) -> Result<(), TestCaseError> 
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(ProptestConfig::with_cases(super::common::proptest_cases(200)))]
 
     #[test]
     fn natural_splines_interpolate_with_zero_end_curvature((x, y) in knots_and_values()) {
