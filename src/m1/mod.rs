@@ -21,7 +21,7 @@ pub mod sqrt3;
 
 pub use collide::{M0Collided, M1Collision, RefinedInput, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
-pub use patches::{M1Reuse, PatchCounts, PatchInput, collide_m1, collide_m1_patches};
+pub use patches::{M1Reuse, PatchCounts, PatchInput, PatchShape, collide_m1, collide_m1_patches};
 pub use reshape::{M1Shape, Made, subdivide};
 pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};

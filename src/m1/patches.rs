@@ -25,23 +25,33 @@ use crate::collision::{BodyIndex, CollisionOptions, Quality};
 use crate::mesh::TriMesh;
 use crate::mesh::topology::group_by_key as group;
 
-/// One refined patch of M1 in its own numbering: what its collision reads.
+/// A refined patch's shape in its own numbering: what stays the same while M1 keeps its
+/// shape ([`super::M1Shape`]), shared by the steps that keep it.
 #[derive(Clone, Debug, PartialEq)]
-pub struct PatchInput {
+pub struct PatchShape {
     /// Its vertices' numbers in M1, ascending (M0's first).
     pub vertices: Vec<u32>,
     /// Its faces' numbers in M1, ascending.
     pub faces: Vec<u32>,
-    /// Its faces in its own numbering, with its vertices' positions before the collision.
-    pub mesh: TriMesh,
+    /// Its faces in its own numbering.
+    pub triangles: Vec<[u32; 3]>,
     /// Its undirected edges, each once, sorted.
     pub edges: Vec<[u32; 2]>,
     /// How many of its vertices are M0's.
     pub base: usize,
-    /// Its M0 vertices the smoothing moved.
+    /// Its M0 vertices the smoothing moved, ascending.
     pub moved: Vec<u32>,
     /// The M0 vertex each of its vertices descends from (its own numbering).
     pub anchor: Vec<u32>,
+}
+
+/// One refined patch of M1 in its own numbering: what its collision reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatchInput {
+    /// Its shape.
+    pub shape: Arc<PatchShape>,
+    /// Its vertices' positions before the collision.
+    pub positions: Vec<DVec3>,
     /// Partition of each of its M0 vertices.
     pub partition: Vec<usize>,
     /// Ring normal of each of its M0 vertices.
@@ -59,60 +69,55 @@ impl PatchInput {
     /// position.
     fn same_as(&self, other: &Self) -> bool {
         let bits = |p: &DVec3| p.to_array().map(f64::to_bits);
-        self.base == other.base
-            && self.mesh.triangles == other.mesh.triangles
-            && self.edges == other.edges
-            && self.moved == other.moved
-            && self.anchor == other.anchor
+        let (a, b) = (&*self.shape, &*other.shape);
+        let same_shape = Arc::ptr_eq(&self.shape, &other.shape)
+            || (a.base == b.base
+                && a.triangles == b.triangles
+                && a.edges == b.edges
+                && a.moved == b.moved
+                && a.anchor == b.anchor);
+        same_shape
             && self.partition == other.partition
             && self.ring_normal == other.ring_normal
-            && self.mesh.positions.len() == other.mesh.positions.len()
-            && (self.mesh.positions.iter().zip(&other.mesh.positions)).all(|(a, b)| bits(a) == bits(b))
+            && self.positions.len() == other.positions.len()
+            && (self.positions.iter().zip(&other.positions)).all(|(a, b)| bits(a) == bits(b))
     }
 
-    /// Its shape (vertices, faces, edges, moved vertices, anchors) without its values.
-    fn shape_again(&self) -> Self {
+    /// The input of a patch of shape `shape`, its values read from `m1` and M0's
+    /// collision: its vertices' positions, and M0's partition, ring normal and measured
+    /// distance at its M0 vertices.
+    fn place(shape: Arc<PatchShape>, m1: &M1, m0: &M0Collided<'_>) -> Self {
+        let old = &shape.vertices[..shape.base];
         Self {
-            vertices: self.vertices.clone(),
-            faces: self.faces.clone(),
-            mesh: TriMesh {
-                positions: Vec::new(),
-                triangles: self.mesh.triangles.clone(),
-            },
-            edges: self.edges.clone(),
-            base: self.base,
-            moved: self.moved.clone(),
-            anchor: self.anchor.clone(),
-            partition: Vec::new(),
-            ring_normal: Vec::new(),
-            measured: Vec::new(),
+            positions: (shape.vertices.iter())
+                .map(|&v| m1.mesh.positions[v as usize])
+                .collect(),
+            partition: (old.iter())
+                .map(|&v| m0.partition.get(v as usize).copied().unwrap_or(0))
+                .collect(),
+            ring_normal: (old.iter())
+                .map(|&v| m0.ring_normal.get(v as usize).copied().flatten())
+                .collect(),
+            measured: (old.iter())
+                .map(|&v| (m0.measured).and_then(|m| m.distance(v as usize, m1.mesh.positions[v as usize])))
+                .collect(),
+            shape,
         }
-    }
-
-    /// Its values read from `m1` and M0's collision: its vertices' positions, and M0's
-    /// partition, ring normal and measured distance at its M0 vertices.
-    fn place(&mut self, m1: &M1, m0: &M0Collided<'_>) {
-        let old = &self.vertices[..self.base];
-        self.mesh.positions = (self.vertices.iter()).map(|&v| m1.mesh.positions[v as usize]).collect();
-        self.partition = (old.iter())
-            .map(|&v| m0.partition.get(v as usize).copied().unwrap_or(0))
-            .collect();
-        self.ring_normal = (old.iter())
-            .map(|&v| m0.ring_normal.get(v as usize).copied().flatten())
-            .collect();
-        self.measured = (old.iter())
-            .map(|&v| (m0.measured).and_then(|m| m.distance(v as usize, m1.mesh.positions[v as usize])))
-            .collect();
     }
 
     /// Its collision, alone.
     fn collide(&self, index: &BodyIndex, ease: f64, options: &CollisionOptions) -> Free {
+        let shape = &*self.shape;
+        let mesh = TriMesh {
+            positions: self.positions.clone(),
+            triangles: shape.triangles.clone(),
+        };
         let refined = RefinedInput {
-            mesh: &self.mesh,
-            edges: &self.edges,
-            base_vertices: self.base,
-            moved: &self.moved,
-            anchor: &self.anchor,
+            mesh: &mesh,
+            edges: &shape.edges,
+            base_vertices: shape.base,
+            moved: &shape.moved,
+            anchor: &shape.anchor,
         };
         // M0's distances at the patch's M0 vertices; where none was kept the vertex stands
         // nowhere (NaN, which no position equals), so the check measures it.
@@ -121,7 +126,7 @@ impl PatchInput {
             triangle: NO_TRIANGLE,
         };
         let measured = Measured {
-            at: (self.mesh.positions[..self.base].iter().zip(&self.measured))
+            at: (self.positions[..shape.base].iter().zip(&self.measured))
                 .map(|(&p, d)| if d.is_some() { p } else { DVec3::NAN })
                 .collect(),
             distance: self.measured.iter().map(|d| d.unwrap_or(unknown)).collect(),
@@ -136,8 +141,8 @@ impl PatchInput {
             measured: Some(&measured),
         };
         let pinned = pinned_of(&refined);
-        let faces: Vec<u32> = (0..self.mesh.triangles.len() as u32)
-            .filter(|&f| self.mesh.triangles[f as usize].iter().any(|&v| !pinned[v as usize]))
+        let faces: Vec<u32> = (0..shape.triangles.len() as u32)
+            .filter(|&f| shape.triangles[f as usize].iter().any(|&v| !pinned[v as usize]))
             .collect();
         collide_free(index, &refined, &pinned, &faces, &base, ease, options)
     }
@@ -233,11 +238,8 @@ pub fn collide_m1_patches(
     let kept = kept_of_m1(m1, &pinned, m0);
     let inputs = match same_shape {
         Some(before) => (before.patches.iter().enumerate())
-            .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape_again())))
-            .map(|(p, mut input)| {
-                input.place(m1, m0);
-                (p, input)
-            })
+            .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape.clone())))
+            .map(|(p, shape)| (p, PatchInput::place(shape, m1, m0)))
             .collect(),
         None => patch_inputs(m1, &pinned, m0),
     };
@@ -371,11 +373,8 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
             }
             let at = |v: u32| local.get(v).unwrap_or(u32::MAX);
             let base = vertices.partition_point(|&v| (v as usize) < m1.m0_vertices);
-            let mut input = PatchInput {
-                mesh: TriMesh {
-                    positions: Vec::new(),
-                    triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
-                },
+            let shape = PatchShape {
+                triangles: faces.iter().map(|&f| m1.mesh.triangles[f as usize].map(at)).collect(),
                 edges: edges[edge_first[p]..edge_first[p + 1]]
                     .iter()
                     .map(|e| e.map(at))
@@ -385,15 +384,11 @@ fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, Patc
                     .map(|(i, _)| i as u32)
                     .collect(),
                 anchor: vertices.iter().map(|&v| at(m1.anchor[v as usize])).collect(),
-                partition: Vec::new(),
-                ring_normal: Vec::new(),
-                measured: Vec::new(),
                 base,
                 vertices,
                 faces,
             };
-            input.place(m1, m0);
-            (p as u32, input)
+            (p as u32, PatchInput::place(Arc::new(shape), m1, m0))
         })
     })
 }
@@ -415,6 +410,7 @@ fn join<'a>(m1: &M1, inputs: &[(u32, PatchInput)], frees: impl Iterator<Item = &
     let mut responses = Vec::new();
     let mut inside = Vec::new();
     for ((_, input), free) in inputs.iter().zip(frees) {
+        let input = &*input.shape;
         let global = |v: u32| input.vertices[v as usize];
         let edge = |[a, b]: [u32; 2]| [global(a), global(b)];
         tested += free.tested;
@@ -433,7 +429,7 @@ fn join<'a>(m1: &M1, inputs: &[(u32, PatchInput)], frees: impl Iterator<Item = &
         inside.extend(free.quality.inside.iter().map(|&v| global(v)));
         for (k, &v) in input.vertices.iter().enumerate() {
             let v = v as usize;
-            if k >= input.base || input.moved.contains(&(k as u32)) {
+            if k >= input.base || input.moved.binary_search(&(k as u32)).is_ok() {
                 positions[v] = free.positions[k];
             }
             if free.quality.clearance[k].is_finite() {
