@@ -15,7 +15,7 @@ use crate::collision::{
     BodyIndex, CollisionOptions, Hit, KnownClearance, Quality, Response, VertexRoles, pierced_faces, respond,
     respond_edges, respond_faces, response_ease,
 };
-use crate::mesh::TriMesh;
+use crate::mesh::trimesh::vertex_normals_of;
 use crate::par::par_map;
 
 /// M1 after its collision.
@@ -77,8 +77,10 @@ pub struct M0Collided<'a> {
 /// base's vertices first, with the same indices, then the new ones.
 #[derive(Clone, Copy, Debug)]
 pub struct RefinedInput<'a> {
-    /// The refined mesh.
-    pub mesh: &'a TriMesh,
+    /// The refined mesh's positions.
+    pub positions: &'a [DVec3],
+    /// Its faces.
+    pub triangles: &'a [[u32; 3]],
     /// Its undirected edges, each once.
     pub edges: &'a [[u32; 2]],
     /// The base's vertex count: vertices from here on are new.
@@ -93,7 +95,7 @@ impl RefinedInput<'_> {
     /// The vertices that differ from the base (moved, then new): what the collision tests.
     pub fn tested(&self) -> Vec<u32> {
         let mut out = self.moved.to_vec();
-        out.extend(self.base_vertices as u32..self.mesh.positions.len() as u32);
+        out.extend(self.base_vertices as u32..self.positions.len() as u32);
         out
     }
 }
@@ -126,7 +128,7 @@ pub fn collide_refined(
 /// moved.
 pub(super) fn pinned_of(refined: &RefinedInput<'_>) -> Vec<bool> {
     let mut pinned = vec![true; refined.base_vertices];
-    pinned.resize(refined.mesh.positions.len(), false);
+    pinned.resize(refined.positions.len(), false);
     refined.moved.iter().for_each(|&v| pinned[v as usize] = false);
     pinned
 }
@@ -201,10 +203,10 @@ pub(super) fn collide_free(
 ) -> Free {
     let (partition, ring_normal) = (m0.partition, m0.ring_normal);
     let reach = 0.2 * index.height;
-    let positions = &refined.mesh.positions;
+    let positions = refined.positions;
     let tested = refined.tested();
     let m1_partition = partition_through(refined.anchor, partition);
-    let normals = refined.mesh.vertex_normals();
+    let normals = vertex_normals_of(refined.positions, refined.triangles);
     let boundary = vec![false; positions.len()];
     let mut rings: Vec<Option<DVec3>> = ring_normal.to_vec();
     rings.resize(positions.len(), None);
@@ -247,7 +249,7 @@ pub(super) fn collide_free(
     responses.extend(edge_responses);
     // Faces: those with a corner not pinned are checked, lifted where pierced (face
     // rounds, then edge rounds at the lifted corners) and checked again after.
-    let subset: Vec<[u32; 3]> = faces.iter().map(|&f| refined.mesh.triangles[f as usize]).collect();
+    let subset: Vec<[u32; 3]> = faces.iter().map(|&f| refined.triangles[f as usize]).collect();
     let rounds = respond_faces(
         index,
         &mut moved,
@@ -370,7 +372,7 @@ fn faces_to_check(refined: &RefinedInput<'_>, pinned: &[bool], m0: &M0Collided<'
     let kept_faces = base_verdicts(m0);
     let mut pierced: Vec<u32> = Vec::new();
     let mut faces: Vec<u32> = Vec::new();
-    for (f, tri) in refined.mesh.triangles.iter().enumerate() {
+    for (f, tri) in refined.triangles.iter().enumerate() {
         let verdict = tri
             .iter()
             .all(|&v| pinned[v as usize])

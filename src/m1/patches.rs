@@ -22,7 +22,6 @@ use crate::collision::VertexDistance;
 use crate::collision::quality::Measured;
 use crate::collision::types::NO_TRIANGLE;
 use crate::collision::{BodyIndex, CollisionOptions, Quality};
-use crate::mesh::TriMesh;
 use crate::mesh::topology::group_by_key as group;
 
 /// A refined patch's shape in its own numbering: what stays the same while M1 keeps its
@@ -108,12 +107,9 @@ impl PatchInput {
     /// Its collision, alone.
     fn collide(&self, index: &BodyIndex, ease: f64, options: &CollisionOptions) -> Free {
         let shape = &*self.shape;
-        let mesh = TriMesh {
-            positions: self.positions.clone(),
-            triangles: shape.triangles.clone(),
-        };
         let refined = RefinedInput {
-            mesh: &mesh,
+            positions: &self.positions,
+            triangles: &shape.triangles,
             edges: &shape.edges,
             base_vertices: shape.base,
             moved: &shape.moved,
@@ -229,7 +225,8 @@ pub fn collide_m1_patches(
     let same_shape = reuse.filter(|r| matches!((&r.shape, shape), (Some(a), Some(b)) if Arc::ptr_eq(a, b)));
     let reuse = reuse.filter(|r| r.settings == settings);
     let pinned = pinned_of(&RefinedInput {
-        mesh: &m1.mesh,
+        positions: &m1.mesh.positions,
+        triangles: &m1.mesh.triangles,
         edges: m1.edges(),
         base_vertices: m1.m0_vertices,
         moved: &m1.smoothed,

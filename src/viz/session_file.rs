@@ -57,6 +57,18 @@ impl SessionFile {
         self.reported()
     }
 
+    /// Runs `write` on the open file's encoder (nothing once the file is closed), keeping
+    /// its error as the first failed write if there was none.
+    fn with_encoder(&self, write: impl FnOnce(&mut Encoder<BufWriter<File>>) -> Result<(), String>) {
+        let result = match self.encoder.lock() {
+            Ok(mut slot) => slot.as_mut().map_or(Ok(()), write),
+            Err(_) => Err("the file's writer panicked".to_string()),
+        };
+        if let Err(message) = result {
+            self.fail(message);
+        }
+    }
+
     fn fail(&self, message: String) {
         if let Ok(mut failed) = self.failed.lock()
             && failed.is_none()
@@ -75,31 +87,13 @@ impl SessionFile {
 
 impl LogSink for SessionFile {
     fn send(&self, msg: LogMsg) {
-        let result = match self.encoder.lock() {
-            Ok(mut slot) => match slot.as_mut() {
-                Some(encoder) => encoder.append(&msg).map(|_| ()).map_err(|e| e.to_string()),
-                None => Ok(()),
-            },
-            Err(_) => Err("the file's writer panicked".to_string()),
-        };
-        if let Err(message) = result {
-            self.fail(message);
-        }
+        self.with_encoder(|encoder| encoder.append(&msg).map(|_| ()).map_err(|e| e.to_string()));
     }
 
     /// Writes what is buffered to the file, at once (no writer thread to wait for, so no
     /// timeout), and returns the first failed write, if any.
     fn flush_blocking(&self, _timeout: std::time::Duration) -> Result<(), SinkFlushError> {
-        let result = match self.encoder.lock() {
-            Ok(mut slot) => match slot.as_mut() {
-                Some(encoder) => encoder.flush_blocking().map_err(|e| e.to_string()),
-                None => Ok(()),
-            },
-            Err(_) => Err("the file's writer panicked".to_string()),
-        };
-        if let Err(message) = result {
-            self.fail(message);
-        }
+        self.with_encoder(|encoder| encoder.flush_blocking().map_err(|e| e.to_string()));
         self.reported()
     }
 

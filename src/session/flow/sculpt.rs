@@ -115,7 +115,8 @@ pub(in crate::session) fn apply(
     let edges = undirected_edges(&refined.mesh);
     let collided = scope.timed("sculpt.collide", || {
         let input = RefinedInput {
-            mesh: &refined.mesh,
+            positions: &refined.mesh.positions,
+            triangles: &refined.mesh.triangles,
             edges: &edges,
             base_vertices: refined.base_vertices,
             moved: &moved,
