@@ -17,13 +17,15 @@ mod numbering;
 pub mod patches;
 pub mod reshape;
 pub mod select;
+pub mod select_rules;
 pub mod sqrt3;
 
 pub use collide::{M0Collided, M1Collision, RefinedInput, collide_refined, partition_through};
 pub use cut::{CutLine, CutPlane, CutPoint, StoredCut, StoredPoint};
 pub use patches::{M1Reuse, PatchCounts, PatchInput, PatchShape, collide_m1, collide_m1_patches};
 pub use reshape::{M1Shape, Made, subdivide};
-pub use select::{Rule, SelectInput, SelectOptions, Selection, select};
+pub use select::{Rule, SelectInput, SelectOptions, Selection};
+pub use select_rules::{SelectMemory, select, select_keeping};
 pub use sqrt3::{Origin, Smoothing, Step, kobbelt_alpha, sqrt3_step};
 
 use std::sync::Arc;

@@ -14,15 +14,12 @@
 //!    over the two ends): the garment is coarser than the body beneath it, so its edges can
 //!    cut through the body's bumps.
 
-use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
 use glam::DVec3;
 
-use crate::body::index::BodyIndex;
 use crate::collision::quality::Measured;
-use crate::collision::types::NO_TRIANGLE;
 use crate::mesh::TriMesh;
 use crate::mesh::topology::sorted_edges;
 
@@ -143,7 +140,7 @@ pub struct SelectInput<'a> {
     pub measured: Option<&'a Measured>,
     /// M0's edges with their faces, if kept from an earlier step (read only when they were
     /// found in the same faces as `mesh`'s).
-    pub edges: Option<&'a EdgeFaces>,
+    pub edges: Option<&'a Arc<EdgeFaces>>,
 }
 
 /// M0's undirected edges, each with its faces ([`sorted_edges`]), and the faces they were
@@ -169,107 +166,13 @@ impl EdgeFaces {
         }
     }
 
+    /// The faces it was found in.
+    pub(crate) fn triangles(&self) -> &[[u32; 3]] {
+        &self.triangles
+    }
+
     /// Its edge records `(min vertex, max vertex, face, local edge)`, sorted.
     pub(crate) fn records(&self) -> &[(u32, u32, u32, u8)] {
         &self.records
     }
-}
-
-/// Applies the rules.
-pub fn select(input: &SelectInput<'_>, index: &BodyIndex, options: &SelectOptions) -> Selection {
-    let mesh = input.mesh;
-    let mut fired: Vec<Vec<Rule>> = vec![Vec::new(); input.patches];
-    let on = |r: Rule| options.rules.contains(&r);
-    // Each undirected edge once, in order, with its faces in order (border edges count for
-    // both patches).
-    let records = match input.edges {
-        Some(e) if e.triangles == mesh.triangles => Cow::Borrowed(&e.records),
-        _ => Cow::Owned(sorted_edges(mesh)),
-    };
-    let edges = records
-        .chunk_by(|a, b| (a.0, a.1) == (b.0, b.1))
-        .map(|group| ([group[0].0, group[0].1], group.iter().map(|r| r.2 as usize)));
-    let length = |[a, b]: [u32; 2]| mesh.positions[a as usize].distance(mesh.positions[b as usize]);
-    let mut fire = |patch: u32, rule: Rule| {
-        let list = &mut fired[patch as usize];
-        if !list.contains(&rule) {
-            list.push(rule);
-        }
-    };
-    // Per patch: sum, count, min and max of its edge lengths.
-    let mut stats = vec![(0.0f64, 0usize, f64::INFINITY, 0.0f64); input.patches];
-    let cos_limit = options.angle_deg.to_radians().cos();
-    let normals: Vec<DVec3> = (0..mesh.triangles.len())
-        .map(|f| mesh.scaled_normal(f).normalize_or_zero())
-        .collect();
-    // Rule 4 reads, per garment vertex, the mean edge of the body triangle nearest it (the
-    // body edge "beneath" a garment edge: the mean of its two ends'; 0 where no body is
-    // within reach).
-    let reach = 0.2 * index.height;
-    let mean_edge = |t: u32| {
-        let [a, b, c] = index.triangles[t as usize].map(|v| index.positions[v as usize]);
-        (a.distance(b) + b.distance(c) + c.distance(a)) / 3.0
-    };
-    let beneath: Vec<f64> = if on(Rule::Body) {
-        crate::par::par_map(mesh.positions.len(), |v| {
-            let p = mesh.positions[v];
-            let nearest = match input.measured.and_then(|m| m.distance(v, p)) {
-                Some(d) => (d.triangle != NO_TRIANGLE).then_some(d.triangle),
-                None => index.nearest(p, reach).map(|near| near.triangle),
-            };
-            nearest.map_or(0.0, mean_edge)
-        })
-    } else {
-        Vec::new()
-    };
-    let mut faces: Vec<usize> = Vec::new();
-    let mut patches: Vec<u32> = Vec::new();
-    for (edge, of_edge) in edges {
-        faces.clear();
-        faces.extend(of_edge);
-        let len = length(edge);
-        patches.clear();
-        patches.extend(faces.iter().map(|&f| input.face_patch[f]));
-        patches.dedup();
-        for &p in &patches {
-            let s = &mut stats[p as usize];
-            *s = (s.0 + len, s.1 + 1, s.2.min(len), s.3.max(len));
-        }
-        if on(Rule::Stretch)
-            && let Some(standard) = input.standard
-            && standard.len() == input.mesh.positions.len()
-        {
-            let was = standard[edge[0] as usize].distance(standard[edge[1] as usize]);
-            if len > options.stretch * was {
-                patches.iter().for_each(|&p| fire(p, Rule::Stretch));
-            }
-        }
-        if on(Rule::Angle)
-            && let [f, g] = faces[..]
-            && input.face_patch[f] == input.face_patch[g]
-            && normals[f].dot(normals[g]) < cos_limit
-        {
-            fire(input.face_patch[f], Rule::Angle);
-        }
-        if on(Rule::Body) {
-            let [ea, eb] = edge.map(|v| beneath[v as usize]);
-            if ea > 0.0 && eb > 0.0 && len > options.body_edge * 0.5 * (ea + eb) {
-                patches.iter().for_each(|&p| fire(p, Rule::Body));
-            }
-        }
-    }
-    if on(Rule::Edges) {
-        for (p, &(sum, count, least, most)) in stats.iter().enumerate() {
-            if count > 0 {
-                let mean = sum / count as f64;
-                if most > options.long_edge * mean || least < options.short_edge * mean {
-                    fire(p as u32, Rule::Edges);
-                }
-            }
-        }
-    }
-    for list in &mut fired {
-        list.sort_unstable();
-    }
-    Selection { rules: fired }
 }

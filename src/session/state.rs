@@ -190,8 +190,9 @@ pub(crate) struct GarmentState {
     /// The last M1's shape: kept through edits (an M1 over an M0 of the same faces, patches
     /// and refinement only places its vertices again).
     pub(crate) m1_shape: Option<Arc<crate::m1::M1Shape>>,
-    /// M0's edges with their faces, as M1's selection last found them: kept through edits.
-    pub(crate) m0_edges: Option<Arc<crate::m1::select::EdgeFaces>>,
+    /// What M1's selection last read and found, patch by patch, with M0's edges and their
+    /// faces: kept through edits.
+    pub(crate) m0_select: Option<Arc<crate::m1::SelectMemory>>,
     /// The last pattern, when the scene asks for one (or why it could not be made).
     pub(crate) patterns: Option<Result<crate::pattern::Pattern, crate::pattern::PatternError>>,
     /// The cut lines, stored on M0.
@@ -260,12 +261,12 @@ impl GarmentState {
         self.detect.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// The state without M1's caches (its patches' collisions, its shape and M0's edges),
+    /// The state without M1's caches (its patches' collisions, its shape and its selection's memory),
     /// as [`History`] keeps it.
     fn without_caches(mut self) -> Self {
         self.m1_reuse = None;
         self.m1_shape = None;
-        self.m0_edges = None;
+        self.m0_select = None;
         self
     }
 
@@ -276,7 +277,7 @@ impl GarmentState {
     pub(crate) fn take_caches(&mut self, later: &mut Self) {
         self.m1_reuse = later.m1_reuse.take();
         self.m1_shape = later.m1_shape.take();
-        self.m0_edges = later.m0_edges.take();
+        self.m0_select = later.m0_select.take();
     }
 
     /// A new garment, not yet solved.
@@ -296,7 +297,7 @@ impl GarmentState {
             m1: None,
             m1_reuse: None,
             m1_shape: None,
-            m0_edges: None,
+            m0_select: None,
             patterns: None,
             cuts: Vec::new(),
             through_cuts: Vec::new(),
@@ -325,7 +326,7 @@ impl GarmentState {
             m1: None,
             m1_reuse: self.m1_reuse.clone(),
             m1_shape: self.m1_shape.clone(),
-            m0_edges: self.m0_edges.clone(),
+            m0_select: self.m0_select.clone(),
             patterns: self.patterns.clone(),
             cuts: self.cuts.clone(),
             through_cuts: self.through_cuts.clone(),

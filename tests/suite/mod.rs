@@ -40,6 +40,7 @@ mod resample;
 mod rrd_index;
 mod sculpt;
 mod sections;
+mod select;
 mod session_errors;
 mod shell;
 mod sleeves;

@@ -8,8 +8,8 @@ use serde::Serialize;
 
 use crate::body::Body;
 use crate::collision::BodyIndex;
-use crate::m1::select::EdgeFaces;
-use crate::m1::{self, M0Collided, M1Options, SelectInput, Selection, cut};
+
+use crate::m1::{self, M0Collided, M1Options, SelectInput, SelectMemory, Selection, cut};
 use crate::session::emit::StepScope;
 use crate::session::options::RunOptions;
 use crate::session::stage::{M1Outcome, M1Stage, Stage};
@@ -73,8 +73,8 @@ pub(in crate::session) fn build_m1(
     let m0 = &outcome.collision.mesh;
     let face_patch = &outcome.garment.face_patch;
     let patches = state.patch_count();
-    let last_edges = state.m0_edges.clone().filter(|_| !options.full_m1);
-    let (measured, selection, edges) = scope.timed("m1.select", || {
+    let last = state.m0_select.clone().filter(|_| !options.full_m1);
+    let (measured, selection, memory) = scope.timed("m1.select", || {
         // M0's distances as its quality check measured them: the selection and M1's check
         // read them.
         let measured = outcome.collision.quality.measured(&m0.positions);
@@ -86,10 +86,11 @@ pub(in crate::session) fn build_m1(
             measured: Some(&measured),
             edges: None,
         };
-        let (selection, edges) = select_patches(input, last_edges.as_ref(), index, m1_options);
-        (measured, selection, edges)
+        let (selection, memory) = select_patches(input, last.as_deref(), index, m1_options);
+        (measured, selection, std::sync::Arc::new(memory))
     });
-    state.m0_edges = Some(edges.clone());
+    let edges = std::sync::Arc::clone(memory.edges());
+    state.m0_select = Some(memory);
     let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
     let (built, shape, made) = scope.timed("m1.subdivide", || {
         m1::subdivide(m0, &edges, face_patch, selection, m1_options, previous)
@@ -187,25 +188,21 @@ fn record_m1_work(scope: &mut StepScope<'_, '_, '_>, patches_collided: m1::Patch
     }
 }
 
-/// The patches M1 refines, and M0's edges with their faces: `last_edges` while M0's faces
-/// are those they were found in (M1's shape is kept only with the same edges).
+/// The patches M1 refines, and what the selection read and found, patch by patch, for the
+/// next step (with M0's edges and their faces: `last`'s while M0's faces are those they were
+/// found in, as M1's shape is kept only with the same edges).
 fn select_patches(
     input: SelectInput<'_>,
-    last_edges: Option<&std::sync::Arc<EdgeFaces>>,
+    last: Option<&SelectMemory>,
     index: &BodyIndex,
     m1_options: &M1Options,
-) -> (Selection, std::sync::Arc<EdgeFaces>) {
-    let edges = EdgeFaces::of(input.mesh, last_edges);
-    let selection = if m1_options.all_patches {
-        Selection::all(input.patches)
+) -> (Selection, SelectMemory) {
+    let (selection, memory) = m1::select_keeping(&input, index, &m1_options.select, last);
+    if m1_options.all_patches {
+        (Selection::all(input.patches), memory)
     } else {
-        let input = SelectInput {
-            edges: Some(&edges),
-            ..input
-        };
-        m1::select(&input, index, &m1_options.select)
-    };
-    (selection, edges)
+        (selection, memory)
+    }
 }
 
 /// Emits the state's M1, if it has one.
