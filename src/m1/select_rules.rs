@@ -51,12 +51,23 @@ impl SelectShape {
     ) -> Self {
         let records = edges.records();
         let standard = standard.filter(|s| s.len() == mesh.positions.len());
+        let mut patch_faces = vec![Vec::new(); patches];
+        let mut patch_vertices = vec![Vec::new(); patches];
+        // Each face's place among its patch's faces.
+        let mut place = Vec::with_capacity(face_patch.len());
+        for (f, &p) in face_patch.iter().enumerate() {
+            place.push(patch_faces[p as usize].len() as u32);
+            patch_faces[p as usize].push(f as u32);
+            patch_vertices[p as usize].extend(mesh.triangles[f]);
+        }
         let mut patch_edges = vec![Vec::new(); patches];
         let mut of_edge: Vec<u32> = Vec::new();
         for group in records.chunk_by(|a, b| (a.0, a.1) == (b.0, b.1)) {
             let ends = [group[0].0, group[0].1];
             let pair = match group {
-                [f, g] if face_patch[f.2 as usize] == face_patch[g.2 as usize] => [f.2, g.2],
+                [f, g] if face_patch[f.2 as usize] == face_patch[g.2 as usize] => {
+                    [place[f.2 as usize], place[g.2 as usize]]
+                }
                 _ => [NO_PAIR; 2],
             };
             let was = standard.map_or(0.0, |s| s[ends[0] as usize].distance(s[ends[1] as usize]));
@@ -66,12 +77,6 @@ impl SelectShape {
             for &p in &of_edge {
                 patch_edges[p as usize].push(PatchEdge { ends, pair, was });
             }
-        }
-        let mut patch_faces = vec![Vec::new(); patches];
-        let mut patch_vertices = vec![Vec::new(); patches];
-        for (f, &p) in face_patch.iter().enumerate() {
-            patch_faces[p as usize].push(f as u32);
-            patch_vertices[p as usize].extend(mesh.triangles[f]);
         }
         for v in &mut patch_vertices {
             v.sort_unstable();
@@ -98,14 +103,14 @@ impl SelectShape {
 
     /// The rules that fire for patch `p` of `mesh`, in [`Rule::ALL`] order. `beneath` is the
     /// body's mean edge beneath each vertex (read only when the body rule is on);
-    /// `normals` holds each face's unit normal, filled here for the patch's faces.
+    /// `normals` is room for the unit normals of the patch's faces (in its order), filled here.
     fn rules_of(
         &self,
         p: usize,
         mesh: &TriMesh,
         beneath: &[f64],
         options: &SelectOptions,
-        normals: &mut [DVec3],
+        normals: &mut Vec<DVec3>,
     ) -> Vec<Rule> {
         let on = |r: Rule| options.rules.contains(&r);
         let mut fired: Vec<Rule> = Vec::new();
@@ -115,9 +120,12 @@ impl SelectShape {
             }
         };
         if on(Rule::Angle) {
-            for &f in &self.patch_faces[p] {
-                normals[f as usize] = mesh.scaled_normal(f as usize).normalize_or_zero();
-            }
+            normals.clear();
+            normals.extend(
+                self.patch_faces[p]
+                    .iter()
+                    .map(|&f| mesh.scaled_normal(f as usize).normalize_or_zero()),
+            );
         }
         let cos_limit = options.angle_deg.to_radians().cos();
         let stretch = on(Rule::Stretch) && self.standard.is_some();
@@ -157,9 +165,9 @@ impl SelectShape {
 /// No pair of faces (an edge the angle rule does not read).
 const NO_PAIR: u32 = u32::MAX;
 
-/// One edge of a patch as the rules read it: its ends, its two faces when it has exactly
-/// two and both are in the patch (the angle rule's), and its length as first built (0
-/// without a standard size).
+/// One edge of a patch as the rules read it: its ends, its two faces (their places among
+/// the patch's faces) when it has exactly two and both are in the patch (the angle rule's),
+/// and its length as first built (0 without a standard size).
 #[derive(Clone, Copy, Debug)]
 struct PatchEdge {
     ends: [u32; 2],
@@ -236,7 +244,7 @@ fn rules_keeping(
                 && m.beneath.get(v).map(|b| b.to_bits()) == beneath.get(v).map(|b| b.to_bits())
         })
     };
-    let mut normals = vec![DVec3::ZERO; mesh.triangles.len()];
+    let mut normals = Vec::new();
     let rules = (0..patches)
         .map(|p| match same {
             Some(m) if shape.patch_vertices[p].iter().all(|&v| unmoved(v)) => m.rules[p].clone(),

@@ -73,7 +73,8 @@ pub(in crate::session) fn build_m1(
     let m0 = &outcome.collision.mesh;
     let face_patch = &outcome.garment.face_patch;
     let patches = state.patch_count();
-    let last = state.m0_select.clone().filter(|_| !options.full_m1);
+    // The last selection's memory, taken (and dropped once read: it is replaced).
+    let last = state.m0_select.take().filter(|_| !options.full_m1);
     let (measured, selection, memory) = scope.timed("m1.select", || {
         // M0's distances as its quality check measured them: the selection and M1's check
         // read them.
@@ -89,6 +90,7 @@ pub(in crate::session) fn build_m1(
         let (selection, memory) = select_patches(input, last.as_deref(), index, m1_options);
         (measured, selection, std::sync::Arc::new(memory))
     });
+    drop(last);
     let edges = std::sync::Arc::clone(memory.edges());
     state.m0_select = Some(memory);
     let previous = state.m1_shape.as_ref().filter(|_| !options.full_m1);
