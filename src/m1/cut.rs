@@ -277,14 +277,16 @@ fn store_point(m1: &M1, m0: &[[u32; 3]], positions: &[DVec3], p: &CutPoint) -> O
 }
 
 /// Whether `m1` flipped M0's edge `edge` between `faces` (so that its edge `DE` joins the
-/// faces' centroids).
+/// faces' centroids). The first step's flips are sorted by their edge, each edge given
+/// with its lower vertex first ([`super::Step::flips`]), so the edge is found by bisection.
 fn flipped_in(m1: Option<&M1>, faces: [u32; 2], edge: [u32; 2]) -> bool {
     m1.is_some_and(|m1| {
-        m1.first.flips.iter().any(|&(e, f)| {
-            let same_faces = f == faces || f == [faces[1], faces[0]];
-            let same_edge = e == edge || e == [edge[1], edge[0]];
-            same_faces && same_edge
-        })
+        let key = [edge[0].min(edge[1]), edge[0].max(edge[1])];
+        let flips = &m1.first.flips;
+        let from = flips.partition_point(|(e, _)| *e < key);
+        (flips[from..].iter())
+            .take_while(|(e, _)| *e == key)
+            .any(|&(_, f)| f == faces || f == [faces[1], faces[0]])
     })
 }
 
