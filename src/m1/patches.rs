@@ -223,6 +223,12 @@ pub fn collide_m1_patches(
     let settings = Some((body_key(index), garment_ease.to_bits(), options.clone()));
     // The patches as last found, when M1 has their shape (whatever the settings).
     let same_shape = reuse.filter(|r| matches!((&r.shape, shape), (Some(a), Some(b)) if Arc::ptr_eq(a, b)));
+    // Else, when only which patches are refined changed, the patches refined before too
+    // are renumbered.
+    let renumber = reuse.and_then(|r| match (&r.shape, shape) {
+        (Some(a), Some(b)) if a.renumbers(b) => Some(Renumber::new(r, a.m1(), m1)),
+        _ => None,
+    });
     let reuse = reuse.filter(|r| r.settings == settings);
     let pinned = pinned_of(&RefinedInput {
         positions: &m1.mesh.positions,
@@ -238,7 +244,7 @@ pub fn collide_m1_patches(
             .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape.clone())))
             .map(|(p, shape)| (p, PatchInput::place(shape, m1, m0)))
             .collect(),
-        None => patch_inputs(m1, &pinned, m0),
+        None => patch_inputs(m1, &pinned, m0, renumber.as_ref()),
     };
     // The patches kept from before, then the others collided, shared out among the threads.
     let kept_before: Vec<Option<Arc<Free>>> = (inputs.iter())
@@ -327,34 +333,108 @@ fn kept_of_m1(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Kept {
     }
 }
 
+/// The last M1's refined patches, read for an M1 that refines other patches over the same
+/// M0 faces ([`super::M1Shape::renumbers`]): a patch refined in both keeps its faces,
+/// edges and anchors in its own numbering; its M0 vertices keep their numbers and its
+/// centroids take those of the same faces' centroids here.
+struct Renumber<'a> {
+    /// The last step's patches.
+    last: &'a M1Reuse,
+    /// M0's vertex count.
+    n0: usize,
+    /// The M0 face each of the last M1's centroids (`n0 + k`) is the centroid of.
+    face_of: Vec<u32>,
+    /// The centroid of each M0 face in this M1.
+    centroid_of: &'a [Option<u32>],
+}
+
+impl<'a> Renumber<'a> {
+    fn new(last: &'a M1Reuse, last_m1: &M1, m1: &'a M1) -> Self {
+        let n0 = m1.m0_vertices;
+        let mut face_of = vec![u32::MAX; last_m1.first_vertices.saturating_sub(n0)];
+        for (g, c) in last_m1.first.centroid_of.iter().enumerate() {
+            if let Some(slot) = c.and_then(|c| face_of.get_mut((c as usize).wrapping_sub(n0))) {
+                *slot = g as u32;
+            }
+        }
+        Self {
+            last,
+            n0,
+            face_of,
+            centroid_of: &m1.first.centroid_of,
+        }
+    }
+
+    /// Patch `p`'s shape, with `faces` (its faces' numbers here), from the last step's,
+    /// renumbered; `None` when the last step did not refine it (or its faces do not match).
+    fn shape_of(&self, p: usize, faces: &[u32]) -> Option<PatchShape> {
+        let (input, _) = self.last.patches.get(p)?.as_ref()?;
+        let old = &*input.shape;
+        if old.faces.len() != faces.len() {
+            return None;
+        }
+        let vertices = (old.vertices.iter())
+            .map(|&v| match (v as usize).checked_sub(self.n0) {
+                None => Some(v),
+                Some(k) => (self.face_of.get(k)).and_then(|&g| self.centroid_of.get(g as usize).copied().flatten()),
+            })
+            .collect::<Option<Vec<u32>>>()?;
+        Some(PatchShape {
+            vertices,
+            faces: faces.to_vec(),
+            triangles: old.triangles.clone(),
+            edges: old.edges.clone(),
+            base: old.base,
+            moved: old.moved.clone(),
+            anchor: old.anchor.clone(),
+        })
+    }
+}
+
 /// Each refined patch's input, by patch number; the patches built on all cores, each on
-/// its own (the same inputs on any number of threads).
-fn patch_inputs(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Vec<(u32, PatchInput)> {
+/// its own (the same inputs on any number of threads). With `renumber`, a patch the last
+/// M1 refined too takes its shape from there, renumbered.
+fn patch_inputs(
+    m1: &M1,
+    pinned: &[bool],
+    m0: &M0Collided<'_>,
+    renumber: Option<&Renumber<'_>>,
+) -> Vec<(u32, PatchInput)> {
     let patches = m1.selection.rules.len();
     let n = m1.mesh.positions.len();
     // M1's faces grouped by patch, ascending within each.
     let (first, grouped) = group(patches, m1.face_patch.iter().enumerate().map(|(f, &p)| (p, f as u32)));
     // The patch of each vertex that is not pinned (all its faces are in one patch), and the
-    // edges at such a vertex grouped by it, in M1's order.
-    let mut patch_of = vec![u32::MAX; n];
-    for (t, &p) in m1.mesh.triangles.iter().zip(m1.face_patch.iter()) {
-        for &v in t {
-            if !pinned[v as usize] {
-                patch_of[v as usize] = p;
+    // edges at such a vertex grouped by it, in M1's order: found once, when a patch is built
+    // anew (not for patches renumbered).
+    let edge_groups = std::sync::OnceLock::new();
+    let edges_by_patch = || {
+        edge_groups.get_or_init(|| {
+            let mut patch_of = vec![u32::MAX; n];
+            for (t, &p) in m1.mesh.triangles.iter().zip(m1.face_patch.iter()) {
+                for &v in t {
+                    if !pinned[v as usize] {
+                        patch_of[v as usize] = p;
+                    }
+                }
             }
-        }
-    }
-    let free_end = |[a, b]: [u32; 2]| if pinned[b as usize] { a } else { b };
-    let (edge_first, edges) = group(
-        patches,
-        (m1.edges.iter())
-            .filter(|&&[a, b]| !pinned[a as usize] || !pinned[b as usize])
-            .map(|&e| (patch_of[free_end(e) as usize], e)),
-    );
+            let free_end = |[a, b]: [u32; 2]| if pinned[b as usize] { a } else { b };
+            group(
+                patches,
+                (m1.edges.iter())
+                    .filter(|&&[a, b]| !pinned[a as usize] || !pinned[b as usize])
+                    .map(|&e| (patch_of[free_end(e) as usize], e)),
+            )
+        })
+    };
     let refined: Vec<usize> = (0..patches).filter(|&p| !m1.selection.rules[p].is_empty()).collect();
     crate::par::par_map_from(refined.len(), 2, |k| {
         let p = refined[k];
+        if let Some(shape) = renumber.and_then(|r| r.shape_of(p, &grouped[first[p]..first[p + 1]])) {
+            return (p as u32, PatchInput::place(Arc::new(shape), m1, m0));
+        }
         let faces = grouped[first[p]..first[p + 1]].to_vec();
+        let (edge_first, edges) = edges_by_patch();
         super::numbering::NUMBERING.with_borrow_mut(|numbering| {
             let local = numbering.start(n);
             let mut vertices: Vec<u32> = Vec::with_capacity(faces.len());

@@ -57,6 +57,24 @@ pub enum Made {
 }
 
 impl M1Shape {
+    /// The M1 it was made for (its positions those of that step).
+    pub(super) fn m1(&self) -> &M1 {
+        &self.m1
+    }
+
+    /// Whether `other` was made, as this one, by one step over the same M0 faces and
+    /// patches (whatever patches each refines; neither is smoothed, as no smoothed M1 has a
+    /// shape). Then a patch both refine has the same faces, edges and anchors in its own
+    /// numbering in both: what a split face becomes depends on its own patch alone, and its
+    /// centroids keep their order, only renumbered ([`super::every_patch`]).
+    pub(super) fn renumbers(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.m0_edges, &other.m0_edges)
+            && self.face_patch == other.face_patch
+            && !self.two_steps
+            && !other.two_steps
+            && self.m1.m0_vertices == other.m1.m0_vertices
+    }
+
     /// Whether an M1 over `m0` with these patches and this refinement has this shape.
     fn fits(
         &self,
