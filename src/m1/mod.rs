@@ -13,6 +13,7 @@
 pub mod collide;
 pub mod cut;
 pub mod every_patch;
+mod kept;
 mod numbering;
 pub mod patches;
 pub mod reshape;

@@ -170,30 +170,6 @@ pub struct PatchCounts {
     pub tested: usize,
 }
 
-/// A hash of the body the collision runs against: xxh64 of its positions' bits, its
-/// triangles and its height, little-endian, streamed through a small buffer.
-fn body_key(index: &BodyIndex) -> u64 {
-    const BLOCK: usize = 1 << 15;
-    let mut hasher = xxhash_rust::xxh64::Xxh64::new(0);
-    let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 8);
-    let mut put = |word: &[u8]| {
-        bytes.extend_from_slice(word);
-        if bytes.len() >= BLOCK {
-            hasher.update(&bytes);
-            bytes.clear();
-        }
-    };
-    for p in &index.positions {
-        p.to_array().iter().for_each(|x| put(&x.to_bits().to_le_bytes()));
-    }
-    for t in &index.triangles {
-        t.iter().for_each(|v| put(&v.to_le_bytes()));
-    }
-    put(&index.height.to_bits().to_le_bytes());
-    hasher.update(&bytes);
-    hasher.digest()
-}
-
 /// Collides M1 (whose M0 vertices are already collided): only the vertices M0 does not
 /// have move, each refined patch alone (see the module's notes). `garment_ease` is the
 /// garment's ease.
@@ -220,7 +196,7 @@ pub fn collide_m1_patches(
     reuse: Option<&M1Reuse>,
     shape: Option<&Arc<M1Shape>>,
 ) -> (M1Collision, M1Reuse, PatchCounts) {
-    let settings = Some((body_key(index), garment_ease.to_bits(), options.clone()));
+    let settings = Some((index.fingerprint(), garment_ease.to_bits(), options.clone()));
     // The patches as last found, when M1 has their shape (whatever the settings).
     let same_shape = reuse.filter(|r| matches!((&r.shape, shape), (Some(a), Some(b)) if Arc::ptr_eq(a, b)));
     // Else, when only which patches are refined changed, the patches refined before too
@@ -238,7 +214,7 @@ pub fn collide_m1_patches(
         moved: &m1.smoothed,
         anchor: &m1.anchor,
     });
-    let kept = kept_of_m1(m1, &pinned, m0);
+    let kept = super::kept::kept_of_m1(m1, &pinned, m0);
     let inputs = match same_shape {
         Some(before) => (before.patches.iter().enumerate())
             .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape.clone())))
@@ -285,52 +261,6 @@ pub fn collide_m1_patches(
         }
     }
     (collision, next, counts)
-}
-
-/// The parts of M1 that are M0's (every vertex pinned), with M0's verdicts: its edges M0's
-/// check found crossing, its vertices inside, and its faces pierced (a face of M1 whose
-/// corners are all pinned is a face of M0 the refinement left whole).
-fn kept_of_m1(m1: &M1, pinned: &[bool], m0: &M0Collided<'_>) -> Kept {
-    let both = |[a, b]: [u32; 2]| pinned.get(a as usize) == Some(&true) && pinned.get(b as usize) == Some(&true);
-    let mut crossing: Vec<[u32; 2]> = m0
-        .crossing
-        .iter()
-        .map(|&[a, b]| [a.min(b), a.max(b)])
-        .filter(|&e| both(e) && m1.edges.binary_search(&e).is_ok())
-        .collect();
-    crossing.sort_unstable();
-    crossing.dedup();
-    let inside: Vec<u32> = m0
-        .inside
-        .iter()
-        .copied()
-        .filter(|&v| pinned.get(v as usize) == Some(&true))
-        .collect();
-    let sorted = |mut t: [u32; 3]| {
-        t.sort_unstable();
-        t
-    };
-    let mut m0_pierced: Vec<[u32; 3]> = m0
-        .pierced
-        .iter()
-        .filter_map(|&f| m0.triangles.get(f as usize).map(|&t| sorted(t)))
-        .collect();
-    m0_pierced.sort_unstable();
-    let pierced = if m0_pierced.is_empty() {
-        Vec::new()
-    } else {
-        (0..m1.mesh.triangles.len() as u32)
-            .filter(|&f| {
-                let t = m1.mesh.triangles[f as usize];
-                t.iter().all(|&v| pinned[v as usize]) && m0_pierced.binary_search(&sorted(t)).is_ok()
-            })
-            .collect()
-    };
-    Kept {
-        crossing,
-        inside,
-        pierced,
-    }
 }
 
 /// The last M1's refined patches, read for an M1 that refines other patches over the same

@@ -177,6 +177,31 @@ fn angle(a: DVec3, b: DVec3) -> f64 {
 }
 
 impl BodyIndex {
+    /// A hash of the body the index answers for: xxh64 of its positions' bits, its
+    /// triangles and its height, little-endian, streamed through a small buffer (what a
+    /// result kept from an earlier step checks it was found against).
+    pub fn fingerprint(&self) -> u64 {
+        const BLOCK: usize = 1 << 15;
+        let mut hasher = xxhash_rust::xxh64::Xxh64::new(0);
+        let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 8);
+        let mut put = |word: &[u8]| {
+            bytes.extend_from_slice(word);
+            if bytes.len() >= BLOCK {
+                hasher.update(&bytes);
+                bytes.clear();
+            }
+        };
+        for p in &self.positions {
+            p.to_array().iter().for_each(|x| put(&x.to_bits().to_le_bytes()));
+        }
+        for t in &self.triangles {
+            t.iter().for_each(|v| put(&v.to_le_bytes()));
+        }
+        put(&self.height.to_bits().to_le_bytes());
+        hasher.update(&bytes);
+        hasher.digest()
+    }
+
     /// Prepares `body` (its mesh, adjacency, partitions and landmarks).
     pub fn new(body: &Body, slices: &SliceOptions) -> Self {
         let parts: Vec<PartitionIndex> = body
