@@ -199,12 +199,8 @@ pub fn collide_m1_patches(
     let settings = Some((index.fingerprint(), garment_ease.to_bits(), options.clone()));
     // The patches as last found, when M1 has their shape (whatever the settings).
     let same_shape = reuse.filter(|r| matches!((&r.shape, shape), (Some(a), Some(b)) if Arc::ptr_eq(a, b)));
-    // Else, when only which patches are refined changed, the patches refined before too
-    // are renumbered.
-    let renumber = reuse.and_then(|r| match (&r.shape, shape) {
-        (Some(a), Some(b)) if a.renumbers(b) => Some(Renumber::new(r, a.m1(), m1)),
-        _ => None,
-    });
+    // The last patches whatever the settings (their shapes do not depend on them).
+    let last = reuse;
     let reuse = reuse.filter(|r| r.settings == settings);
     let pinned = pinned_of(&RefinedInput {
         positions: &m1.mesh.positions,
@@ -220,7 +216,15 @@ pub fn collide_m1_patches(
             .filter_map(|(p, kept)| kept.as_ref().map(|(input, _)| (p as u32, input.shape.clone())))
             .map(|(p, shape)| (p, PatchInput::place(shape, m1, m0)))
             .collect(),
-        None => patch_inputs(m1, &pinned, m0, renumber.as_ref()),
+        None => {
+            // When only which patches are refined changed, the patches refined before too
+            // are renumbered.
+            let renumber = last.and_then(|r| match (&r.shape, shape) {
+                (Some(a), Some(b)) if a.renumbers(b) => Some(Renumber::new(r, a.m1(), m1)),
+                _ => None,
+            });
+            patch_inputs(m1, &pinned, m0, renumber.as_ref())
+        }
     };
     // The patches kept from before, then the others collided, shared out among the threads.
     let kept_before: Vec<Option<Arc<Free>>> = (inputs.iter())

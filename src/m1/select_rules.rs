@@ -24,7 +24,7 @@ use crate::mesh::TriMesh;
 /// What the rules of each patch read, fixed while M0's faces, its patches and its standard
 /// size stay the same: M0's undirected edges and each patch's edges, faces and corners.
 #[derive(Debug)]
-pub struct SelectShape {
+struct SelectShape {
     /// M0's faces with their edges.
     edges: Arc<EdgeFaces>,
     /// The patch of each face.
@@ -42,7 +42,7 @@ pub struct SelectShape {
 
 impl SelectShape {
     /// The shape of `mesh` (whose faces `edges` holds) in `patches` patches.
-    pub fn new(
+    fn new(
         mesh: &TriMesh,
         edges: &Arc<EdgeFaces>,
         face_patch: &[u32],

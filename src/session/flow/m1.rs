@@ -8,7 +8,6 @@ use serde::Serialize;
 
 use crate::body::Body;
 use crate::collision::BodyIndex;
-
 use crate::m1::{self, M0Collided, M1Options, SelectInput, SelectMemory, Selection, cut};
 use crate::session::emit::StepScope;
 use crate::session::options::RunOptions;
