@@ -92,8 +92,10 @@ impl SessionState {
 
 /// A garment's undo history: its states before each undoable step, the newest last. A state
 /// goes in without M1's caches, which only the step after it reads (each state kept its
-/// own, some 12 MB a drag at resolution 24, all in new pages); `undo` hands the state it
-/// restores the caches of the state it drops ([`GarmentState::take_caches`]).
+/// own, some 12 MB a drag at resolution 24, all in new pages), and without M1 itself where
+/// M1 can be made again from what the state keeps ([`GarmentState::for_history`]: some
+/// 9 MB more). `undo` hands the state it restores the caches of the state it drops
+/// ([`GarmentState::take_caches`]) and makes its M1 again from them, the same bit for bit.
 #[derive(Default)]
 pub(crate) struct History {
     states: Vec<GarmentState>,
@@ -102,9 +104,10 @@ pub(crate) struct History {
 }
 
 impl History {
-    /// Keeps `state` (without M1's caches) as the one `undo` restores next.
+    /// Keeps `state` (without M1's caches, and without M1 where it can be made again) as
+    /// the one `undo` restores next.
     pub(crate) fn push(&mut self, state: GarmentState) {
-        self.states.push(state.without_caches());
+        self.states.push(state.for_history());
     }
 
     /// The state `undo` restores next, taken out; when there is none, why.
@@ -184,6 +187,9 @@ pub(crate) struct GarmentState {
     pub(crate) standard: Option<Arc<Vec<glam::DVec3>>>,
     /// The last M1, when the scene asks for one.
     pub(crate) m1: Option<M1Outcome>,
+    /// M1 was left out of this state as [`History`] keeps it ([`Self::for_history`]): it is
+    /// made again when the state is restored.
+    pub(crate) m1_left_out: bool,
     /// What the last M1's collision leaves for the next, patch by patch: kept through
     /// edits (a patch whose input is unchanged takes its collision from here).
     pub(crate) m1_reuse: Option<Arc<crate::m1::M1Reuse>>,
@@ -261,12 +267,18 @@ impl GarmentState {
         self.detect.lock().unwrap_or_else(PoisonError::into_inner)
     }
 
-    /// The state without M1's caches (its patches' collisions, its shape and its selection's memory),
-    /// as [`History`] keeps it.
-    fn without_caches(mut self) -> Self {
+    /// The state as [`History`] keeps it: without M1's caches (its patches' collisions,
+    /// its shape and its selection's memory), and without M1 when M1 is made from what the
+    /// state keeps alone (its collided M0, its cut lines and its standard size): no sculpt
+    /// was made on it and it was not pushed out in front of another garment.
+    fn for_history(mut self) -> Self {
         self.m1_reuse = None;
         self.m1_shape = None;
         self.m0_select = None;
+        if self.m1.is_some() && self.sculpts.is_empty() && self.sculpted.is_none() && self.layered.is_none() {
+            self.m1 = None;
+            self.m1_left_out = true;
+        }
         self
     }
 
@@ -295,6 +307,7 @@ impl GarmentState {
             edits: Vec::new(),
             standard: None,
             m1: None,
+            m1_left_out: false,
             m1_reuse: None,
             m1_shape: None,
             m0_select: None,
@@ -324,6 +337,7 @@ impl GarmentState {
             edits: self.edits.clone(),
             standard: self.standard.clone(),
             m1: None,
+            m1_left_out: false,
             m1_reuse: self.m1_reuse.clone(),
             m1_shape: self.m1_shape.clone(),
             m0_select: self.m0_select.clone(),

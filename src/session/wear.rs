@@ -12,6 +12,7 @@ use super::emit::StepScope;
 use super::error::StepError;
 use super::flow::collide::{collide_and_emit, emit_kept};
 use super::flow::layers::{Below, below, latest_mesh};
+use super::flow::m1::remake_m1;
 use super::format::{Op, Session, Step};
 use super::options::{RunOptions, StepContext};
 use super::stage::Stage;
@@ -133,7 +134,7 @@ fn run_on_target(
             name: name.clone(),
             over: over.is_some(),
         },
-        (Op::Undo, _) => return undo(scope, state),
+        (Op::Undo, _) => return undo(scope, state, (session, options)),
         (_, Some(name)) => Target::Worn(worn_index(state, name)?),
         (_, None) if state.worn.is_empty() => Target::None,
         (_, None) => Target::Worn(state.worn.len() - 1),
@@ -250,7 +251,7 @@ fn edit(
     if k + 1 < state.worn.len() && surface_of(state.worn[k].garment.as_ref()) != before {
         match push_over(scope, state, (session, options), k)? {
             Ok(pushed) => changed.extend(pushed),
-            Err(message) => refuse_all(scope, state, k, &message),
+            Err(message) => refuse_all(scope, state, (session, options), (k, &message)),
         }
     }
     state.undo.push(changed);
@@ -308,8 +309,17 @@ fn push_over(
 /// Refuses an edit of garment `k` that the garments over it could not follow: `k` back to
 /// its state before (which stays in its history: undoing the refused edit changes nothing),
 /// every garment from `k` out emitted again as it is, and the refusal recorded.
-fn refuse_all(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState, k: usize, message: &str) {
-    let previous = state.worn[k].history.last().cloned();
+fn refuse_all(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    (session, options): (&Session, &RunOptions),
+    (k, message): (usize, &str),
+) {
+    let mut previous = state.worn[k].history.last().cloned();
+    if let (Some(kept), Some(probe)) = (previous.as_mut(), state.probe.as_ref()) {
+        let m1 = session.scene.m1.as_ref();
+        remake_m1(scope, (&state.body, probe.index()), kept, options, m1);
+    }
     state.worn[k].garment = previous;
     if let Some(probe) = &state.probe {
         for (j, w) in state.worn.iter().enumerate().skip(k) {
@@ -330,7 +340,11 @@ fn refuse_all(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState, k: us
 }
 
 /// `undo`: every garment the last undoable step changed back to its state before it.
-fn undo(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
+fn undo(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    run: (&Session, &RunOptions),
+) -> Result<(), StepError> {
     let changed = state.undo.pop().ok_or(match state.undo_dropped_past {
         Some(limit) => StepError::UndoLimit(limit),
         None => StepError::NothingToUndo,
@@ -338,7 +352,7 @@ fn undo(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(
     for k in changed {
         checkout(state, k);
         scope.layer = (k > 0).then(|| state.worn[k].name.clone());
-        let undone = super::steps::undo_step(scope, state);
+        let undone = super::steps::undo_step(scope, state, run);
         scope.layer = None;
         checkin(state, k);
         undone?;

@@ -169,3 +169,53 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
         );
     }
 }
+
+#[test]
+fn an_undo_restores_the_m1_its_step_made_bit_for_bit_though_the_history_keeps_no_m1() {
+    // Steps: 1 garment, 2 cut, 3 ease, 4 drag, 5 drag, 6 set, 7-10 undo (back to the states
+    // after steps 5, 4, 3 and 2; the cut step logs no M1 of its own, so the last undo is
+    // compared with its cut lines rebuilt on step 1's M1).
+    let text = "drape 1\nbody builtin\nunits m\nm1\ngarment jumpsuit fit=tight resolution=5\n\
+                cut yoke at=0,1.0,0 normal=0,1,0.25\nset ease 0.004\n\
+                drag waist.front_left by=0,0,0.02\ndrag left_knee by=0,0.03,0\nset waist_girth +0.02\n\
+                undo\nundo\nundo\nundo\n";
+    let session = parse_session(text, "undo_m1.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = M1s::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let at = |step: usize| {
+        let found = sink.0.iter().rev().find(|(s, _)| *s == step);
+        found
+            .map(|(_, o)| o.clone())
+            .unwrap_or_else(|| panic!("no M1 logged at step {step}"))
+    };
+    for (undo, made) in [(7, 5), (8, 4), (9, 3)] {
+        let (a, b) = (at(undo), at(made));
+        assert_eq!(a.m1, b.m1, "undo at step {undo}: the subdivision, every field");
+        assert_eq!(
+            bits(&a.collision.positions),
+            bits(&b.collision.positions),
+            "undo at step {undo}"
+        );
+        assert_eq!(a.collision, b.collision, "undo at step {undo}: M1's collision");
+        assert_eq!(
+            (&a.stored, &a.cuts),
+            (&b.stored, &b.cuts),
+            "undo at step {undo}: cut lines"
+        );
+    }
+    // The states compared differ (each step changed M1), so a restore of the wrong one fails.
+    assert_ne!(bits(&at(5).collision.positions), bits(&at(4).collision.positions));
+    assert_ne!(bits(&at(4).collision.positions), bits(&at(3).collision.positions));
+    // Back to the cut step's state: step 1's M1, with the cut line.
+    let (restored, built) = (at(10), at(1));
+    assert_eq!(restored.m1, built.m1);
+    assert_eq!(bits(&restored.collision.positions), bits(&built.collision.positions));
+    assert_eq!(restored.stored.len(), 1, "the cut line is kept");
+    // Every undo made M1 again (its build's work is in the undo's metrics).
+    for step in 7..=10 {
+        let metrics = report.steps.iter().find(|m| m.step == step).expect("metrics");
+        let work = &metrics.work;
+        assert!(work.contains_key("m1.patches_kept"), "step {step}: {work:?}");
+    }
+}

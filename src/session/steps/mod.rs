@@ -25,8 +25,12 @@ use super::state::SessionState;
 use crate::garment::FrameworkOptions;
 
 /// `undo` of the garment in the state's current slot.
-pub(super) fn undo_step(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
-    undo::run(scope, state)
+pub(super) fn undo_step(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    run: (&super::Session, &super::RunOptions),
+) -> Result<(), StepError> {
+    undo::run(scope, state, run)
 }
 
 /// Runs one step of the session on `state`.
@@ -64,7 +68,7 @@ pub(super) fn run_step(
         } => garment_mesh::run(scope, state, cx, (path, name), *ease, *scale),
         Op::Set { name, change } => set::run(scope, state, cx, name, *change),
         Op::Drag(edit) => drag::run(scope, state, cx, edit),
-        Op::Undo => undo::run(scope, state),
+        Op::Undo => undo::run(scope, state, (cx.session, cx.options)),
         Op::Cut { name, plane } => cut::run(scope, state, cx, name, *plane),
         Op::CutThrough { name, points } => cut::through(scope, state, cx, name, points),
         Op::Nurbs { name, path } => nurbs::run(scope, state, cx, name, path),

@@ -1,12 +1,16 @@
 //! `undo`: the garment back to its state before the last `set` or `drag` (a refused drag
-//! counts: undoing it changes nothing). The restored curves, patches, M0 and collision are
-//! emitted again, so a viewer shows the state the session is now in.
+//! counts: undoing it changes nothing). Its M1, when the history left it out, is made again
+//! (the same, bit for bit). The restored curves, patches, M0, collision and M1 are emitted
+//! again, so a viewer shows the state the session is now in.
 
 use serde::Serialize;
 
+use crate::session::Session;
 use crate::session::emit::StepScope;
 use crate::session::error::StepError;
 use crate::session::flow::collide::emit_kept;
+use crate::session::flow::m1::remake_m1;
+use crate::session::options::RunOptions;
 use crate::session::stage::{GarmentStage, Stage};
 use crate::session::state::SessionState;
 
@@ -17,10 +21,18 @@ struct UndoFigures {
     m0_vertices: usize,
 }
 
-pub(super) fn run(scope: &mut StepScope<'_, '_, '_>, state: &mut SessionState) -> Result<(), StepError> {
+pub(super) fn run(
+    scope: &mut StepScope<'_, '_, '_>,
+    state: &mut SessionState,
+    (session, options): (&Session, &RunOptions),
+) -> Result<(), StepError> {
     let mut previous = state.history.pop()?;
     if let Some(undone) = state.garment.as_mut() {
         previous.take_caches(undone);
+    }
+    if let Some(probe) = &state.probe {
+        let m1 = session.scene.m1.as_ref();
+        remake_m1(scope, (&state.body, probe.index()), &mut previous, options, m1);
     }
     if let Some(fw) = &previous.framework {
         scope.record(&UndoFigures {
