@@ -12,7 +12,7 @@ use super::emit::StepScope;
 use super::error::StepError;
 use super::flow::collide::{collide_and_emit, emit_kept};
 use super::flow::layers::{Below, below, latest_mesh};
-use super::flow::m1::remake_m1;
+use super::flow::restore::restore_m1;
 use super::format::{Op, Session, Step};
 use super::options::{RunOptions, StepContext};
 use super::stage::Stage;
@@ -318,7 +318,7 @@ fn refuse_all(
     let mut previous = state.worn[k].history.last().cloned();
     if let (Some(kept), Some(probe)) = (previous.as_mut(), state.probe.as_ref()) {
         let m1 = session.scene.m1.as_ref();
-        remake_m1(scope, (&state.body, probe.index()), kept, options, m1);
+        restore_m1(scope, (&state.body, probe.index()), kept, options, m1);
     }
     state.worn[k].garment = previous;
     if let Some(probe) = &state.probe {

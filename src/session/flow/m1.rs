@@ -172,32 +172,6 @@ pub(in crate::session) fn build_m1(
     });
 }
 
-/// Makes again the M1 that [`History`](crate::session::state::History) left out of `state`
-/// (see [`GarmentState::m1_left_out`]), when the state is restored: from its collided M0,
-/// cut lines and standard size, as the step that made it did (M1 depends on nothing else:
-/// the same M1 bit for bit). Its figures stay out of the step's metrics (the step restores
-/// them, it does not make them); its timings and work go in.
-pub(in crate::session) fn remake_m1(
-    scope: &mut StepScope<'_, '_, '_>,
-    (body, index): (&Body, &BodyIndex),
-    state: &mut GarmentState,
-    options: &RunOptions,
-    m1_options: Option<&M1Options>,
-) {
-    if !std::mem::take(&mut state.m1_left_out) {
-        return;
-    }
-    if let Some(m1_options) = m1_options {
-        let figures = scope.metrics.figures.clone();
-        let quiet = RunOptions {
-            verify: false,
-            ..options.clone()
-        };
-        build_m1(scope, body, index, state, &quiet, m1_options);
-        scope.metrics.figures = figures;
-    }
-}
-
 /// The metrics' `work` of M1's build: the refined patches collided at this step (and the
 /// vertices they tested) and those taken unchanged from the step before; 1 when M1's shape
 /// was kept from the step before (only its vertices placed again), 1 when it was read from

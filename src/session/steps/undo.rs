@@ -9,7 +9,7 @@ use crate::session::Session;
 use crate::session::emit::StepScope;
 use crate::session::error::StepError;
 use crate::session::flow::collide::emit_kept;
-use crate::session::flow::m1::remake_m1;
+use crate::session::flow::restore::restore_m1;
 use crate::session::options::RunOptions;
 use crate::session::stage::{GarmentStage, Stage};
 use crate::session::state::SessionState;
@@ -32,7 +32,7 @@ pub(super) fn run(
     }
     if let Some(probe) = &state.probe {
         let m1 = session.scene.m1.as_ref();
-        remake_m1(scope, (&state.body, probe.index()), &mut previous, options, m1);
+        restore_m1(scope, (&state.body, probe.index()), &mut previous, options, m1);
     }
     if let Some(fw) = &previous.framework {
         scope.record(&UndoFigures {
