@@ -40,8 +40,10 @@ pub fn index_into(from: &Path, to: &Path) -> Result<(), SinkError> {
             source: format!("{}: {e}", path.display()).into(),
         }
     };
+    // Marked with this process: two runs indexing the same recording at once each write
+    // their own file.
     let mut next = to.as_os_str().to_owned();
-    next.push(".indexing");
+    next.push(format!(".{}.indexing", std::process::id()));
     let next = PathBuf::from(next);
     let reader = BufReader::new(std::fs::File::open(from).map_err(io(from, "read"))?);
     let writer = BufWriter::new(std::fs::File::create(&next).map_err(io(&next, "create"))?);

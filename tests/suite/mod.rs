@@ -3,6 +3,7 @@ mod bodies;
 mod capture;
 mod collision;
 mod common;
+mod concurrent;
 mod constraints;
 mod convexify;
 mod coons;

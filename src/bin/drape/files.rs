@@ -16,9 +16,13 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
     std::fs::rename(&tmp, path).with_context(|| format!("cannot rename {} to {}", tmp.display(), path.display()))
 }
 
+/// The temporary name `path` is written under before its rename: beside it, marked with
+/// this process, so that two runs writing the same file at once each write their own and
+/// each rename a whole file into place (the last one stays), never one the other half wrote
+/// or already moved.
 pub(crate) fn partial_path(path: &Path) -> PathBuf {
     let mut name = path.file_name().map(|n| n.to_os_string()).unwrap_or_default();
-    name.push(".partial");
+    name.push(format!(".{}.partial", std::process::id()));
     path.with_file_name(name)
 }
 
