@@ -43,8 +43,9 @@ pub(super) fn run(
     let stored = cut::store(&outcome.m1, m0, positions, name, plane, &drawn);
     let points: usize = stored.pieces.iter().map(|(p, _)| p.len()).sum();
     let mut next = current.clone();
-    state.history.push(current.clone());
     if points == 0 {
+        // Refused: the garment stays, and an undo of this step changes nothing.
+        state.history.push(next);
         refuse(
             scope,
             name,
@@ -84,7 +85,7 @@ pub(super) fn run(
     }
     // The cut line is a seam of the pattern from now on.
     patterns_again(scope, cx, &mut next);
-    state.garment = Some(next);
+    state.advance(next);
     Ok(())
 }
 
@@ -137,15 +138,16 @@ pub(super) fn through(
         }
         vertices.push(v as u32);
     }
-    state.history.push(current.clone());
+    let mut next = current.clone();
     if let Some(why) = problem {
+        // Refused: the garment stays, and an undo of this step changes nothing.
+        state.history.push(next);
         refuse(scope, name, &why);
         return Ok(());
     }
-    let mut next = current.clone();
     next.through_cuts.push((name.to_string(), vertices));
     patterns_again(scope, cx, &mut next);
-    state.garment = Some(next);
+    state.advance(next);
     Ok(())
 }
 
