@@ -240,21 +240,18 @@ pub fn respond_faces(
             let free = known.map(|k| [0, 1, 2].map(|c| k.free_at(tri[c], now[tri[c] as usize])));
             free.map_or([0.0; 3], |f| f.map(|d| d.unwrap_or(0.0)))
         };
-        // Whether each face is pierced, and for those that are, where to lift them.
-        let tested: Vec<(bool, Option<Poke>)> = par_map(check.len(), |k| {
+        // Whether each face is pierced, and for those that are, where to lift them (boxed:
+        // few faces are pierced, and a list of unboxed answers for every face tested would
+        // take a dozen times the memory, in new pages each round).
+        let tested: Vec<Option<Box<Option<Poke>>>> = par_map(check.len(), |k| {
             let tri = corners(check[k]);
-            match pierced(index, tri, free(check[k])) {
-                true => (
-                    true,
-                    poke(index, tri, sides.get(&check[k]).copied().unwrap_or_default()),
-                ),
-                false => (false, None),
-            }
+            pierced(index, tri, free(check[k]))
+                .then(|| Box::new(poke(index, tri, sides.get(&check[k]).copied().unwrap_or_default())))
         });
         let hit: Vec<u32> = check
             .iter()
             .zip(&tested)
-            .filter(|(_, t)| t.0)
+            .filter(|(_, t)| t.is_some())
             .map(|(&f, _)| f)
             .collect();
         for f in &check {
@@ -277,7 +274,7 @@ pub fn respond_faces(
         let pierced: Vec<(u32, Poke)> = check
             .iter()
             .zip(tested)
-            .filter_map(|(&f, (_, p))| Some((f, p?)))
+            .filter_map(|(&f, p)| Some((f, (*p?)?)))
             .collect();
         sides.extend(pierced.iter().map(|(f, p)| (*f, p.way_out)));
         if pierced.is_empty() {

@@ -236,7 +236,9 @@ fn edit(
     k: usize,
 ) -> Result<(), StepError> {
     let under = surfaces(state, k)?;
-    let before = surface_of(state.worn[k].garment.as_ref());
+    // What the garments over it are pushed in front of (none over it: nothing to compare).
+    let covered = k + 1 < state.worn.len();
+    let before = covered.then(|| surface_of(state.worn[k].garment.as_ref()));
     let undoable = state.worn[k].history.len();
     checkout(state, k);
     scope.layer = (k > 0).then(|| state.worn[k].name.clone());
@@ -248,7 +250,7 @@ fn edit(
         return Ok(());
     }
     let mut changed = vec![k];
-    if k + 1 < state.worn.len() && surface_of(state.worn[k].garment.as_ref()) != before {
+    if covered && Some(surface_of(state.worn[k].garment.as_ref())) != before {
         match push_over(scope, state, (session, options), k)? {
             Ok(pushed) => changed.extend(pushed),
             Err(message) => refuse_all(scope, state, (session, options), (k, &message)),
