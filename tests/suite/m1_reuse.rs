@@ -27,6 +27,27 @@ fn bits(positions: &[glam::DVec3]) -> Vec<[u64; 3]> {
     positions.iter().map(|p| p.to_array().map(f64::to_bits)).collect()
 }
 
+/// Asserts that M1 `a` is M1 `b`, bit for bit (`at` says where): its faces, their patches,
+/// its positions before and after its collision, every field of the subdivision, the whole
+/// collision (every figure and list) and the cut lines.
+fn assert_same_m1(a: &drape::session::M1Outcome, b: &drape::session::M1Outcome, at: &str) {
+    assert_eq!(a.m1.mesh.triangles, b.m1.mesh.triangles, "{at}: M1 faces");
+    assert_eq!(a.m1.face_patch, b.m1.face_patch, "{at}: M1 face patches");
+    assert_eq!(
+        bits(&a.m1.mesh.positions),
+        bits(&b.m1.mesh.positions),
+        "{at}: M1 before its collision"
+    );
+    assert_eq!(a.m1, b.m1, "{at}: the subdivision, every field");
+    assert_eq!(
+        bits(&a.collision.positions),
+        bits(&b.collision.positions),
+        "{at}: M1 after its collision"
+    );
+    assert_eq!(a.collision, b.collision, "{at}: M1's collision, figures and lists");
+    assert_eq!((&a.stored, &a.cuts), (&b.stored, &b.cuts), "{at}: cut lines");
+}
+
 /// A random session: a tight jumpsuit with M1, its ease tightened (so that M1's collision
 /// has vertices to move), then drags of control points, dimension edits and undos drawn by
 /// `rng`.
@@ -121,21 +142,7 @@ fn incremental_m1_equals_m1_made_whole_bit_for_bit_on_random_drag_and_dimension_
         for ((step, a), (step_b, b)) in incremental.iter().zip(&whole) {
             let at = format!("{} step {step}\n{text}", body.display());
             assert_eq!(step, step_b, "{at}");
-            assert_eq!(a.m1.mesh.triangles, b.m1.mesh.triangles, "{at}: M1 faces");
-            assert_eq!(a.m1.face_patch, b.m1.face_patch, "{at}: M1 face patches");
-            assert_eq!(
-                bits(&a.m1.mesh.positions),
-                bits(&b.m1.mesh.positions),
-                "{at}: M1 before its collision"
-            );
-            assert_eq!(a.m1, b.m1, "{at}: the subdivision, every field");
-            assert_eq!(
-                bits(&a.collision.positions),
-                bits(&b.collision.positions),
-                "{at}: M1 after its collision"
-            );
-            assert_eq!(a.collision, b.collision, "{at}: M1's collision, figures and lists");
-            assert_eq!(a.cuts, b.cuts, "{at}: cut lines");
+            assert_same_m1(a, b, &at);
         }
         // The runs differ in what they did: the whole one kept nothing, the incremental one
         // kept patches at some step (otherwise this test compared two full builds).
@@ -190,19 +197,7 @@ fn an_undo_restores_the_m1_its_step_made_bit_for_bit_though_the_history_keeps_no
             .unwrap_or_else(|| panic!("no M1 logged at step {step}"))
     };
     for (undo, made) in [(7, 5), (8, 4), (9, 3)] {
-        let (a, b) = (at(undo), at(made));
-        assert_eq!(a.m1, b.m1, "undo at step {undo}: the subdivision, every field");
-        assert_eq!(
-            bits(&a.collision.positions),
-            bits(&b.collision.positions),
-            "undo at step {undo}"
-        );
-        assert_eq!(a.collision, b.collision, "undo at step {undo}: M1's collision");
-        assert_eq!(
-            (&a.stored, &a.cuts),
-            (&b.stored, &b.cuts),
-            "undo at step {undo}: cut lines"
-        );
+        assert_same_m1(&at(undo), &at(made), &format!("undo at step {undo}"));
     }
     // The states compared differ (each step changed M1), so a restore of the wrong one fails.
     assert_ne!(bits(&at(5).collision.positions), bits(&at(4).collision.positions));
