@@ -320,7 +320,8 @@ fn refuse_all(
     let mut previous = state.worn[k].history.last().cloned();
     if let (Some(kept), Some(probe)) = (previous.as_mut(), state.probe.as_ref()) {
         let m1 = session.scene.m1.as_ref();
-        restore_m1(scope, (&state.body, probe.index()), kept, options, m1);
+        let restored = (kept, state.worn[k].garment.as_mut());
+        restore_m1(scope, (&state.body, probe.index()), restored, options, m1);
     }
     state.worn[k].garment = previous;
     if let Some(probe) = &state.probe {

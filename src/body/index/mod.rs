@@ -127,6 +127,10 @@ pub struct BodyIndex {
     pub(super) slack: f64,
     /// The shell's tree: nearest points, segments and rays.
     pub(super) near: NearTree,
+    /// [`Self::fingerprint`], hashed the first time it is asked for (every M1 collision
+    /// asks).
+    #[serde(skip)]
+    fingerprint: std::sync::OnceLock<u64>,
 }
 
 thread_local! {
@@ -179,8 +183,13 @@ fn angle(a: DVec3, b: DVec3) -> f64 {
 impl BodyIndex {
     /// A hash of the body the index answers for: xxh64 of its positions' bits, its
     /// triangles and its height, little-endian, streamed through a small buffer (what a
-    /// result kept from an earlier step checks it was found against).
+    /// result kept from an earlier step checks it was found against); hashed once.
     pub fn fingerprint(&self) -> u64 {
+        *self.fingerprint.get_or_init(|| self.hash_body())
+    }
+
+    /// The hash [`Self::fingerprint`] keeps.
+    fn hash_body(&self) -> u64 {
         const BLOCK: usize = 1 << 15;
         let mut hasher = xxhash_rust::xxh64::Xxh64::new(0);
         let mut bytes: Vec<u8> = Vec::with_capacity(BLOCK + 8);
@@ -310,6 +319,7 @@ impl BodyIndex {
             all: None,
             slack: 1e-5 * height,
             leaves,
+            fingerprint: std::sync::OnceLock::new(),
         };
         index.near = NearTree::new(&index.leaves, |t| index.corners(t), bounds);
         // The box-overlapping triangle pairs, from parry3d's self-test of a tree over every

@@ -16,16 +16,22 @@ use crate::session::state::GarmentState;
 
 use super::m1::build_m1;
 
-/// Makes again the M1 the history left out of `state` (nothing when it left none out), with
+/// Makes `state`, restored from the history in place of `dropped` (the state it replaces,
+/// when there is one), whole again: it takes `dropped`'s M1 caches
+/// ([`GarmentState::take_caches`]: each answers only for its own inputs, which it checks),
+/// then makes again the M1 the history left out of it (nothing when it left none out), with
 /// the scene's M1 settings (`m1_options`). Its timings and work go into the step's metrics;
 /// its figures do not (the step restores the state, it does not make it).
 pub(in crate::session) fn restore_m1(
     scope: &mut StepScope<'_, '_, '_>,
     (body, index): (&Body, &BodyIndex),
-    state: &mut GarmentState,
+    (state, dropped): (&mut GarmentState, Option<&mut GarmentState>),
     options: &RunOptions,
     m1_options: Option<&M1Options>,
 ) {
+    if let Some(dropped) = dropped {
+        state.take_caches(dropped);
+    }
     if let (true, Some(m1_options)) = (std::mem::take(&mut state.m1_left_out), m1_options) {
         let figures = scope.metrics.figures.clone();
         let quiet = RunOptions {

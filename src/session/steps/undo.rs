@@ -27,12 +27,10 @@ pub(super) fn run(
     (session, options): (&Session, &RunOptions),
 ) -> Result<(), StepError> {
     let mut previous = state.history.pop()?;
-    if let Some(undone) = state.garment.as_mut() {
-        previous.take_caches(undone);
-    }
     if let Some(probe) = &state.probe {
         let m1 = session.scene.m1.as_ref();
-        restore_m1(scope, (&state.body, probe.index()), &mut previous, options, m1);
+        let restored = (&mut previous, state.garment.as_mut());
+        restore_m1(scope, (&state.body, probe.index()), restored, options, m1);
     }
     if let Some(fw) = &previous.framework {
         scope.record(&UndoFigures {
