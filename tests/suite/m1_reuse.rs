@@ -214,3 +214,49 @@ fn an_undo_restores_the_m1_its_step_made_bit_for_bit_though_the_history_keeps_no
         assert!(work.contains_key("m1.patches_kept"), "step {step}: {work:?}");
     }
 }
+
+/// Every M1 a run logs, by step and layer (`None`: the innermost garment).
+#[derive(Default)]
+struct LayeredM1s(Vec<(usize, Option<String>, drape::session::M1Outcome)>);
+
+impl StageSink for LayeredM1s {
+    fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
+        self.0.push((info.step, info.layer.clone(), stage.outcome.clone()));
+        Ok(())
+    }
+}
+
+#[test]
+fn an_edit_the_garment_over_it_cannot_follow_is_refused_and_restores_the_m1_before_it_bit_for_bit() {
+    // Steps: 1 the inner jumpsuit with M1, 2 its cut line, 3 a tight jumpsuit over it, 4 a
+    // sculpt of the inner one: a spike 8 cm high on a 1 cm base that the coarse garment
+    // over it cannot be kept in front of. The edit is refused; the inner garment goes back
+    // to its state after step 2, whose M1 its history does not keep (no sculpt was made
+    // on it): the refusal makes it again, and it must be the M1 step 2 made.
+    let text = "drape 1\nbody builtin\nunits m\nm1\ngarment jumpsuit name=inner resolution=5\n\
+                cut inner:yoke at=0,1.0,0 normal=0,1,0.25\n\
+                garment jumpsuit fit=tight name=outer over=inner resolution=5\n\
+                sculpt at=inner:waist.front radius=0.01 peak=0.08\n";
+    let session = parse_session(text, "refused_m1.drape", std::path::Path::new(".")).expect("parses");
+    let mut sink = LayeredM1s::default();
+    let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
+    assert!(report.error.is_none(), "{:?}", report.error);
+    let refused = report.steps[4].figures.get("refused").and_then(|r| r.as_str());
+    assert!(
+        refused.is_some_and(|r| r.starts_with("'outer' cannot be kept over 'inner'")),
+        "the sculpt was not refused for the garment over it: {:?}",
+        report.steps[4].figures
+    );
+    let inner = |step: usize| {
+        let found = sink.0.iter().rev().find(|(s, layer, _)| *s == step && layer.is_none());
+        found
+            .map(|(_, _, o)| o.clone())
+            .unwrap_or_else(|| panic!("no M1 of the inner garment logged at step {step}"))
+    };
+    let (restored, before) = (inner(4), inner(2));
+    assert_same_m1(&restored, &before, "the refused sculpt");
+    assert_eq!(restored.stored.len(), 1, "the cut line is kept");
+    // The refusal made M1 again (its build's work is in the step's metrics).
+    let work = &report.steps[4].work;
+    assert!(work.contains_key("m1.patches_kept"), "{work:?}");
+}
