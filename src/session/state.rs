@@ -93,9 +93,11 @@ impl SessionState {
 /// A garment's undo history: its states before each undoable step, the newest last. A state
 /// goes in without M1's caches, which only the step after it reads (each state kept its
 /// own, some 12 MB a drag at resolution 24, all in new pages), and without M1 itself where
-/// M1 can be made again from what the state keeps ([`GarmentState::for_history`]: half of
-/// what a state held, 15.3 MB then 7.7 MB a drag at resolution 24). `undo` hands the state it restores the caches of the state it drops
-/// ([`GarmentState::take_caches`]) and makes its M1 again from them, the same bit for bit.
+/// M1 can be made again from what the state keeps ([`GarmentState::for_history`]: about
+/// half of what a state holds, some 7.7 MB left a drag at resolution 24). A state restored
+/// from it (by `undo`, or by a refused edit of a garment worn under others) takes the caches
+/// of the state it replaces and makes its M1 again from them, the same bit for bit
+/// (`flow::restore::restore_m1`).
 #[derive(Default)]
 pub(crate) struct History {
     states: Vec<GarmentState>,

@@ -11,14 +11,24 @@ use drape::session::{M1Stage, RunOptions, SinkError, StageInfo, StageSink, parse
 
 use super::common::{Lcg, shipped_bodies};
 
-/// Every M1 a run logs, by step.
+/// Every M1 a run logs, by step and layer (`None`: the innermost garment).
 #[derive(Default)]
-struct M1s(Vec<(usize, drape::session::M1Outcome)>);
+struct M1s(Vec<(usize, Option<String>, drape::session::M1Outcome)>);
 
 impl StageSink for M1s {
     fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
-        self.0.push((info.step, stage.outcome.clone()));
+        self.0.push((info.step, info.layer.clone(), stage.outcome.clone()));
         Ok(())
+    }
+}
+
+impl M1s {
+    /// The last M1 of the innermost garment logged at `step`.
+    fn last_at(&self, step: usize) -> drape::session::M1Outcome {
+        let found = self.0.iter().rev().find(|(s, layer, _)| *s == step && layer.is_none());
+        found
+            .map(|(_, _, o)| o.clone())
+            .unwrap_or_else(|| panic!("no M1 of the innermost garment logged at step {step}"))
     }
 }
 
@@ -109,7 +119,7 @@ fn run(text: &str, full_m1: bool) -> (Vec<(usize, drape::session::M1Outcome)>, K
             ))
         })
         .collect();
-    (sink.0, kept)
+    (sink.0.into_iter().map(|(step, _, m1)| (step, m1)).collect(), kept)
 }
 
 #[test]
@@ -190,12 +200,7 @@ fn an_undo_restores_the_m1_its_step_made_bit_for_bit_though_the_history_keeps_no
     let mut sink = M1s::default();
     let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
     assert!(report.error.is_none(), "{:?}", report.error);
-    let at = |step: usize| {
-        let found = sink.0.iter().rev().find(|(s, _)| *s == step);
-        found
-            .map(|(_, o)| o.clone())
-            .unwrap_or_else(|| panic!("no M1 logged at step {step}"))
-    };
+    let at = |step: usize| sink.last_at(step);
     for (undo, made) in [(7, 5), (8, 4), (9, 3)] {
         assert_same_m1(&at(undo), &at(made), &format!("undo at step {undo}"));
     }
@@ -215,17 +220,6 @@ fn an_undo_restores_the_m1_its_step_made_bit_for_bit_though_the_history_keeps_no
     }
 }
 
-/// Every M1 a run logs, by step and layer (`None`: the innermost garment).
-#[derive(Default)]
-struct LayeredM1s(Vec<(usize, Option<String>, drape::session::M1Outcome)>);
-
-impl StageSink for LayeredM1s {
-    fn m1(&mut self, info: &StageInfo, stage: M1Stage<'_>) -> Result<(), SinkError> {
-        self.0.push((info.step, info.layer.clone(), stage.outcome.clone()));
-        Ok(())
-    }
-}
-
 #[test]
 fn an_edit_the_garment_over_it_cannot_follow_is_refused_and_restores_the_m1_before_it_bit_for_bit() {
     // Steps: 1 the inner jumpsuit with M1, 2 its cut line, 3 a tight jumpsuit over it, 4 a
@@ -238,7 +232,7 @@ fn an_edit_the_garment_over_it_cannot_follow_is_refused_and_restores_the_m1_befo
                 garment jumpsuit fit=tight name=outer over=inner resolution=5\n\
                 sculpt at=inner:waist.front radius=0.01 peak=0.08\n";
     let session = parse_session(text, "refused_m1.drape", std::path::Path::new(".")).expect("parses");
-    let mut sink = LayeredM1s::default();
+    let mut sink = M1s::default();
     let report = run_session(&session, &RunOptions::default(), &mut [&mut sink]);
     assert!(report.error.is_none(), "{:?}", report.error);
     let refused = report.steps[4].figures.get("refused").and_then(|r| r.as_str());
@@ -247,13 +241,7 @@ fn an_edit_the_garment_over_it_cannot_follow_is_refused_and_restores_the_m1_befo
         "the sculpt was not refused for the garment over it: {:?}",
         report.steps[4].figures
     );
-    let inner = |step: usize| {
-        let found = sink.0.iter().rev().find(|(s, layer, _)| *s == step && layer.is_none());
-        found
-            .map(|(_, _, o)| o.clone())
-            .unwrap_or_else(|| panic!("no M1 of the inner garment logged at step {step}"))
-    };
-    let (restored, before) = (inner(4), inner(2));
+    let (restored, before) = (sink.last_at(4), sink.last_at(2));
     assert_same_m1(&restored, &before, "the refused sculpt");
     assert_eq!(restored.stored.len(), 1, "the cut line is kept");
     // The refusal made M1 again (its build's work is in the step's metrics).
