@@ -17,6 +17,11 @@ use glam::DVec3;
 use super::index::{BodyIndex, Nearest};
 use crate::geom::closest::closest_on_triangle;
 
+thread_local! {
+    /// Each thread's list of the triangles a ball gathers, kept from ball to ball.
+    static GATHERED: std::cell::RefCell<Vec<(f64, u32, [DVec3; 3])>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
 /// The shell triangles that can hold the nearest point of any point within `room` of
 /// `centre` (see the module's text), nearest `centre` first.
 #[derive(Clone, Debug, PartialEq)]
@@ -52,17 +57,22 @@ impl BodyIndex {
     /// are the same. One pass over the tree instead of a search and then the pass.
     pub fn nearby_within(&self, centre: DVec3, distance: f64, room: f64) -> Nearby {
         let reach = (distance + 2.0 * room) * (1.0 + 1e-9) + self.slack;
-        let mut triangles = Vec::new();
-        // Every box within the reach: the bound never tightens.
-        self.near
-            .within(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
-                let (foot, _) = closest_on_triangle(centre, *corners);
-                let distance = centre.distance(foot);
-                if distance <= reach {
-                    triangles.push((distance, t, *corners));
-                }
-            });
-        triangles.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // Gathered into this thread's scratch list, which keeps its room from ball to
+        // ball, and handed out at its length: one allocation a ball.
+        let triangles = GATHERED.with_borrow_mut(|gathered| {
+            gathered.clear();
+            // Every box within the reach: the bound never tightens.
+            self.near
+                .within(centre.as_vec3(), (reach * reach) as f32, |t, corners| {
+                    let (foot, _) = closest_on_triangle(centre, *corners);
+                    let distance = centre.distance(foot);
+                    if distance <= reach {
+                        gathered.push((distance, t, *corners));
+                    }
+                });
+            gathered.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            gathered.to_vec()
+        });
         Nearby {
             centre,
             room,

@@ -304,7 +304,7 @@ fn clear_interior(grid: &mut PatchGrid, probe: &BodyProbe, gap: f64) -> Cleared 
         found: vec![None; grid.points.len()],
         balls: vec![None; grid.points.len()],
     };
-    for (k, _) in grid.interior() {
+    for k in grid.interior().iter().map(|point| point.index) {
         let (p, n, ball) = probe.clear_keeping_ball(grid.points[k], gap);
         out.moved[k] = p != grid.points[k];
         grid.points[k] = p;
@@ -335,11 +335,12 @@ fn relax(
     scale: f64,
 ) {
     let interior = grid.interior();
+    let mut before = Vec::new();
     for _ in 0..RELAX_ROUNDS {
-        let before = grid.points.clone();
+        before.clone_from(&grid.points);
         let mut most: f64 = 0.0;
-        for (k, around) in &interior {
-            let k = *k;
+        for point in &interior {
+            let (k, around) = (point.index, point.around());
             if !moved[k] {
                 continue;
             }

@@ -72,16 +72,18 @@ impl PatchGrid {
     }
 
     /// The indices of its interior points (those on no side), each with its neighbours
-    /// on the grid: left, right, down and up first (they give the tangent plane), then any
-    /// others (a three-sided grid has two more, along its diagonals).
-    pub fn interior(&self) -> Vec<(usize, Vec<usize>)> {
+    /// on the grid ([`Interior::around`]): left, right, down and up first (they give the
+    /// tangent plane), then any others (a three-sided grid has two more, along its
+    /// diagonals).
+    pub fn interior(&self) -> Vec<Interior> {
         let (nu, nv) = (self.nu, self.nv);
         let mut out = Vec::new();
         if !self.triangular {
             let at = |i: usize, j: usize| j * (nu + 1) + i;
             for j in 1..nv {
                 for i in 1..nu {
-                    out.push((at(i, j), vec![at(i - 1, j), at(i + 1, j), at(i, j - 1), at(i, j + 1)]));
+                    let around = [at(i - 1, j), at(i + 1, j), at(i, j - 1), at(i, j + 1), 0, 0];
+                    out.push(Interior::new(at(i, j), around, 4));
                 }
             }
             return out;
@@ -97,19 +99,100 @@ impl PatchGrid {
         let at = |i: usize, r: usize| starts[r] + i;
         for r in 1..n {
             for i in 1..n - r {
-                out.push((
-                    at(i, r),
-                    vec![
-                        at(i - 1, r),
-                        at(i + 1, r),
-                        at(i, r - 1),
-                        at(i, r + 1),
-                        at(i + 1, r - 1),
-                        at(i - 1, r + 1),
-                    ],
-                ));
+                let around = [
+                    at(i - 1, r),
+                    at(i + 1, r),
+                    at(i, r - 1),
+                    at(i, r + 1),
+                    at(i + 1, r - 1),
+                    at(i - 1, r + 1),
+                ];
+                out.push(Interior::new(at(i, r), around, 6));
             }
         }
         out
+    }
+}
+
+/// An interior point of a patch grid (see [`PatchGrid::interior`]) and its neighbours on
+/// the grid, held in place (a grid has many: no allocation each).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Interior {
+    /// The point's index.
+    pub index: usize,
+    around: [usize; 6],
+    count: u8,
+}
+
+impl Interior {
+    fn new(index: usize, around: [usize; 6], count: u8) -> Self {
+        Self { index, around, count }
+    }
+
+    /// Its neighbours: left, right, down and up, then (on a three-sided grid) the two
+    /// along its diagonals.
+    pub fn around(&self) -> &[usize] {
+        &self.around[..usize::from(self.count)]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::DVec3;
+
+    use super::PatchGrid;
+
+    /// A grid whose points stand at their lattice coordinates `(i, row)`.
+    fn lattice(nu: usize, nv: usize, triangular: bool) -> PatchGrid {
+        let points = (0..=nv)
+            .flat_map(|r| (0..=if triangular { nu - r } else { nu }).map(move |i| DVec3::new(i as f64, r as f64, 0.0)))
+            .collect();
+        PatchGrid {
+            name: "lattice".into(),
+            nu,
+            nv,
+            points,
+            curves: Vec::new(),
+            triangular,
+        }
+    }
+
+    /// The interior points and their neighbours, against a search of the points by where
+    /// they stand: every point on no side, each with the points one lattice step away in
+    /// the order left, right, down, up (then, on a three-sided grid, down-right and
+    /// up-left).
+    #[test]
+    fn the_interior_points_are_those_on_no_side_with_their_lattice_neighbours() {
+        for (nu, nv, triangular) in [(5, 3, false), (1, 4, false), (6, 6, true), (2, 2, true)] {
+            let grid = lattice(nu, nv, triangular);
+            let find = |i: i64, r: i64| {
+                grid.points
+                    .iter()
+                    .position(|p| *p == DVec3::new(i as f64, r as f64, 0.0))
+            };
+            let on_side = |i: usize, r: usize| {
+                let last = if triangular { nu - r } else { nu };
+                i == 0 || r == 0 || i == last || (!triangular && r == nv)
+            };
+            let expected: Vec<(usize, Vec<usize>)> = (grid.points.iter().enumerate())
+                .filter(|(_, p)| !on_side(p.x as usize, p.y as usize))
+                .map(|(k, p)| {
+                    let (i, r) = (p.x as i64, p.y as i64);
+                    let mut steps = vec![(-1, 0), (1, 0), (0, -1), (0, 1)];
+                    if triangular {
+                        steps.extend([(1, -1), (-1, 1)]);
+                    }
+                    let around = steps
+                        .iter()
+                        .map(|(di, dr)| find(i + di, r + dr).expect("a neighbour"))
+                        .collect();
+                    (k, around)
+                })
+                .collect();
+            let got: Vec<(usize, Vec<usize>)> = (grid.interior().iter())
+                .map(|point| (point.index, point.around().to_vec()))
+                .collect();
+            assert_eq!(got, expected, "{nu} x {nv}, three-sided: {triangular}");
+        }
     }
 }
